@@ -1,0 +1,10 @@
+// The subcommands of the `tripath` command line, each in its own file.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace tripath::app {
+
+void addRenderCommand(CLI::App& app);
+void addScenesCommand(CLI::App& app);
+
+}  // namespace tripath::app

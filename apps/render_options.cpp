@@ -1,0 +1,120 @@
+#include "render_options.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <iostream>
+
+#include "geometry/error.h"
+#include "geometry/scene_source.h"
+
+namespace tripath::app {
+
+void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
+    cmd.add_option("--scene", o.scene, "Built-in scene name (see `tripath scenes`) or a .gltf/.glb file")->required();
+    if (withIntegrator)
+        cmd.add_option("--integrator", o.integrator,
+                       "pt: path tracing with next-event estimation; lt: light tracing; bdpt: bidirectional "
+                       "path tracing with MIS over every (s,t)")
+            ->capture_default_str();
+    auto* spp = cmd.add_option("--spp", o.spp, "Samples per pixel, one per pass (default 16 when --time is not given)");
+    auto* time = cmd.add_option("--time", o.seconds,
+                                "Wall-clock budget in seconds: render whole passes until it is spent (at least one)");
+    spp->excludes(time);
+    cmd.add_option("--width", o.width, "Image width in pixels")->capture_default_str();
+    cmd.add_option("--height", o.height, "Image height in pixels")->capture_default_str();
+    cmd.add_option("--max-depth", o.maxDepth,
+                   "Longest path kept, in segments k: 1 = emitters seen directly, 2 = direct lighting, ...")
+        ->capture_default_str();
+    cmd.add_option("--rr-depth", o.rrDepth, "Russian roulette starts once a subpath has this many vertices")
+        ->capture_default_str();
+    cmd.add_option("--mis", o.mis, "MIS heuristic: balance, power (beta = 2) or none (uniform weights)")
+        ->capture_default_str();
+    cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
+        ->capture_default_str();
+    cmd.add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+}
+
+void validateRenderOptions(const RenderOptions& o) {
+    auto fail = [](const std::string& m) { throw InputError(m); };
+    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
+        fail(fmt::format("--width/--height must be between 1 and 16384 (got {}x{})", o.width, o.height));
+    if (o.spp < 0 || o.spp > 1000000) fail(fmt::format("--spp must be between 1 and 1000000 (got {})", o.spp));
+    if (!(o.seconds >= 0) || o.seconds > 1e7) fail(fmt::format("--time must be a positive number of seconds (got {})", o.seconds));
+    if (o.maxDepth < 1 || o.maxDepth > 1024) fail(fmt::format("--max-depth must be between 1 and 1024 (got {})", o.maxDepth));
+    if (o.rrDepth < 1) fail(fmt::format("--rr-depth must be at least 1 (got {})", o.rrDepth));
+    if (o.threads < 0 || o.threads > 4096) fail(fmt::format("--threads must be between 0 and 4096 (got {})", o.threads));
+    parseMisHeuristic(o.mis);
+    makeIntegrator(o.integrator, {});
+}
+
+IntegratorSettings integratorSettings(const RenderOptions& o) {
+    IntegratorSettings s;
+    s.walk.maxDepth = o.maxDepth;
+    s.walk.rrDepth = o.rrDepth;
+    s.mis = parseMisHeuristic(o.mis);
+    return s;
+}
+
+std::unique_ptr<Scene> loadScene(const RenderOptions& o) {
+    return std::make_unique<Scene>(loadSceneDesc(o.scene), o.width, o.height);
+}
+
+RenderSettings renderSettings(const RenderOptions& o) {
+    RenderSettings s;
+    s.seconds = o.seconds;
+    s.spp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : 16);
+    s.seed = o.seed;
+    s.threads = o.threads;
+    return s;
+}
+
+Metadata renderMetadata(const RenderOptions& o, const std::string& integrator, const RenderResult& r) {
+    return {{"tripath:scene", o.scene},
+            {"tripath:integrator", integrator},
+            {"tripath:spp", std::to_string(r.passes)},
+            {"tripath:seconds", fmt::format("{:.3f}", r.seconds)},
+            {"tripath:seed", std::to_string(o.seed)},
+            {"tripath:max-depth", std::to_string(o.maxDepth)},
+            {"tripath:rr-depth", std::to_string(o.rrDepth)},
+            {"tripath:mis", o.mis},
+            {"tripath:dropped-samples", std::to_string(r.droppedSamples)},
+            {"tripath:version", TRIPATH_VERSION}};
+}
+
+namespace {
+std::atomic<bool> gStop{false};
+void onInterrupt(int) {
+    if (gStop.exchange(true)) std::_Exit(130);  // second Ctrl-C: give up at once
+}
+}  // namespace
+
+const std::atomic<bool>* installInterruptHandler() {
+    std::signal(SIGINT, onInterrupt);
+    std::signal(SIGTERM, onInterrupt);
+    return &gStop;
+}
+
+std::function<void(int, double)> progressReporter(const RenderSettings& s, int width, int height,
+                                                  const std::string& label) {
+    if (!isatty(STDERR_FILENO)) return {};
+    const double pixels = double(width) * height;
+    return [s, pixels, label](int passes, double seconds) {
+        const double fraction = s.seconds > 0 ? std::min(1.0, seconds / s.seconds) : double(passes) / s.spp;
+        const double left = fraction > 0 ? seconds * (1 - fraction) / fraction : 0;
+        const int bar = static_cast<int>(fraction * 30);
+        std::cerr << fmt::format("\r{} [{:<30}] {:3.0f}%  {} spp  {:.2f} Msamples/s  {:.0f} s left ", label,
+                                 std::string(bar, '#'), 100 * fraction, passes, passes * pixels / seconds / 1e6, left)
+                  << std::flush;
+    };
+}
+
+void printSummary(const std::string& label, const RenderResult& r, int width, int height) {
+    if (isatty(STDERR_FILENO)) std::cerr << "\n";
+    std::cerr << fmt::format("{}: {} spp in {:.2f} s ({:.2f} Msamples/s), {} NaN/Inf samples dropped\n", label,
+                             r.passes, r.seconds, r.passes * double(width) * height / r.seconds / 1e6,
+                             r.droppedSamples);
+}
+
+}  // namespace tripath::app

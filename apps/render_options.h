@@ -1,0 +1,50 @@
+// The flags shared by every command that renders: scene, integrator, budget, sizes, seed.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "geometry/scene.h"
+#include "image/image.h"
+#include "integrators/integrator.h"
+#include "integrators/render.h"
+
+namespace tripath::app {
+
+struct RenderOptions {
+    std::string scene;
+    std::string integrator = "bdpt";
+    int spp = 0;            // 0: not given
+    double seconds = 0;     // 0: not given
+    int width = 512, height = 512;
+    int maxDepth = 16;
+    int rrDepth = 3;
+    std::string mis = "power";
+    uint64_t seed = 1;
+    int threads = 0;
+};
+
+// Registers the flags on a subcommand, with help text that states defaults and meanings.
+void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator = true);
+// Throws InputError for values out of range, before any work is done.
+void validateRenderOptions(const RenderOptions& o);
+
+IntegratorSettings integratorSettings(const RenderOptions& o);
+std::unique_ptr<Scene> loadScene(const RenderOptions& o);
+// spp/time budget, seed and threads as the render loop takes them (defaults to 16 spp).
+RenderSettings renderSettings(const RenderOptions& o);
+// The EXR metadata describing a finished render.
+Metadata renderMetadata(const RenderOptions& o, const std::string& integrator, const RenderResult& r);
+
+// Ctrl-C: the first one asks the render loop to stop at the next pass (the image so far is
+// written); a second one exits at once.
+const std::atomic<bool>* installInterruptHandler();
+
+// A progress line on stderr when it is a terminal (percent, samples/s, time left), updated
+// after each pass; nothing otherwise. Returns the callback for RenderSettings::progress.
+std::function<void(int, double)> progressReporter(const RenderSettings& s, int width, int height, const std::string& label);
+// The one-line summary printed when a render ends.
+void printSummary(const std::string& label, const RenderResult& r, int width, int height);
+
+}  // namespace tripath::app

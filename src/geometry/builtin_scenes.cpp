@@ -1,0 +1,264 @@
+#include "geometry/builtin_scenes.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "geometry/error.h"
+
+namespace tripath {
+
+namespace {
+
+// ---- building blocks --------------------------------------------------------------------------
+
+int addMaterial(SceneDesc& s, Material m) {
+    s.materials.push_back(std::move(m));
+    return static_cast<int>(s.materials.size()) - 1;
+}
+
+Material lambertian(const char* name, Spectrum albedo) {
+    Material m;
+    m.name = name;
+    m.type = MaterialType::Lambertian;
+    m.albedo = albedo;
+    return m;
+}
+
+Material emitter(const char* name, Spectrum radiance) {
+    Material m = lambertian(name, Spectrum(0.0f));
+    m.emission = radiance;
+    return m;
+}
+
+// Quad a b c d, counter-clockwise seen from its front (the side its normal points to).
+void addQuad(SceneDesc& s, const char* name, int material, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    s.meshes.push_back(MeshDesc{name, {a, b, c, d}, {}, {0, 1, 2, 0, 2, 3}, material});
+}
+
+// Axis-aligned box of half-size h, rotated by `angle` about +y, resting on y = 0; faces outward.
+void addBox(SceneDesc& s, const char* name, int material, Vec3 centre, Vec3 h, float angle) {
+    const float c = std::cos(angle), sn = std::sin(angle);
+    auto corner = [&](float x, float y, float z) {
+        return Vec3(centre.x + c * x * h.x + sn * z * h.z, centre.y + y * h.y, centre.z - sn * x * h.x + c * z * h.z);
+    };
+    MeshDesc m{name, {}, {}, {}, material};
+    for (int i = 0; i < 8; ++i) m.positions.push_back(corner(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
+    // Corner i has bit 0 = +x, bit 1 = +y, bit 2 = +z; each face listed counter-clockwise from outside.
+    const uint32_t faces[6][4] = {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3}, {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}};
+    for (const auto& f : faces)
+        for (uint32_t k : {f[0], f[1], f[2], f[0], f[2], f[3]}) m.indices.push_back(k);
+    s.meshes.push_back(std::move(m));
+}
+
+// UV sphere with smooth (shading) normals; `inward` turns its front faces to the inside.
+void addSphere(SceneDesc& s, const char* name, int material, Vec3 centre, float radius, int rings, bool inward = false) {
+    MeshDesc m{name, {}, {}, {}, material};
+    const int segments = 2 * rings;
+    for (int i = 0; i <= rings; ++i) {
+        const float theta = kPi * i / rings;
+        for (int j = 0; j <= segments; ++j) {
+            const float phi = 2.0f * kPi * j / segments;
+            const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+            m.positions.push_back(centre + n * radius);
+            m.normals.push_back(inward ? -n : n);
+        }
+    }
+    auto at = [&](int i, int j) { return static_cast<uint32_t>(i * (segments + 1) + j); };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            // Outward winding is (i,j) (i+1,j+1) (i+1,j) here; reverse it for inward.
+            const uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+            const uint32_t quad[6] = {a, c, b, a, d, c};
+            for (int k = 0; k < 6; ++k) m.indices.push_back(quad[inward ? 5 - k : k]);
+        }
+    s.meshes.push_back(std::move(m));
+}
+
+// ---- the Cornell box family -------------------------------------------------------------------
+// A 2 m box: x ∈ [-1,1] (red left, green right), y ∈ [0,2], z ∈ [-1,1], open at z = +1 where
+// the camera looks in. The light is a square just under the ceiling, facing down.
+
+constexpr float kLightHalf = 0.235f;                 // 0.47 m square: the classic proportions
+const Spectrum kLightRadiance(17.0f, 12.0f, 4.0f);   // the classic Cornell box light colour
+
+void addCornellWalls(SceneDesc& s) {
+    const int white = addMaterial(s, lambertian("white", Spectrum(0.725f, 0.71f, 0.68f)));
+    const int red = addMaterial(s, lambertian("red", Spectrum(0.63f, 0.065f, 0.05f)));
+    const int green = addMaterial(s, lambertian("green", Spectrum(0.14f, 0.45f, 0.091f)));
+    addQuad(s, "floor", white, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1});
+    addQuad(s, "ceiling", white, {-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1});
+    addQuad(s, "back", white, {-1, 0, -1}, {1, 0, -1}, {1, 2, -1}, {-1, 2, -1});
+    addQuad(s, "left", red, {-1, 0, 1}, {-1, 0, -1}, {-1, 2, -1}, {-1, 2, 1});
+    addQuad(s, "right", green, {1, 0, -1}, {1, 0, 1}, {1, 2, 1}, {1, 2, -1});
+    s.camera = CameraDesc{true, {0, 1, 3.9f}, {0, 0, -1}, {0, 1, 0}, 0.6911f};
+}
+
+void addCeilingLight(SceneDesc& s, float half, Spectrum radiance) {
+    const int light = addMaterial(s, emitter("light", radiance));
+    const float y = 1.99f;
+    addQuad(s, "light", light, {-half, y, -half}, {half, y, -half}, {half, y, half}, {-half, y, half});
+}
+
+void addCornellBoxes(SceneDesc& s) {
+    const int white = addMaterial(s, lambertian("box", Spectrum(0.725f, 0.71f, 0.68f)));
+    addBox(s, "tall box", white, {-0.34f, 0.6f, -0.3f}, {0.3f, 0.6f, 0.3f}, 0.3f);
+    addBox(s, "short box", white, {0.35f, 0.3f, 0.3f}, {0.3f, 0.3f, 0.3f}, -0.3f);
+}
+
+SceneDesc cornell() {
+    SceneDesc s;
+    addCornellWalls(s);
+    addCeilingLight(s, kLightHalf, kLightRadiance);
+    addCornellBoxes(s);
+    return s;
+}
+
+SceneDesc cornellSpheres() {
+    SceneDesc s;
+    addCornellWalls(s);
+    addCeilingLight(s, kLightHalf, kLightRadiance);
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.type = MaterialType::Mirror;
+    mirror.albedo = Spectrum(0.95f);
+    Material glass;
+    glass.name = "glass";
+    glass.type = MaterialType::Dielectric;
+    glass.albedo = Spectrum(1.0f);
+    glass.ior = 1.5f;
+    addSphere(s, "mirror sphere", addMaterial(s, mirror), {-0.45f, 0.4f, -0.35f}, 0.4f, 48);
+    addSphere(s, "glass sphere", addMaterial(s, glass), {0.45f, 0.4f, 0.3f}, 0.4f, 48);
+    return s;
+}
+
+// Same power from a light of 1% of the area: the side shrinks 10×, the radiance grows 100×.
+SceneDesc cornellSmall() {
+    SceneDesc s;
+    addCornellWalls(s);
+    addCeilingLight(s, kLightHalf / 10.0f, kLightRadiance * 100.0f);
+    addCornellBoxes(s);
+    return s;
+}
+
+// A point light of the same power as the area light: Φ = π A L = 4π I, so I = A L / 4.
+SceneDesc cornellPoint() {
+    SceneDesc s;
+    addCornellWalls(s);
+    addCornellBoxes(s);
+    const float area = 4.0f * kLightHalf * kLightHalf;
+    s.pointLights.push_back({{0, 1.9f, 0}, kLightRadiance * (area / 4.0f)});
+    return s;
+}
+
+// ---- Veach's multiple-importance-sampling scene -----------------------------------------------
+// Four metal plates of increasing roughness, each turned so the camera sees the row of four
+// spherical lights reflected in it; the lights grow in radius and shrink in radiance so each
+// emits the same power. Sampling the BSDF wins on sharp plates with big lights, sampling the
+// light wins on rough plates with small lights; MIS must do well on all sixteen (Veach §9.2.1).
+
+SceneDesc veachMis() {
+    SceneDesc s;
+    s.camera = CameraDesc{true, {0, 2.0f, 9.0f}, normalize(Vec3(0, -0.32f, -1)), {}, 0.62f};
+    s.camera.up = normalize(cross(cross(s.camera.forward, Vec3(0, 1, 0)), s.camera.forward));
+    const int backdrop = addMaterial(s, lambertian("backdrop", Spectrum(0.2f)));
+    addQuad(s, "floor", backdrop, {-10, -3, 6}, {10, -3, 6}, {10, -3, -8}, {-10, -3, -8});
+    addQuad(s, "wall", backdrop, {-10, -3, -8}, {10, -3, -8}, {10, 8, -8}, {-10, 8, -8});
+
+    const Vec3 lightRow(0, 1.5f, -3.5f);
+    const float radii[4] = {0.03f, 0.1f, 0.3f, 0.9f};
+    for (int i = 0; i < 4; ++i) {
+        const float le = 4.0f * (0.1f * 0.1f) / (radii[i] * radii[i]) * 25.0f;  // equal power: L ∝ 1/r²
+        const int m = addMaterial(s, emitter(fmt::format("light {}", i).c_str(), Spectrum(le)));
+        addSphere(s, "light sphere", m, lightRow + Vec3(-3.75f + 2.5f * i, 0, 0), radii[i], 16);
+    }
+    const float roughness[4] = {0.05f, 0.12f, 0.25f, 0.45f};
+    const float plateY[4] = {-2.1f, -1.6f, -1.05f, -0.45f};
+    const float plateZ[4] = {3.6f, 2.5f, 1.4f, 0.3f};
+    for (int i = 0; i < 4; ++i) {
+        Material metal;
+        metal.name = fmt::format("plate {}", i);
+        metal.type = MaterialType::Conductor;
+        metal.albedo = Spectrum(0.9f);
+        metal.roughness = roughness[i];
+        const int m = addMaterial(s, metal);
+        const Vec3 c(0, plateY[i], plateZ[i]);
+        // The plate's normal bisects the directions to the camera and to the light row.
+        const Vec3 n = normalize(normalize(s.camera.position - c) + normalize(lightRow - c));
+        const Vec3 u(1, 0, 0), v = normalize(cross(n, u));
+        const Vec3 a = u * 4.0f, b = v * 0.45f;
+        addQuad(s, "plate", m, c - a - b, c + a - b, c + a + b, c - a + b);
+    }
+    return s;
+}
+
+struct Entry {
+    BuiltinInfo info;
+    SceneDesc (*make)();
+};
+
+SceneDesc furnaceDefault() { return furnaceScene(0.5f, 1.0f); }
+SceneDesc furnaceHigh() { return furnaceScene(0.9f, 1.0f); }
+
+const std::vector<Entry>& entries() {
+    static const std::vector<Entry> all = {
+        {{"cornell", "classic diffuse Cornell box: square light under the ceiling, a tall and a short box"}, cornell},
+        {{"cornell-spheres", "Cornell box with a mirror and a glass sphere instead of the boxes (caustics)"}, cornellSpheres},
+        {{"cornell-small", "Cornell box lit by a light of 1% of the area and the same power"}, cornellSmall},
+        {{"cornell-point", "Cornell box lit by a point light of the same power"}, cornellPoint},
+        {{"furnace", "white furnace: closed sphere, albedo 0.5, emission 1; radiance is 2 everywhere"}, furnaceDefault},
+        {{"furnace-0.9", "white furnace with albedo 0.9, emission 1; radiance is 10 everywhere"}, furnaceHigh},
+        {{"veach-mis", "four metal plates of increasing roughness, four spherical lights of equal power"}, veachMis},
+    };
+    return all;
+}
+
+}  // namespace
+
+SceneDesc furnaceScene(float albedo, float emittedRadiance) {
+    SceneDesc s;
+    Material m = lambertian("furnace", Spectrum(albedo));
+    m.emission = Spectrum(emittedRadiance);
+    m.twoSidedEmission = true;
+    addSphere(s, "sphere", addMaterial(s, m), {0, 0, 0}, 1.0f, 24, true);
+    s.camera = CameraDesc{true, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 1.2f};
+    return s;
+}
+
+SceneDesc cornellTessellated(size_t triangles) {
+    SceneDesc s = cornell();
+    if (triangles <= 36) return s;
+    s.meshes.resize(s.meshes.size() - 2);  // drop the two boxes (24 triangles) for one fine sphere
+    const size_t remaining = triangles - 12 - 2;  // walls (10) and light (2)
+    const int rings = std::max(2, static_cast<int>(std::lround(std::sqrt(remaining / 4.0))));
+    addSphere(s, "tessellated sphere", 0, {0, 0.5f, 0}, 0.5f, rings);  // material 0: white
+    s.name = fmt::format("cornell-{}tris", triangles);
+    return s;
+}
+
+const std::vector<BuiltinInfo>& builtinScenes() {
+    static const std::vector<BuiltinInfo> infos = [] {
+        std::vector<BuiltinInfo> v;
+        for (const Entry& e : entries()) v.push_back(e.info);
+        return v;
+    }();
+    return infos;
+}
+
+bool isBuiltinScene(const std::string& name) {
+    for (const Entry& e : entries())
+        if (e.info.name == name) return true;
+    return false;
+}
+
+SceneDesc builtinScene(const std::string& name) {
+    for (const Entry& e : entries())
+        if (e.info.name == name) {
+            SceneDesc s = e.make();
+            s.name = name;
+            return s;
+        }
+    throw InputError(fmt::format("unknown built-in scene '{}' (see `tripath scenes`)", name));
+}
+
+}  // namespace tripath

@@ -1,0 +1,50 @@
+// Pinhole sensor: the camera end of every path (DESIGN.md §1).
+//
+// The sensor is a point (a delta in position), so no path can hit it by chance: light subpaths
+// reach it only by connection (strategy t=1). Its importance for pixel j is
+//     W_j(ω) = N / (A cos⁴θ)   for ω through pixel j,  0 otherwise,
+// where A is the image-plane area at unit distance and N the number of pixels: the cos⁴ is the
+// familiar pinhole falloff (one cos for the sensor's cosine, which the last ρ or ε carries, and
+// cos³ from mapping image-plane area to solid angle). ∫ W_j cos θ dω = 1 over pixel j, so a pixel
+// measures the average radiance arriving through it.
+#pragma once
+#include <optional>
+
+#include "geometry/scene_desc.h"
+#include "geometry/vec.h"
+
+namespace tripath {
+
+class Camera {
+public:
+    Camera(const CameraDesc& desc, int width, int height);
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    Vec3 position() const { return position_; }
+    Vec3 forward() const { return forward_; }
+
+    // Unit direction through raster position (x, y) in [0,width)×[0,height), origin top-left.
+    Vec3 direction(Vec2 raster) const;
+    // Raster position where direction `d` (unit) crosses the image, if it does.
+    std::optional<Vec2> raster(Vec3 d) const;
+    // |cos θ| between the optical axis and unit direction d: the sensor's cosine factor.
+    float cosTheta(Vec3 d) const { return std::abs(dot(d, forward_)); }
+
+    // Per-pixel importance W_j(ω) for the pixel that d passes through (zero outside the image).
+    float importance(Vec3 d) const;
+    // Solid-angle density of directions when sampling uniformly over pixel j: N / (A cos³θ).
+    // Camera sampling then gives β = W_j cos θ / p = 1 for every camera ray.
+    float pixelPdf(Vec3 d) const;
+    // Solid-angle density over the whole image, 1 / (A cos³θ). MIS compares this with light
+    // strategies because one light path is traced per camera sample (Veach §10.3.4.3).
+    float imagePdf(Vec3 d) const;
+
+private:
+    int width_, height_;
+    Vec3 position_, forward_, right_, up_;
+    float tanHalfY_, tanHalfX_;  // image-plane half extents at unit distance
+    float area_;                  // image-plane area at unit distance, A
+};
+
+}  // namespace tripath

@@ -1,0 +1,24 @@
+// glTF 2.0 loading (.gltf with embedded or external buffers, and .glb) into a plain SceneDesc.
+// What each glTF feature becomes, and what is ignored, is listed in docs/gltf.md and in the
+// comment at the top of gltf_loader.cpp.
+#pragma once
+#include <functional>
+#include <string>
+
+#include "geometry/scene_desc.h"
+
+namespace tripath {
+
+// Receives one warning message (without the "warning: " prefix); each kind is reported once.
+using WarningSink = std::function<void(const std::string&)>;
+
+// The default sink: prints "warning: <message>" on a line of its own to std::cerr.
+void printWarning(const std::string& message);
+
+// Loads the default scene of a glTF 2.0 file (chosen as .glb or .gltf by its magic bytes).
+// Throws InputError with one line "<path>: <problem>" for any bad input: missing or unreadable
+// file, broken JSON or GLB, out-of-range indices or reads, non-finite or collapsing transforms,
+// invalid materials or lights, unsupported required extensions, or a scene without triangles.
+SceneDesc loadGltf(const std::string& path, WarningSink warn = printWarning);
+
+}  // namespace tripath

@@ -1,0 +1,58 @@
+// Materials: the small set of BSDFs the scene model maps glTF 2.0 onto (DESIGN.md §3).
+//
+// Every BSDF is evaluated in its local shading frame, z = shading normal. Directions point AWAY
+// from the surface: `wo` toward the vertex the walk came from, `wi` toward the next one.
+// For light transport the BSDF is always f(wi -> wo) in the physical sense; reciprocal BSDFs make
+// the distinction moot except for refraction, where `TransportMode` says whether radiance (camera
+// subpaths) or importance (light subpaths) is carried (Veach's thesis §5.2: the 1/η² factor).
+#pragma once
+#include <optional>
+#include <string>
+
+#include "geometry/vec.h"
+
+namespace tripath {
+
+enum class MaterialType {
+    Lambertian,  // f = albedo / π
+    Mirror,      // ideal specular reflection, reflectance = albedo
+    Dielectric,  // ideal smooth glass: Fresnel-weighted reflection and refraction, ior
+    Conductor,   // rough GGX microfacet metal (Cook-Torrance), F0 = albedo (Schlick Fresnel)
+    Plastic,     // diffuse albedo under a rough GGX dielectric coat of index ior
+};
+
+const char* materialTypeName(MaterialType t);
+
+struct Material {
+    std::string name;
+    MaterialType type = MaterialType::Lambertian;
+    Spectrum albedo{0.8f};    // base colour: diffuse albedo, mirror reflectance or metal F0
+    float roughness = 0.5f;   // perceptual roughness in [0,1]; GGX alpha = roughness²
+    float ior = 1.5f;         // dielectric / plastic coat index of refraction
+    Spectrum emission{0.0f};  // emitted radiance Le (W / m² sr); zero for non-emitters
+    bool twoSidedEmission = false;  // glTF doubleSided: emits from both faces
+};
+
+enum class TransportMode { Radiance, Importance };
+
+struct BsdfSample {
+    Vec3 wi;          // sampled direction (local frame)
+    Spectrum f;       // BSDF value f(wo, wi); for a delta lobe, the lobe's weight divided by |cos θi|
+    float pdf = 0;    // solid-angle pdf of wi; 1 for a delta lobe (by convention, as in pbrt)
+    bool delta = false;
+};
+
+// True when the material has only delta lobes (mirror, glass): connections to it are impossible.
+bool isDelta(const Material& m);
+
+// f(wo, wi) for the non-delta part; zero for delta materials.
+Spectrum evalBsdf(const Material& m, Vec3 wo, Vec3 wi, TransportMode mode);
+// Solid-angle pdf that sampleBsdf generates wi from wo with; zero for delta materials.
+float pdfBsdf(const Material& m, Vec3 wo, Vec3 wi);
+// Sample wi given wo with u in [0,1)² and uc in [0,1) (lobe choice). Empty when no direction.
+std::optional<BsdfSample> sampleBsdf(const Material& m, Vec3 wo, Vec2 u, float uc, TransportMode mode);
+
+// Checks a material's parameters; returns an error message naming the problem, or empty.
+std::string validateMaterial(const Material& m);
+
+}  // namespace tripath

@@ -1,0 +1,44 @@
+// Reproducible random streams. Every (pixel, sample index) and every light-path index owns a
+// stream derived by hashing (seed, domain, index), so an image depends on the seed and the sample
+// count only -- never on which thread drew the numbers or in what order (DESIGN.md §4).
+#pragma once
+#include <cstdint>
+
+namespace tripath {
+
+// SplitMix64 finaliser: a strong 64-bit mix, used to turn stream coordinates into a PCG state.
+inline uint64_t mix64(uint64_t z) {
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+// PCG32 (O'Neill 2014): small state, good statistics, cheap.
+class Rng {
+public:
+    Rng(uint64_t seed, uint64_t domain, uint64_t index) {
+        state_ = 0;
+        inc_ = (mix64(index ^ mix64(domain)) << 1u) | 1u;
+        next();
+        state_ += mix64(seed ^ mix64(index + 0x632be59bd9b4e019ull * (domain + 1)));
+        next();
+    }
+    uint32_t next() {
+        const uint64_t old = state_;
+        state_ = old * 6364136223846793005ull + inc_;
+        const uint32_t xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+        const uint32_t rot = static_cast<uint32_t>(old >> 59u);
+        return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
+    }
+    // Uniform in [0, 1): 24 random bits, so the result is exactly representable and < 1.
+    float uniform() { return static_cast<float>(next() >> 8) * 0x1p-24f; }
+
+private:
+    uint64_t state_, inc_;
+};
+
+// Stream domains: keep camera samples, light paths and anything else from sharing streams.
+enum class StreamDomain : uint64_t { CameraSample = 1, LightPath = 2, Test = 3 };
+
+}  // namespace tripath

@@ -1,0 +1,210 @@
+#include "geometry/scene.h"
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "geometry/error.h"
+
+namespace tripath {
+
+void warnToStderr(const std::string& message) { std::cerr << "warning: " << message << "\n"; }
+
+// A hit point computed from barycentrics is off the triangle's plane by a few ulps of the LARGEST
+// coordinate involved (not of the coordinate along the normal, which may be near zero), so the
+// offset is relative to max|p|: 2^-18 ≈ 32 ulps of it, plus 2^-16 absolute for scenes near the
+// origin. At unit scale that is 1.5e-5 m; at coordinates of 1e4, 0.04 m — the float grid there is
+// 1e-3 m, so nothing finer can be trusted anyway (test_scene checks grazing rays at both scales).
+Vec3 offsetRayOrigin(Vec3 p, Vec3 ng, Vec3 dir) {
+    const float scale = maxComponent(abs(p)) * 0x1p-18f + 0x1p-16f;
+    return p + (dot(ng, dir) < 0 ? -ng : ng) * scale;
+}
+
+CameraDesc frameBounds(Vec3 lo, Vec3 hi) {
+    CameraDesc c;
+    const Vec3 centre = (lo + hi) * 0.5f;
+    const float radius = 0.5f * length(hi - lo);
+    c.yfov = 0.6911f;  // 39.6°, a 35 mm lens's vertical field
+    c.position = centre + Vec3(0, 0, radius / std::sin(0.5f * c.yfov) * 1.05f);
+    c.forward = Vec3(0, 0, -1);
+    c.up = Vec3(0, 1, 0);
+    c.present = true;
+    return c;
+}
+
+namespace {
+
+void checkMesh(const SceneDesc& desc, const MeshDesc& m) {
+    if (m.indices.size() % 3 != 0)
+        throw InputError(fmt::format("{}: mesh '{}' has {} indices, not a multiple of 3", desc.name, m.name,
+                                     m.indices.size()));
+    if (m.material < 0 || m.material >= static_cast<int>(desc.materials.size()))
+        throw InputError(fmt::format("{}: mesh '{}' names material {}, which does not exist", desc.name,
+                                     m.name, m.material));
+    if (!m.normals.empty() && m.normals.size() != m.positions.size())
+        throw InputError(fmt::format("{}: mesh '{}' has {} normals for {} positions", desc.name, m.name,
+                                     m.normals.size(), m.positions.size()));
+    for (uint32_t i : m.indices)
+        if (i >= m.positions.size())
+            throw InputError(fmt::format("{}: mesh '{}' index {} is out of range ({} positions)", desc.name,
+                                         m.name, i, m.positions.size()));
+    for (const Vec3& p : m.positions)
+        if (!isFinite(p))
+            throw InputError(fmt::format("{}: mesh '{}' has a non-finite vertex position", desc.name, m.name));
+}
+
+}  // namespace
+
+Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
+    : name_(desc.name), materials_(desc.materials), camera_(CameraDesc{}, width, height) {
+    for (const Material& m : materials_) {
+        const std::string problem = validateMaterial(m);
+        if (!problem.empty()) throw InputError(fmt::format("{}: material '{}': {}", name_, m.name, problem));
+    }
+    addMeshes(desc, warn);
+    if (triangles_.empty()) throw InputError(fmt::format("{}: the scene has no triangles", name_));
+
+    std::vector<Emitter> points;
+    for (const PointLightDesc& l : desc.pointLights) {
+        if (!isFinite(l.position) || !isFinite(l.intensity) || l.intensity.x < 0 || l.intensity.y < 0 ||
+            l.intensity.z < 0)
+            throw InputError(fmt::format("{}: a point light has a non-finite or negative value", name_));
+        if (isBlack(l.intensity)) continue;
+        Emitter e;
+        e.position = l.position;
+        e.radiance = l.intensity;
+        points.push_back(e);
+    }
+    emitters_ = Emitters(triangles_, materials_, points);
+    if (emitters_.empty()) throw InputError(fmt::format("{}: the scene has no emitter (nothing emits light)", name_));
+
+    camera_ = Camera(desc.camera.present ? desc.camera : frameBounds(lo_, hi_), width, height);
+    buildBvh();
+}
+
+void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
+    lo_ = Vec3(3e38f);
+    hi_ = Vec3(-3e38f);
+    size_t degenerate = 0;
+    for (const MeshDesc& m : desc.meshes) {
+        checkMesh(desc, m);
+        for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+            Triangle t;
+            t.material = m.material;
+            t.smooth = !m.normals.empty();
+            for (int k = 0; k < 3; ++k) t.p[k] = m.positions[m.indices[i + k]];
+            const Vec3 c = cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+            // Zero-area or needle-thin beyond float precision: no normal, no area pdf. Drop it.
+            if (!(length(c) > 0) || !isFinite(normalize(c))) {
+                ++degenerate;
+                continue;
+            }
+            const Vec3 ng = normalize(c);
+            for (int k = 0; k < 3; ++k) {
+                Vec3 n = t.smooth ? m.normals[m.indices[i + k]] : ng;
+                if (!isFinite(n) || !(lengthSquared(n) > 0)) n = ng;
+                t.n[k] = normalize(n);
+                lo_ = min(lo_, t.p[k]);
+                hi_ = max(hi_, t.p[k]);
+            }
+            triangles_.push_back(t);
+        }
+    }
+    if (degenerate > 0) warn(fmt::format("{}: dropped {} degenerate (zero-area) triangles", name_, degenerate));
+}
+
+void Scene::buildBvh() {
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) throw std::runtime_error("Embree: could not create a device");
+    rtcScene_ = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(rtcScene_, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), 3 * triangles_.size()));
+    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(uint32_t), triangles_.size()));
+    for (size_t i = 0; i < triangles_.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            v[9 * i + 3 * k + 0] = triangles_[i].p[k].x;
+            v[9 * i + 3 * k + 1] = triangles_[i].p[k].y;
+            v[9 * i + 3 * k + 2] = triangles_[i].p[k].z;
+            idx[3 * i + k] = static_cast<uint32_t>(3 * i + k);
+        }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(rtcScene_, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(rtcScene_);
+}
+
+Scene::~Scene() {
+    if (rtcScene_) rtcReleaseScene(rtcScene_);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+Vec3 Scene::shadingNormal(uint32_t triangle, float u, float v) const {
+    const Triangle& t = triangles_[triangle];
+    const Vec3 ng = t.geometricNormal();
+    if (!t.smooth) return ng;
+    Vec3 n = t.n[0] * (1.0f - u - v) + t.n[1] * u + t.n[2] * v;
+    if (!(lengthSquared(n) > 0)) return ng;
+    n = normalize(n);
+    return dot(n, ng) < 0 ? -n : n;
+}
+
+std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = dir.x;
+    rh.ray.dir_y = dir.y;
+    rh.ray.dir_z = dir.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = tMax;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.time = 0.0f;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(rtcScene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    SurfacePoint sp;
+    sp.triangle = rh.hit.primID;
+    sp.t = rh.ray.tfar;
+    const Triangle& t = triangles_[sp.triangle];
+    const float u = rh.hit.u, v = rh.hit.v;
+    // From barycentrics rather than origin + t·dir: the point lies on the triangle's plane to
+    // within rounding of its own coordinates, whatever the ray's length.
+    sp.p = t.p[0] * (1.0f - u - v) + t.p[1] * u + t.p[2] * v;
+    sp.ng = t.geometricNormal();
+    sp.ns = shadingNormal(sp.triangle, u, v);
+    return sp;
+}
+
+bool Scene::unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const {
+    const bool aSurface = lengthSquared(aNormal) > 0, bSurface = lengthSquared(bNormal) > 0;
+    const Vec3 from = aSurface ? offsetRayOrigin(a, aNormal, b - a) : a;
+    const Vec3 to = bSurface ? offsetRayOrigin(b, bNormal, a - b) : b;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay ray;
+    const Vec3 d = to - from;
+    ray.org_x = from.x;
+    ray.org_y = from.y;
+    ray.org_z = from.z;
+    ray.dir_x = d.x;
+    ray.dir_y = d.y;
+    ray.dir_z = d.z;
+    ray.tnear = 0.0f;
+    ray.tfar = 1.0f;  // the direction spans the whole segment between the offset ends
+    ray.mask = 0xffffffffu;
+    ray.time = 0.0f;
+    ray.flags = 0;
+    rtcOccluded1(rtcScene_, &ctx, &ray);
+    return ray.tfar >= 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace tripath

@@ -1,0 +1,88 @@
+// The renderable scene: triangles in one Embree BVH, their materials, the emitters and the
+// sensor. Built from a SceneDesc (gltf_loader or builtin_scenes), validated on the way in.
+#pragma once
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/camera.h"
+#include "geometry/emitters.h"
+#include "geometry/scene_desc.h"
+
+struct RTCDeviceTy;
+struct RTCSceneTy;
+
+namespace tripath {
+
+using WarningSink = std::function<void(const std::string&)>;
+void warnToStderr(const std::string& message);
+
+struct Triangle {
+    Vec3 p[3];
+    Vec3 n[3];            // shading normals per corner (the geometric normal when the mesh has none)
+    bool smooth = false;  // true when n[] came from the file
+    int material = 0;
+    Vec3 geometricNormal() const { return normalize(cross(p[1] - p[0], p[2] - p[0])); }
+    float area() const { return 0.5f * length(cross(p[1] - p[0], p[2] - p[0])); }
+};
+
+// A point on a surface, as a ray query returns it.
+struct SurfacePoint {
+    Vec3 p;
+    Vec3 ng;              // geometric normal, by winding (glTF: counter-clockwise is the front)
+    Vec3 ns;              // shading normal, on the same side as ng
+    uint32_t triangle = 0;
+    float t = 0;          // ray parameter of the hit
+};
+
+// Moves a ray origin off the surface it leaves, to the side of `ng` that `dir` points into.
+// The offset scales with the magnitude of the coordinates (Embree's hit error is relative to
+// them), so it works at grazing angles and at coordinates of 1e4 and beyond.
+Vec3 offsetRayOrigin(Vec3 p, Vec3 ng, Vec3 dir);
+
+class Scene {
+public:
+    // Throws InputError on a scene that cannot be rendered (no emitter, bad material, …).
+    Scene(SceneDesc desc, int width, int height, const WarningSink& warn = warnToStderr);
+    ~Scene();
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    const std::string& name() const { return name_; }
+    const Camera& camera() const { return camera_; }
+    const Emitters& emitters() const { return emitters_; }
+    const std::vector<Triangle>& triangles() const { return triangles_; }
+    const std::vector<Material>& materials() const { return materials_; }
+    const Material& materialOf(uint32_t triangle) const { return materials_[triangles_[triangle].material]; }
+    Vec3 boundsMin() const { return lo_; }
+    Vec3 boundsMax() const { return hi_; }
+
+    // Closest hit along origin + t·dir for t in (0, tMax).
+    std::optional<SurfacePoint> intersect(Vec3 origin, Vec3 dir, float tMax = 3.0e38f) const;
+    // True when nothing blocks the open segment between a and b. Each end is a surface point (its
+    // geometric normal given, to offset from) or a free point (a null normal: point light, sensor).
+    bool unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const;
+
+    // Shading normal at barycentrics (u, v) of a triangle, on the side of the geometric normal.
+    Vec3 shadingNormal(uint32_t triangle, float u, float v) const;
+
+private:
+    void addMeshes(const SceneDesc& desc, const WarningSink& warn);
+    void buildBvh();
+
+    std::string name_;
+    std::vector<Material> materials_;
+    std::vector<Triangle> triangles_;
+    Vec3 lo_, hi_;
+    Camera camera_;
+    Emitters emitters_;
+    RTCDeviceTy* device_ = nullptr;
+    RTCSceneTy* rtcScene_ = nullptr;
+};
+
+// A camera looking at the whole box [lo, hi] from +z, used when the scene has none.
+CameraDesc frameBounds(Vec3 lo, Vec3 hi);
+
+}  // namespace tripath

@@ -1,0 +1,20 @@
+#include "geometry/scene_source.h"
+
+#include <filesystem>
+
+#include "geometry/builtin_scenes.h"
+#include "geometry/error.h"
+#include "geometry/gltf_loader.h"
+
+namespace tripath {
+
+SceneDesc loadSceneDesc(const std::string& nameOrPath) {
+    if (isBuiltinScene(nameOrPath)) return builtinScene(nameOrPath);
+    const std::filesystem::path path(nameOrPath);
+    const std::string ext = path.extension().string();
+    if (ext != ".gltf" && ext != ".glb" && !std::filesystem::exists(path))
+        throw InputError("unknown scene '" + nameOrPath + "': not a built-in (see `tripath scenes`) nor a .gltf/.glb file");
+    return loadGltf(nameOrPath);
+}
+
+}  // namespace tripath

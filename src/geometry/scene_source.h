@@ -1,0 +1,13 @@
+// Where a scene comes from: a built-in name or a glTF 2.0 file.
+#pragma once
+#include <string>
+
+#include "geometry/scene_desc.h"
+
+namespace tripath {
+
+// A built-in scene by name, else a .gltf/.glb file. Throws InputError for an unknown name that
+// is not a file either, or for a bad file.
+SceneDesc loadSceneDesc(const std::string& nameOrPath);
+
+}  // namespace tripath

@@ -1,0 +1,248 @@
+#include "image/image.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <string_view>
+#include <system_error>
+
+#include "geometry/error.h"
+
+namespace tripath {
+
+namespace fs = std::filesystem;
+
+Image::Image(int w, int h) : width(w), height(h) {
+    if (w < 0 || h < 0) throw InputError(fmt::format("invalid image size {}x{}", w, h));
+    rgb.assign(3 * pixelCount(), 0.0f);
+}
+
+namespace {
+
+// OIIO messages can span several lines (e.g. one per plugin it tried); the
+// user sees a single line, so collapse line breaks and trim the ends.
+std::string oneLine(std::string_view msg) {
+    std::string out;
+    out.reserve(msg.size());
+    bool pendingBreak = false;
+    for (char c : msg) {
+        if (c == '\n' || c == '\r') {
+            pendingBreak = true;
+            continue;
+        }
+        if (pendingBreak && !out.empty()) out += "; ";
+        pendingBreak = false;
+        out += c;
+    }
+    while (!out.empty() && (out.back() == ' ' || out.back() == '\t')) out.pop_back();
+    return out.empty() ? std::string("unknown OpenImageIO error") : out;
+}
+
+// Errors may sit on the object or, when no object could be created, in
+// OIIO's global slot. Always drain both: OIIO complains on stderr at exit
+// about errors nobody retrieved.
+template <class T>
+std::string oiioError(const T* obj) {
+    std::string msg = obj ? obj->geterror() : std::string();
+    std::string global = OIIO::geterror();
+    if (msg.empty()) msg = global;
+    return oneLine(msg);
+}
+
+std::string errnoText(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+// The directory a path lives in; "" means the current directory.
+fs::path directoryOf(const std::string& path) {
+    fs::path dir = fs::path(path).parent_path();
+    return dir.empty() ? fs::path(".") : dir;
+}
+
+// Unique among concurrent writers: the pid separates processes, the counter
+// separates threads and calls within one process.
+std::string uniqueSuffix() {
+    static std::atomic<unsigned long long> counter{0};
+    return fmt::format("{}-{}", static_cast<long>(::getpid()), counter.fetch_add(1));
+}
+
+// The checks shared by checkWritable and the writers, giving a clearer
+// message than whatever OIIO or rename would report.
+void checkTarget(const std::string& path) {
+    if (path.empty()) throw InputError("cannot write image: empty output path");
+    std::error_code ec;
+    fs::path dir = directoryOf(path);
+    if (!fs::exists(dir, ec))
+        throw InputError(fmt::format("cannot write '{}': directory '{}' does not exist", path, dir.string()));
+    if (!fs::is_directory(dir, ec))
+        throw InputError(fmt::format("cannot write '{}': '{}' is not a directory", path, dir.string()));
+    if (fs::is_directory(path, ec))
+        throw InputError(fmt::format("cannot write '{}': it is a directory", path));
+}
+
+void checkImage(const std::string& path, const Image& img) {
+    if (img.width <= 0 || img.height <= 0)
+        throw InputError(fmt::format("cannot write '{}': image is empty ({}x{})", path, img.width, img.height));
+    if (img.rgb.size() != 3 * img.pixelCount())
+        throw InputError(fmt::format("cannot write '{}': image has {} floats, expected {} for {}x{} RGB", path,
+                                     img.rgb.size(), 3 * img.pixelCount(), img.width, img.height));
+}
+
+// Writes through a temporary file in the target's directory (same filesystem,
+// so the rename is atomic) and renames it over the target. The real
+// extension stays last so tools inspecting a leftover temp still recognise
+// it. No fsync: this protects against failed and concurrent writes, not
+// against power loss, which is not worth the cost for a renderer's output.
+void atomicWrite(const std::string& path, std::string_view format, std::string_view ext,
+                 const std::function<void(OIIO::ImageOutput&, const std::string&)>& write) {
+    checkTarget(path);
+    const std::string tmp = fmt::format("{}.tmp-{}{}", path, uniqueSuffix(), ext);
+    try {
+        // Create by format name, not by the target's extension, so that
+        // "out.EXR" or an extension-less target still gets the right format.
+        auto out = OIIO::ImageOutput::create(format);
+        if (!out)
+            throw InputError(fmt::format("cannot write '{}': no {} writer: {}", path, format,
+                                         oiioError<OIIO::ImageOutput>(nullptr)));
+        write(*out, tmp);
+        if (!out->close()) throw InputError(fmt::format("cannot write '{}': {}", path, oiioError(out.get())));
+        out.reset();
+        std::error_code ec;
+        fs::rename(tmp, path, ec);
+        if (ec) throw InputError(fmt::format("cannot write '{}': rename failed: {}", path, ec.message()));
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw;
+    }
+}
+
+void openAndWrite(OIIO::ImageOutput& out, const std::string& tmp, const std::string& path,
+                  const OIIO::ImageSpec& spec, const void* pixels) {
+    if (!out.open(tmp, spec)) throw InputError(fmt::format("cannot write '{}': {}", path, oiioError(&out)));
+    if (!out.write_image(spec.format, pixels))
+        throw InputError(fmt::format("cannot write '{}': {}", path, oiioError(&out)));
+}
+
+Image readAny(const std::string& path, bool requireExr, Metadata* meta) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError(fmt::format("cannot read '{}': file does not exist", path));
+    if (fs::is_directory(path, ec)) throw InputError(fmt::format("cannot read '{}': it is a directory", path));
+
+    // By default OIIO premultiplies colour by alpha on read; we want the
+    // stored colour values untouched.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) throw InputError(fmt::format("cannot read '{}': {}", path, oiioError<OIIO::ImageInput>(nullptr)));
+
+    if (requireExr && std::string_view(in->format_name()) != "openexr")
+        throw InputError(fmt::format("cannot read '{}': not an OpenEXR file (looks like {})", path, in->format_name()));
+
+    // Copy: the reference returned by spec() is only valid while `in` lives.
+    const OIIO::ImageSpec spec = in->spec();
+    if (spec.deep) throw InputError(fmt::format("cannot read '{}': deep images are not supported", path));
+    if (spec.depth > 1) throw InputError(fmt::format("cannot read '{}': volume images are not supported", path));
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        throw InputError(fmt::format("cannot read '{}': image has no pixels", path));
+
+    // Only the data window is read; an EXR whose data window is offset from
+    // its display window is taken as-is (tripath never writes one).
+    Image img(spec.width, spec.height);
+    bool ok;
+    if (spec.nchannels >= 3) {
+        // EXR channels come back sorted R, G, B, (A, ...), so 0..3 is RGB.
+        ok = in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, img.rgb.data());
+    } else {
+        // Grey (or grey + alpha): replicate the first channel.
+        std::vector<float> grey(img.pixelCount());
+        ok = in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, grey.data());
+        for (std::size_t i = 0; ok && i < grey.size(); ++i)
+            img.rgb[3 * i] = img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = grey[i];
+    }
+    if (!ok) throw InputError(fmt::format("cannot read '{}': {}", path, oiioError(in.get())));
+
+    if (meta) {
+        meta->clear();
+        for (const OIIO::ParamValue& p : spec.extra_attribs) {
+            if (p.type() != OIIO::TypeDesc::STRING) continue;
+            std::string_view name(p.name().data(), p.name().size());
+            if (name.substr(0, 8) != "tripath:") continue;
+            meta->emplace_back(std::string(name), p.get_string());
+        }
+    }
+    in->close();
+    return img;
+}
+
+}  // namespace
+
+float srgbEncode(float linear) {
+    if (linear <= 0.0031308f) return 12.92f * linear;
+    return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+unsigned char srgbToByte(float linear) {
+    // `!(x > 0)` also catches NaN, which a preview should show as black.
+    if (!(linear > 0.0f)) return 0;
+    if (linear >= 1.0f) return 255;
+    float v = srgbEncode(linear) * 255.0f + 0.5f;
+    return static_cast<unsigned char>(v >= 255.0f ? 255.0f : v);
+}
+
+void writeExr(const std::string& path, const Image& img, const Metadata& meta) {
+    checkImage(path, img);
+    for (const auto& [key, value] : meta)
+        if (key.empty()) throw InputError(fmt::format("cannot write '{}': metadata with an empty name", path));
+
+    atomicWrite(path, "openexr", ".exr", [&](OIIO::ImageOutput& out, const std::string& tmp) {
+        OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT);
+        spec.attribute("compression", "zip");
+#ifdef TRIPATH_VERSION
+        spec.attribute("Software", "tripath " TRIPATH_VERSION);
+#endif
+        for (const auto& [key, value] : meta) spec.attribute(key, value);
+        openAndWrite(out, tmp, path, spec, img.rgb.data());
+    });
+}
+
+void writePng(const std::string& path, const Image& img, float exposureStops) {
+    checkImage(path, img);
+    const float scale = std::exp2(exposureStops);
+    std::vector<unsigned char> bytes(img.rgb.size());
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgbToByte(img.rgb[i] * scale);
+
+    atomicWrite(path, "png", ".png", [&](OIIO::ImageOutput& out, const std::string& tmp) {
+        OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
+        // Tags the file as sRGB (an sRGB chunk) so viewers do not re-guess.
+        spec.attribute("oiio:ColorSpace", "sRGB");
+        openAndWrite(out, tmp, path, spec, bytes.data());
+    });
+}
+
+Image readExr(const std::string& path, Metadata* meta) { return readAny(path, true, meta); }
+
+Image readImage(const std::string& path) { return readAny(path, false, nullptr); }
+
+void checkWritable(const std::string& path) {
+    checkTarget(path);
+    // Permission bits alone do not tell (ACLs, read-only mounts, quotas), so
+    // actually create a file. O_EXCL: never clobber someone else's file.
+    const std::string probe = fmt::format("{}.probe-{}", path, uniqueSuffix());
+    int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0) {
+        int err = errno;
+        throw InputError(fmt::format("cannot write '{}': directory '{}' is not writable: {}", path,
+                                     directoryOf(path).string(), errnoText(err)));
+    }
+    ::close(fd);
+    ::unlink(probe.c_str());
+}
+
+}  // namespace tripath

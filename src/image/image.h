@@ -1,0 +1,67 @@
+// Float RGB images and their file I/O (OpenEXR for data, PNG for previews).
+// OpenImageIO stays private to image.cpp so that the rest of the renderer
+// does not pay its compile cost or inherit its headers.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tripath {
+
+// Linear RGB, row-major, origin top-left (the same convention as EXR and PNG,
+// so no flipping happens on I/O).
+struct Image {
+    int width = 0, height = 0;
+    std::vector<float> rgb;  // 3 * width * height
+
+    Image() = default;
+    Image(int w, int h);  // zero-filled; throws InputError on negative sizes
+
+    float* at(int x, int y) { return rgb.data() + index(x, y); }
+    const float* at(int x, int y) const { return rgb.data() + index(x, y); }
+
+    std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
+
+private:
+    std::size_t index(int x, int y) const {
+        return 3 * (std::size_t(y) * std::size_t(width) + std::size_t(x));
+    }
+};
+
+// Written as EXR string attributes, e.g. {"tripath:integrator", "bdpt"}.
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
+// All writers are atomic: the image goes to a temporary file in the target's
+// directory which is then renamed over the target, so an interrupted or
+// failed write never leaves a truncated file under the real name.
+// Every failure throws InputError with one line naming the path.
+
+// 32-bit float RGB, ZIP compression, plus `meta` as string attributes.
+void writeExr(const std::string& path, const Image& img, const Metadata& meta = {});
+
+// Preview: scale by 2^exposureStops, apply the sRGB OETF, clamp, quantise to 8 bits.
+void writePng(const std::string& path, const Image& img, float exposureStops = 0);
+
+// Reads the first three channels of an OpenEXR file (a one- or two-channel
+// file is read as grey). If `meta` is given it receives the string attributes
+// whose names start with "tripath:", sorted by name (OpenEXR keeps header
+// attributes in a sorted map, so the order they were written in is lost).
+Image readExr(const std::string& path, Metadata* meta = nullptr);
+
+// Reads any format OpenImageIO understands as float RGB, without colour
+// conversion: an 8-bit PNG value v comes back as v / 255.
+Image readImage(const std::string& path);
+
+// Throws InputError if `path` could not be written: its directory is missing,
+// is not a directory, or refuses the creation of a probe file. Meant to be
+// called before a long render, so a typo costs nothing.
+void checkWritable(const std::string& path);
+
+// The sRGB OETF applied to a linear value (no clamping), and the 8-bit code
+// writePng produces for a linear value after exposure scaling. Exposed so that
+// tests and tools agree with the writer bit for bit.
+float srgbEncode(float linear);
+unsigned char srgbToByte(float linear);
+
+}  // namespace tripath

@@ -1,0 +1,25 @@
+// pt — path tracing with next-event estimation.
+//
+// Builds a camera subpath only. Strategies: s = 0 (the walk hits an emitter) and s = 1 (an
+// emitter point sampled at each camera vertex), weighted against each other by MIS.
+// Parameters: --max-depth, --rr-depth, --mis. Cannot sample paths that reach a point light by
+// way of a delta surface (point-light caustics): those stay black, as they must.
+#include "integrators/integrator.h"
+
+namespace tripath {
+
+class PathTracer final : public Integrator {
+public:
+    using Integrator::Integrator;
+    std::string name() const override { return "pt"; }
+    StrategySet strategies() const override { return {StrategySet::Kind::PathTracing}; }
+    void sample(const Scene& scene, Vec2 raster, Rng& rng, PathBuffers& paths, ContributionSink& sink) const override {
+        cameraSubpath(scene, raster, rng, settings().walk, paths.camera);
+        paths.light.clear();
+        connectAll(scene, paths, rng, sink);
+    }
+};
+
+std::unique_ptr<Integrator> makePathTracer(const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }
+
+}  // namespace tripath

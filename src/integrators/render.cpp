@@ -1,0 +1,111 @@
+#include "integrators/render.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+namespace tripath {
+
+namespace {
+
+constexpr int kTileSize = 16;
+
+struct Splat {
+    int pixel, s, t;
+    Spectrum weighted, unweighted;
+};
+
+// What one tile produced in one pass, beyond what it wrote to its own pixels.
+struct TileOutput {
+    std::vector<Splat> splats;
+    uint64_t dropped = 0;
+};
+
+// Camera contributions go straight to the sample's pixel (owned by this tile for the pass);
+// splats are kept in order and merged after the pass, tile by tile, so floating-point sums are
+// added in the same order whatever the thread count.
+class TileSink final : public ContributionSink {
+public:
+    TileSink(Film& film, const Camera& camera, TileOutput& out) : film_(film), camera_(camera), out_(out) {}
+    void setPixel(int pixel) { pixel_ = pixel; }
+    void add(int s, int t, const Connection& c) override {
+        const Spectrum w = c.weighted();
+        if (!isFinite(w) || !isFinite(c.unweighted)) {
+            ++out_.dropped;
+            return;
+        }
+        if (t == 1) {
+            // A pass traces one light path per pixel: each splat is one of N estimates of every
+            // pixel it lands in, so it counts 1/N (N = pixel count).
+            const float share = 1.0f / (float(camera_.width()) * camera_.height());
+            const int x = std::min(static_cast<int>(c.raster->x), camera_.width() - 1);
+            const int y = std::min(static_cast<int>(c.raster->y), camera_.height() - 1);
+            out_.splats.push_back({y * camera_.width() + x, s, t, w * share, c.unweighted * share});
+        } else {
+            film_.add(pixel_, s, t, w, c.unweighted);
+        }
+    }
+
+private:
+    Film& film_;
+    const Camera& camera_;
+    TileOutput& out_;
+    int pixel_ = 0;
+};
+
+void renderTile(const Scene& scene, const Integrator& integrator, Film& film, int tile, uint64_t passIndex,
+                uint64_t seed, TileOutput& out) {
+    const Camera& cam = scene.camera();
+    const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
+    const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
+    const uint64_t pixels = uint64_t(cam.width()) * cam.height();
+    thread_local PathBuffers paths;
+    TileSink sink(film, cam, out);
+    for (int y = y0; y < std::min(y0 + kTileSize, cam.height()); ++y)
+        for (int x = x0; x < std::min(x0 + kTileSize, cam.width()); ++x) {
+            const int pixel = y * cam.width() + x;
+            Rng rng(seed, static_cast<uint64_t>(StreamDomain::CameraSample), passIndex * pixels + pixel);
+            const float jx = rng.uniform(), jy = rng.uniform();
+            sink.setPixel(pixel);
+            integrator.sample(scene, {x + jx, y + jy}, rng, paths, sink);
+        }
+}
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
+    const Camera& cam = scene.camera();
+    RenderResult result{Film(cam.width(), cam.height(), settings.layers)};
+    const int tiles = ((cam.width() + kTileSize - 1) / kTileSize) * ((cam.height() + kTileSize - 1) / kTileSize);
+    std::vector<TileOutput> outputs(tiles);
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+    const auto start = std::chrono::steady_clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+    while (true) {
+        if (settings.spp > 0 && result.passes >= settings.spp) break;
+        if (settings.seconds > 0 && result.passes > 0 && elapsed() >= settings.seconds) break;
+        if (settings.stop && settings.stop->load() && result.passes > 0) break;
+        const uint64_t passIndex = settings.firstPass + static_cast<uint64_t>(result.passes);
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
+                for (int tile = r.begin(); tile < r.end(); ++tile)
+                    renderTile(scene, integrator, result.film, tile, passIndex, settings.seed, outputs[tile]);
+            });
+        });
+        for (TileOutput& out : outputs) {
+            for (const Splat& sp : out.splats) result.film.add(sp.pixel, sp.s, sp.t, sp.weighted, sp.unweighted);
+            out.splats.clear();
+            result.droppedSamples += out.dropped;
+            out.dropped = 0;
+        }
+        ++result.passes;
+        result.seconds = elapsed();
+        if (settings.progress) settings.progress(result.passes, result.seconds);
+    }
+    return result;
+}
+
+}  // namespace tripath

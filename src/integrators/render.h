@@ -1,0 +1,36 @@
+// The one render loop every integrator runs in: progressive passes of one sample per pixel,
+// parallel over tiles, reproducible whatever the number of threads.
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <functional>
+
+#include "integrators/film.h"
+#include "integrators/integrator.h"
+
+namespace tripath {
+
+struct RenderSettings {
+    int spp = 16;                 // passes to render; with `seconds` > 0, an upper bound (0: none)
+    double seconds = 0;           // > 0: stop at the first pass boundary after this much time
+    uint64_t seed = 1;
+    uint64_t firstPass = 0;       // sample index of the first pass: lets a reference add fresh samples
+    int threads = 0;              // 0: all cores
+    FilmLayers layers;
+    // Called after each pass with (passes done, seconds so far); may be empty.
+    std::function<void(int, double)> progress;
+    // Set from elsewhere (a signal handler) to stop at the next pass boundary.
+    const std::atomic<bool>* stop = nullptr;
+};
+
+struct RenderResult {
+    Film film;
+    int passes = 0;
+    double seconds = 0;
+    uint64_t droppedSamples = 0;  // NaN or infinite contributions kept off the film
+    Image image() const { return film.image(passes); }
+};
+
+RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
+
+}  // namespace tripath

@@ -1,0 +1,28 @@
+// Joining a light subpath prefix (s vertices) and a camera subpath prefix (t vertices) into one
+// full path of k = s + t − 1 segments: the strategy (s, t) of DESIGN.md §1.
+#pragma once
+#include <optional>
+#include <span>
+
+#include "paths/mis.h"
+#include "paths/vertex.h"
+
+namespace tripath {
+
+struct Connection {
+    Spectrum unweighted{0.0f};      // f(x̄) / p_{s,t}(x̄)
+    float weight = 0;               // MIS weight of (s, t) among the enabled strategies
+    std::optional<Vec2> raster;     // t = 1: the pixel the path lands in (splat there)
+    Spectrum weighted() const { return unweighted * weight; }
+};
+
+// Strategy (s, t), t ≥ 1, s + t ≥ 2:
+//   s = 0  the camera subpath's last vertex lies on an emitter;
+//   s = 1  light[0] is an emitter point sampled on its own (next-event estimation);
+//   t = 1  the light subpath's last vertex is connected to the sensor (the result is a splat);
+//   else   the two endpoints are joined by a shadow ray.
+// The subpaths' endpoint pdfs are updated in place for the MIS weight and restored afterwards.
+Connection connect(const Scene& scene, std::span<Vertex> light, int s, std::span<Vertex> camera, int t,
+                   MisHeuristic heuristic, StrategySet strategies);
+
+}  // namespace tripath

@@ -1,0 +1,38 @@
+// Every enabled strategy over one pair of subpaths: the loop all three integrators share.
+//
+// PT, LT and BDPT differ only in the subpaths they build and the strategies they switch on
+// (DESIGN.md §1): PT passes an empty light subpath, LT a camera subpath of the sensor alone.
+// Strategy s = 1 always uses an emitter point sampled afresh (next-event estimation), so PT has
+// it without a light subpath; its pdf is the same as that of a light subpath's first vertex.
+#pragma once
+#include <algorithm>
+
+#include "geometry/rng.h"
+#include "paths/connect.h"
+#include "paths/walk.h"
+
+namespace tripath {
+
+// Calls sink(s, t, connection) for each enabled (s, t) with 1 ≤ k = s + t − 1 ≤ maxDepth and a
+// non-zero contribution.
+template <class Sink>
+void evaluateStrategies(const Scene& scene, Subpath& light, Subpath& camera, Rng& rng, int maxDepth,
+                        MisHeuristic heuristic, StrategySet strategies, Sink&& sink) {
+    const int nl = static_cast<int>(light.size()), nc = static_cast<int>(camera.size());
+    for (int t = 1; t <= nc; ++t) {
+        const int sMax = std::min(std::max(nl, 1), maxDepth + 1 - t);
+        for (int s = 0; s <= sMax; ++s) {
+            if (s + t < 2 || !strategies.enabled(s, t)) continue;
+            Connection c;
+            if (s == 1) {
+                Vertex y0 = sampleEmitterVertex(scene, rng);
+                c = connect(scene, std::span<Vertex>(&y0, 1), 1, camera, t, heuristic, strategies);
+            } else {
+                c = connect(scene, light, s, camera, t, heuristic, strategies);
+            }
+            if (!isBlack(c.unweighted)) sink(s, t, c);
+        }
+    }
+}
+
+}  // namespace tripath

@@ -1,0 +1,127 @@
+#include "paths/walk.h"
+
+#include "paths/kernels.h"
+
+namespace tripath {
+
+namespace {
+
+Vec2 uniform2(Rng& rng) {
+    const float a = rng.uniform();
+    return {a, rng.uniform()};
+}
+
+Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
+    Vertex v;
+    v.kind = Vertex::Kind::Surface;
+    v.p = hit.p;
+    v.ng = hit.ng;
+    v.ns = hit.ns;
+    v.triangle = hit.triangle;
+    v.material = &scene.materialOf(hit.triangle);
+    v.emitter = scene.emitters().emitterOfTriangle(hit.triangle);
+    return v;
+}
+
+// Extends `path` from its last vertex along `dir`, which was sampled there with solid-angle pdf
+// `pdfOmega`; `beta` is the throughput the next vertex receives. Each step multiplies beta by
+//     scatter(x_i) · G(x_i, x_{i+1}) / p_A(x_{i+1}) = f · correction · |cos θ_i| / p_ω,
+// the r² and the far cosine cancelling between G and the area pdf.
+void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, float pdfOmega, Vec3 dir, TransportMode mode,
+                const WalkSettings& settings, size_t maxVertices, Subpath& path) {
+    while (path.size() < maxVertices) {
+        const Vertex& from = path.back();
+        const Vec3 origin = from.onSurface() ? offsetRayOrigin(from.p, from.ng, dir) : from.p;
+        const auto hit = scene.intersect(origin, dir);
+        if (!hit) return;
+        Vertex v = surfaceVertex(scene, *hit);
+        v.beta = beta;
+        v.pdfFwd = toAreaPdf(pdfOmega, from, v);
+        path.push_back(v);
+        if (path.size() == maxVertices) return;
+
+        Vertex& cur = path.back();
+        Vertex& prev = path[path.size() - 2];
+        const Frame frame(cur.ns);
+        const Vec3 wo = normalize(prev.p - cur.p);
+        const auto bs = sampleBsdf(*cur.material, frame.toLocal(wo), uniform2(rng), rng.uniform(), mode);
+        if (!bs || !(bs->pdf > 0) || isBlack(bs->f)) return;
+        const Vec3 wi = frame.toWorld(bs->wi);
+        // Radiance flows against a camera walk (light arrives along wi) and with a light walk.
+        const Vec3 towardLight = mode == TransportMode::Radiance ? wi : wo;
+        const Spectrum weight = bs->f * (shadingCorrection(cur, towardLight) * absDot(cur.ng, wi) / bs->pdf);
+
+        float pdfRevOmega = 0;
+        if (bs->delta) {
+            cur.delta = true;  // pdfs stay 0: MIS skips strategies that would connect here
+            pdfOmega = 0;
+        } else {
+            pdfOmega = bs->pdf;
+            pdfRevOmega = pdfBsdf(*cur.material, frame.toLocal(wi), frame.toLocal(wo));
+        }
+        prev.pdfRev = toAreaPdf(pdfRevOmega, cur, prev);
+
+        beta *= weight;
+        if (static_cast<int>(path.size()) >= settings.rrDepth) {
+            // Survive with the probability of this bounce's weight, capped below 1 so that even
+            // albedo-1 scenes end their paths (the expected length stays finite).
+            const float q = std::min(0.95f, maxComponent(weight));
+            if (!(rng.uniform() < q)) return;
+            beta = beta / q;
+        }
+        if (!isFinite(beta) || isBlack(beta)) return;
+        dir = wi;
+    }
+}
+
+}  // namespace
+
+Vertex sensorVertex(const Scene& scene) {
+    Vertex z0;
+    z0.kind = Vertex::Kind::Sensor;
+    z0.p = scene.camera().position();
+    z0.ng = scene.camera().forward();
+    z0.beta = Spectrum(1.0f);
+    z0.pdfFwd = 1.0f;  // a pinhole: the position is certain
+    return z0;
+}
+
+Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
+    const float uc = rng.uniform();
+    const EmitterSample es = scene.emitters().sample(uc, uniform2(rng), scene.triangles());
+    Vertex y0;
+    y0.kind = Vertex::Kind::Emitter;
+    y0.p = es.p;
+    y0.ng = es.n;
+    y0.emitter = static_cast<int>(es.emitter);
+    y0.pdfFwd = es.pdfA;
+    y0.beta = Spectrum(1.0f / es.pdfA);
+    return y0;
+}
+
+void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings& settings, Subpath& path) {
+    path.clear();
+    path.push_back(sensorVertex(scene));
+    const Camera& cam = scene.camera();
+    const Vec3 dir = cam.direction(raster);
+    // beta = W_j cos θ / p_pixel = 1 exactly (camera.h); MIS sees the whole-image pdf.
+    randomWalk(scene, rng, Spectrum(1.0f), cam.imagePdf(dir), dir, TransportMode::Radiance, settings,
+               static_cast<size_t>(settings.maxDepth) + 1, path);
+}
+
+void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Subpath& path) {
+    path.clear();
+    if (settings.maxDepth < 1) return;
+    path.push_back(sampleEmitterVertex(scene, rng));
+    const Vertex& y0 = path.back();
+    const float uc = rng.uniform();
+    const Vec3 dir = scene.emitters().sampleDirection(y0.emitter, y0.ng, uniform2(rng), uc);
+    const float pdfDir = scene.emitters().directionPdf(y0.emitter, y0.ng, dir);
+    if (!(pdfDir > 0)) return;
+    const Spectrum beta = y0.beta * scene.emitters().Le(y0.emitter, y0.ng, dir) * (cosine(y0, dir) / pdfDir);
+    if (isBlack(beta)) return;
+    randomWalk(scene, rng, beta, pdfDir, dir, TransportMode::Importance, settings,
+               static_cast<size_t>(settings.maxDepth), path);
+}
+
+}  // namespace tripath

@@ -1,0 +1,25 @@
+// Subpath generation: random walks from the sensor (camera subpaths) and from an emitter (light
+// subpaths). Each vertex gets its forward and reverse area pdfs and its throughput beta.
+#pragma once
+#include "geometry/rng.h"
+#include "paths/vertex.h"
+
+namespace tripath {
+
+struct WalkSettings {
+    int maxDepth = 16;  // longest path in segments: camera subpaths get ≤ maxDepth+1 vertices, light ≤ maxDepth
+    int rrDepth = 3;    // Russian roulette once a subpath has this many vertices
+};
+
+// The sensor endpoint z0 of every camera subpath.
+Vertex sensorVertex(const Scene& scene);
+// A fresh point on an emitter as the endpoint y0 of a light subpath (or of next-event estimation):
+// pdfFwd = its area pdf, beta = 1 / pdfFwd.
+Vertex sampleEmitterVertex(const Scene& scene, Rng& rng);
+
+// Fills `path` with a camera subpath whose first segment passes through raster position `raster`.
+void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings& settings, Subpath& path);
+// Fills `path` with a light subpath starting from a power-sampled emitter point.
+void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Subpath& path);
+
+}  // namespace tripath

@@ -1,0 +1,334 @@
+// Image I/O and error metrics. Everything runs on tiny images in a private
+// temporary directory, so the suite stays fast and leaves nothing behind.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geometry/error.h"
+#include "image/image.h"
+#include "image/metrics.h"
+
+namespace fs = std::filesystem;
+using namespace tripath;
+
+namespace {
+
+// A fresh directory per test, removed afterwards, so tests can list it to
+// prove that no temporary files were left behind.
+class ImageIoTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               (std::string("tripath_test_image_") + std::to_string(::getpid()) + "_" + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
+        fs::remove_all(dir_, ec);
+    }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::vector<std::string> listing() const {
+        std::vector<std::string> names;
+        for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+
+    fs::path dir_;
+};
+
+std::vector<unsigned char> fileBytes(const std::string& p) {
+    std::ifstream f(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+// The message the user sees must be a single line that names the file.
+template <class F>
+std::string expectInputError(F&& f, const std::string& mentions) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        std::string msg = e.what();
+        EXPECT_NE(msg.find(mentions), std::string::npos) << msg;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        return msg;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "expected InputError, got: " << e.what();
+        return {};
+    }
+    ADD_FAILURE() << "expected InputError, nothing was thrown";
+    return {};
+}
+
+Image filled(int w, int h, float r, float g, float b) {
+    Image img(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            img.at(x, y)[0] = r;
+            img.at(x, y)[1] = g;
+            img.at(x, y)[2] = b;
+        }
+    return img;
+}
+
+}  // namespace
+
+TEST(Image, ConstructorZeroFillsAndIndexesRowMajor) {
+    Image img(4, 3);
+    ASSERT_EQ(img.rgb.size(), 36u);
+    EXPECT_TRUE(std::all_of(img.rgb.begin(), img.rgb.end(), [](float v) { return v == 0.0f; }));
+    EXPECT_EQ(img.at(0, 0), img.rgb.data());
+    EXPECT_EQ(img.at(1, 0), img.rgb.data() + 3);
+    EXPECT_EQ(img.at(2, 1), img.rgb.data() + 3 * (4 + 2));
+    EXPECT_THROW(Image(-1, 2), InputError);
+}
+
+TEST_F(ImageIoTest, ExrRoundTripIsBitExactWithMetadata) {
+    // Values chosen so that a half-float or lossy path would change them:
+    // beyond half range, below half precision, denormal, negative, non-dyadic.
+    const std::vector<float> special = {0.0f,     1.0f,      0.1f,    1e-30f,  1e-40f, 65504.0f * 4.0f,
+                                        1e6f + 1, -2.5f,     3.14159265f, 1.0e-7f, 0.5f + 1e-7f,
+                                        std::numeric_limits<float>::max()};
+    Image img(5, 3);
+    for (std::size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = special[i % special.size()] * (1 + 0.01f * float(i));
+    img.at(4, 2)[2] = 1e-30f;
+
+    const Metadata meta = {{"tripath:integrator", "bdpt"},
+                           {"tripath:spp", "1024"},
+                           {"tripath:command", "tripath render --scene 'a b.gltf' --spp 1024"},
+                           {"other:note", "not ours, must be filtered on read"}};
+    const std::string p = path("round.exr");
+    writeExr(p, img, meta);
+
+    Metadata back;
+    Image r = readExr(p, &back);
+    ASSERT_EQ(r.width, img.width);
+    ASSERT_EQ(r.height, img.height);
+    ASSERT_EQ(r.rgb.size(), img.rgb.size());
+    for (std::size_t i = 0; i < img.rgb.size(); ++i)
+        EXPECT_EQ(std::memcmp(&r.rgb[i], &img.rgb[i], sizeof(float)), 0) << "index " << i << ": wrote "
+                                                                         << img.rgb[i] << ", read " << r.rgb[i];
+
+    // OpenEXR keeps header attributes sorted by name, so compare as sets.
+    Metadata expected(meta.begin(), meta.begin() + 3);
+    std::sort(expected.begin(), expected.end());
+    std::sort(back.begin(), back.end());
+    EXPECT_EQ(back, expected);
+}
+
+TEST_F(ImageIoTest, ExrUsesZipCompression) {
+    const std::string p = path("zip.exr");
+    writeExr(p, filled(8, 8, 0.25f, 0.5f, 1.5f), {});
+    // The header stores: name "compression", type "compression", int32 size 1,
+    // then one byte; ZIP_COMPRESSION (16-line blocks) is 3.
+    const auto bytes = fileBytes(p);
+    ASSERT_GE(bytes.size(), 4u);
+    EXPECT_EQ(bytes[0], 0x76);  // OpenEXR magic 20000630, little-endian
+    EXPECT_EQ(bytes[1], 0x2f);
+    EXPECT_EQ(bytes[2], 0x31);
+    EXPECT_EQ(bytes[3], 0x01);
+    const std::string key("compression\0compression\0\x01\0\0\0", 28);
+    auto it = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+    ASSERT_NE(it, bytes.end());
+    ASSERT_LT(std::distance(bytes.begin(), it) + 28, std::ptrdiff_t(bytes.size()));
+    EXPECT_EQ(*(it + 28), 3);
+}
+
+TEST_F(ImageIoTest, PngHasMagicAndSrgbEncodedValues) {
+    // Linear values with hand-computed sRGB codes:
+    // 0.5 -> 187.52 -> 188, 0.2 -> 123.55 -> 124, 0.18 -> 117.65 -> 118,
+    // 0.001 (linear segment, 12.92 * 0.001 * 255 = 3.29) -> 3,
+    // anything >= 1 clamps to 255, negatives and NaN to 0.
+    Image img(4, 2);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float values[8][3] = {{0.5f, 0.2f, 0.18f}, {0.001f, 1.0f, 7.0f},   {-1.0f, 0.0f, nan},
+                                {0.9f, 0.25f, 0.0f}, {0.5f, 0.5f, 0.5f},     {1e9f, -1e9f, 0.0031308f},
+                                {0.f, 0.f, 0.f},     {1.0f, 1.0f, 1.0f}};
+    const int expected[8][3] = {{188, 124, 118}, {3, 255, 255}, {0, 0, 0},   {243, 137, 0},
+                                {188, 188, 188}, {255, 0, 10},  {0, 0, 0}, {255, 255, 255}};
+    for (int i = 0; i < 8; ++i)
+        for (int c = 0; c < 3; ++c) img.at(i % 4, i / 4)[c] = values[i][c];
+
+    const std::string p = path("preview.png");
+    writePng(p, img);
+
+    const auto bytes = fileBytes(p);
+    const unsigned char magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    ASSERT_GE(bytes.size(), 8u);
+    EXPECT_TRUE(std::equal(magic, magic + 8, bytes.begin()));
+
+    Image back = readImage(p);
+    ASSERT_EQ(back.width, 4);
+    ASSERT_EQ(back.height, 2);
+    for (int i = 0; i < 8; ++i)
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(std::lround(back.at(i % 4, i / 4)[c] * 255.0f), expected[i][c]) << "pixel " << i << " ch " << c;
+            EXPECT_EQ(int(srgbToByte(values[i][c])), expected[i][c]) << "pixel " << i << " ch " << c;
+        }
+}
+
+TEST_F(ImageIoTest, PngExposureScalesByPowersOfTwo) {
+    const std::string brighter = path("up.png"), darker = path("down.png");
+    writePng(brighter, filled(2, 2, 0.25f, 0.125f, 0.0f), 1.0f);  // x2 -> 0.5, 0.25
+    writePng(darker, filled(2, 2, 1.0f, 0.5f, 2.0f), -1.0f);      // /2 -> 0.5, 0.25, 1
+    Image a = readImage(brighter), b = readImage(darker);
+    EXPECT_EQ(std::lround(a.at(1, 1)[0] * 255), 188);
+    EXPECT_EQ(std::lround(a.at(1, 1)[1] * 255), 137);
+    EXPECT_EQ(std::lround(a.at(1, 1)[2] * 255), 0);
+    EXPECT_EQ(std::lround(b.at(0, 0)[0] * 255), 188);
+    EXPECT_EQ(std::lround(b.at(0, 0)[1] * 255), 137);
+    EXPECT_EQ(std::lround(b.at(0, 0)[2] * 255), 255);
+}
+
+TEST_F(ImageIoTest, WritesLeaveNoTemporaryFilesAndReplaceTargets) {
+    writeExr(path("a.exr"), filled(3, 2, 1, 2, 3), {{"tripath:run", "first"}});
+    writePng(path("a.png"), filled(3, 2, 0.5f, 0.5f, 0.5f));
+    // Overwriting goes through rename as well and must replace the content.
+    writeExr(path("a.exr"), filled(3, 2, 4, 5, 6), {{"tripath:run", "second"}});
+    EXPECT_EQ(listing(), (std::vector<std::string>{"a.exr", "a.png"}));
+
+    Metadata meta;
+    Image r = readExr(path("a.exr"), &meta);
+    EXPECT_EQ(r.at(2, 1)[0], 4.0f);
+    EXPECT_EQ(meta, (Metadata{{"tripath:run", "second"}}));
+}
+
+TEST_F(ImageIoTest, WriteIntoMissingDirectoryThrowsAndLeavesNothing) {
+    const std::string p = path("missing/out.exr");
+    expectInputError([&] { writeExr(p, filled(2, 2, 1, 1, 1), {}); }, p);
+    expectInputError([&] { writePng(path("missing/out.png"), filled(2, 2, 1, 1, 1)); }, "missing/out.png");
+    EXPECT_FALSE(fs::exists(path("missing")));
+    EXPECT_TRUE(listing().empty());
+}
+
+TEST_F(ImageIoTest, WriteOntoDirectoryOrEmptyImageThrows) {
+    fs::create_directory(path("sub.exr"));
+    expectInputError([&] { writeExr(path("sub.exr"), filled(2, 2, 1, 1, 1), {}); }, "sub.exr");
+    expectInputError([&] { writeExr(path("empty.exr"), Image(), {}); }, "empty.exr");
+    Image bad(2, 2);
+    bad.rgb.pop_back();
+    expectInputError([&] { writePng(path("bad.png"), bad); }, "bad.png");
+    EXPECT_EQ(listing(), (std::vector<std::string>{"sub.exr"}));
+}
+
+TEST_F(ImageIoTest, ReadErrorsAreOneLineInputErrors) {
+    expectInputError([&] { readExr(path("nope.exr")); }, "nope.exr");
+
+    const std::string corrupt = path("corrupt.exr");
+    std::ofstream(corrupt, std::ios::binary) << "this is not an image\n\nat all\n";
+    expectInputError([&] { readExr(corrupt); }, corrupt);
+    expectInputError([&] { readImage(corrupt); }, corrupt);
+
+    // A valid EXR cut in half: the header parses, the pixels do not.
+    const std::string whole = path("whole.exr"), truncated = path("truncated.exr");
+    Image noise(64, 64);
+    for (std::size_t i = 0; i < noise.rgb.size(); ++i) noise.rgb[i] = float((i * 2654435761u) % 1000) / 7.0f;
+    writeExr(whole, noise, {});
+    auto bytes = fileBytes(whole);
+    bytes.resize(bytes.size() / 2);
+    std::ofstream(truncated, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    expectInputError([&] { readExr(truncated); }, truncated);
+
+    // readExr insists on EXR; a PNG has to go through readImage.
+    writePng(path("p.png"), filled(2, 2, 0.5f, 0.5f, 0.5f));
+    expectInputError([&] { readExr(path("p.png")); }, "p.png");
+    expectInputError([&] { readExr(dir_.string()); }, dir_.string());
+}
+
+TEST_F(ImageIoTest, CheckWritable) {
+    EXPECT_NO_THROW(checkWritable(path("out.exr")));
+    EXPECT_TRUE(listing().empty()) << "probe file left behind";
+
+    expectInputError([&] { checkWritable(path("missing/out.exr")); }, "missing/out.exr");
+    std::ofstream(path("file.txt")) << "x";
+    expectInputError([&] { checkWritable(path("file.txt/out.exr")); }, "file.txt/out.exr");
+    fs::create_directory(path("adir"));
+    expectInputError([&] { checkWritable(path("adir")); }, "adir");
+    expectInputError([&] { checkWritable(""); }, "empty");
+    EXPECT_EQ(listing(), (std::vector<std::string>{"adir", "file.txt"}));
+}
+
+TEST_F(ImageIoTest, ReadOnlyDirectoryIsRejected) {
+    fs::create_directory(path("ro"));
+    fs::permissions(path("ro"), fs::perms::owner_read | fs::perms::owner_exec);
+    // Root (and CAP_DAC_OVERRIDE) ignores permission bits; the check really
+    // creates a file, so it would rightly pass there.
+    if (::access(path("ro").c_str(), W_OK) == 0) GTEST_SKIP() << "permission bits not enforced for this user";
+    expectInputError([&] { checkWritable(path("ro/out.exr")); }, "ro/out.exr");
+    expectInputError([&] { writeExr(path("ro/out.exr"), filled(2, 2, 1, 1, 1), {}); }, "ro/out.exr");
+    fs::permissions(path("ro"), fs::perms::owner_all, fs::perm_options::add);
+    EXPECT_TRUE(fs::is_empty(path("ro")));
+}
+
+TEST(Metrics, IdenticalImagesHaveZeroError) {
+    Image a = filled(4, 4, 0.3f, 2.0f, 0.0f);
+    ErrorMetrics m = compareImages(a, a);
+    EXPECT_EQ(m.relMse, 0.0);
+    EXPECT_EQ(m.mse, 0.0);
+    EXPECT_EQ(m.mae, 0.0);
+}
+
+TEST(Metrics, ConstantOffsetHasKnownErrors) {
+    // Exactly representable values so the expectations are exact-ish:
+    // reference (0.5, 1, 2), test = reference - 0.25.
+    Image ref = filled(3, 5, 0.5f, 1.0f, 2.0f);
+    Image test = filled(3, 5, 0.25f, 0.75f, 1.75f);
+    const double d2 = 0.0625;
+    ErrorMetrics m = compareImages(test, ref);
+    EXPECT_DOUBLE_EQ(m.mse, d2);
+    EXPECT_DOUBLE_EQ(m.mae, 0.25);
+    EXPECT_DOUBLE_EQ(m.relMse, (d2 / (0.25 + 0.01) + d2 / (1 + 0.01) + d2 / (4 + 0.01)) / 3);
+
+    // epsilon is what keeps black reference pixels finite.
+    Image black(3, 5), grey = filled(3, 5, 0.5f, 0.5f, 0.5f);
+    ErrorMetrics b = compareImages(grey, black, 0.25);
+    EXPECT_DOUBLE_EQ(b.relMse, 1.0);  // 0.25 / (0 + 0.25)
+    EXPECT_DOUBLE_EQ(b.mse, 0.25);
+    EXPECT_DOUBLE_EQ(b.mae, 0.5);
+}
+
+TEST(Metrics, MeanIsOverPixelsAndChannels) {
+    // One channel of one pixel off by 3 in a 2x2 image: 12 values in all.
+    Image ref(2, 2), test(2, 2);
+    test.at(1, 0)[1] = 3.0f;
+    ErrorMetrics m = compareImages(test, ref, 1.0);
+    EXPECT_DOUBLE_EQ(m.mse, 9.0 / 12);
+    EXPECT_DOUBLE_EQ(m.mae, 3.0 / 12);
+    EXPECT_DOUBLE_EQ(m.relMse, 9.0 / 12);
+}
+
+TEST(Metrics, SizeMismatchThrows) {
+    expectInputError([] { compareImages(Image(4, 4), Image(4, 5)); }, "4x5");
+    expectInputError([] { compareImages(Image(4, 4), Image(5, 4)); }, "5x4");
+}
+
+TEST(Metrics, CropCopiesTheWindow) {
+    Image img(5, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 5; ++x)
+            for (int c = 0; c < 3; ++c) img.at(x, y)[c] = float(100 * y + 10 * x + c);
+    Image c = crop(img, 1, 2, 3, 2);
+    ASSERT_EQ(c.width, 3);
+    ASSERT_EQ(c.height, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x)
+            for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(c.at(x, y)[ch], img.at(x + 1, y + 2)[ch]);
+
+    EXPECT_EQ(crop(img, 0, 0, 5, 4).rgb, img.rgb);
+    EXPECT_THROW(crop(img, 3, 0, 3, 1), InputError);
+    EXPECT_THROW(crop(img, 0, 3, 1, 2), InputError);
+    EXPECT_THROW(crop(img, -1, 0, 1, 1), InputError);
+    EXPECT_THROW(crop(img, 0, 0, 0, 1), InputError);
+}
