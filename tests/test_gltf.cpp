@@ -313,6 +313,7 @@ TEST_F(GltfTest, IndexTypesAndNonIndexedGiveTheSameTriangles) {
         one.meshes = {scene.meshes[m]};
         const auto tris = triangles(one);
         ASSERT_EQ(tris.size(), expected.size()) << "mesh " << m;
+        EXPECT_EQ(scene.meshes[m].positions.size(), m < 3 ? 4u : 6u) << "shared vertices stay shared";
         for (size_t t = 0; t < tris.size(); ++t)
             for (int v = 0; v < 3; ++v) EXPECT_TRUE(tris[t][v] == expected[t][v]) << "mesh " << m;
     }

@@ -51,8 +51,9 @@ void addBox(SceneDesc& s, const char* name, int material, Vec3 centre, Vec3 h, f
     s.meshes.push_back(std::move(m));
 }
 
-// UV sphere with smooth (shading) normals; `inward` turns its front faces to the inside.
-void addSphere(SceneDesc& s, const char* name, int material, Vec3 centre, float radius, int rings, bool inward = false) {
+// UV sphere, with smooth shading normals unless `flat`; `inward` turns its front faces inside.
+void addSphere(SceneDesc& s, const char* name, int material, Vec3 centre, float radius, int rings, bool inward = false,
+               bool flat = false) {
     MeshDesc m{name, {}, {}, {}, material};
     const int segments = 2 * rings;
     for (int i = 0; i <= rings; ++i) {
@@ -61,7 +62,7 @@ void addSphere(SceneDesc& s, const char* name, int material, Vec3 centre, float 
             const float phi = 2.0f * kPi * j / segments;
             const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
             m.positions.push_back(centre + n * radius);
-            m.normals.push_back(inward ? -n : n);
+            if (!flat) m.normals.push_back(inward ? -n : n);
         }
     }
     auto at = [&](int i, int j) { return static_cast<uint32_t>(i * (segments + 1) + j); };
@@ -69,8 +70,13 @@ void addSphere(SceneDesc& s, const char* name, int material, Vec3 centre, float 
         for (int j = 0; j < segments; ++j) {
             // Outward winding is (i,j) (i+1,j+1) (i+1,j) here; reverse it for inward.
             const uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-            const uint32_t quad[6] = {a, c, b, a, d, c};
-            for (int k = 0; k < 6; ++k) m.indices.push_back(quad[inward ? 5 - k : k]);
+            // At the poles one triangle of each quad has zero area: leave it out.
+            auto triangle = [&](uint32_t p, uint32_t q, uint32_t r) {
+                if (inward) std::swap(p, r);
+                m.indices.insert(m.indices.end(), {p, q, r});
+            };
+            if (i != rings - 1) triangle(a, c, b);
+            if (i != 0) triangle(a, d, c);
         }
     s.meshes.push_back(std::move(m));
 }
@@ -220,7 +226,9 @@ SceneDesc furnaceScene(float albedo, float emittedRadiance) {
     Material m = lambertian("furnace", Spectrum(albedo));
     m.emission = Spectrum(emittedRadiance);
     m.twoSidedEmission = true;
-    addSphere(s, "sphere", addMaterial(s, m), {0, 0, 0}, 1.0f, 24, true);
+    // Flat facets: shading normals would bend the albedo away from a, and the identity
+    // L = Le + a L holds for any closed shape, so the polyhedron is exact.
+    addSphere(s, "sphere", addMaterial(s, m), {0, 0, 0}, 1.0f, 24, true, true);
     s.camera = CameraDesc{true, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 1.2f};
     return s;
 }

@@ -159,7 +159,7 @@ std::optional<Vec3> sampleGgxReflection(Vec3 wo, float alpha, Vec2 u) {
 
 class CoatAlbedoTable {
 public:
-    static constexpr int kMu = 128, kRough = 32, kQuad = 32;
+    static constexpr int kMu = 96, kRough = 24, kQuad = 32;
 
     CoatAlbedoTable() {
         for (int j = 0; j < kRough; ++j) {
@@ -471,3 +471,6 @@ std::string validateMaterial(const Material& m) {
 }
 
 }  // namespace tripath
+// DEBUG-HOOK-BEGIN
+namespace tripath { float debugCoatAlbedo(float mu, float r, float f0) { return coatAlbedoTable().albedo(mu, r, f0); } }
+// DEBUG-HOOK-END

@@ -73,6 +73,21 @@ float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to) {
     return pdfOmega * cosine(to, (to.p - from.p) / std::sqrt(d2)) / d2;
 }
 
+float generationPdf(const Scene& scene, const Vertex& v, const Vertex* from, const Vertex& to) {
+    const Vec3 w = unitDirection(v, to);
+    float pdfOmega = 0;
+    switch (v.kind) {
+        case Vertex::Kind::Sensor: pdfOmega = scene.camera().imagePdf(w); break;
+        case Vertex::Kind::Emitter: pdfOmega = scene.emitters().directionPdf(v.emitter, v.ng, w); break;
+        case Vertex::Kind::Surface: {
+            const Frame frame(v.ns);
+            pdfOmega = pdfBsdf(*v.material, frame.toLocal(unitDirection(v, *from)), frame.toLocal(w));
+            break;
+        }
+    }
+    return toAreaPdf(pdfOmega, v, to);
+}
+
 Spectrum pathContribution(const Scene& scene, const std::vector<Vertex>& x) {
     const size_t k = x.size() - 1;
     Spectrum f = emittance(scene, x[0], x[1]) * g(scene, x[0], x[1]);

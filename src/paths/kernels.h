@@ -53,6 +53,13 @@ Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight,
 // Solid-angle pdf p_ω at `from` → area pdf at `to`: p_A = p_ω |cos θ_to| / r².
 float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to);
 
+// Area pdf with which vertex v, reached from `from` (null at a subpath's endpoint), generates the
+// point `to`: its BSDF's (surface), the emission distribution's (emitter) or the sensor's over
+// the image (camera), converted to area measure at `to`. Zero through a delta lobe. Walks and
+// connections both take their pdfs from here, as functions of the points alone, so every
+// strategy's pdf of a path is computed the same way (the MIS weights depend on it).
+float generationPdf(const Scene& scene, const Vertex& v, const Vertex* from, const Vertex& to);
+
 // f(x̄) for a whole path x0 … xk (x0 emitter, xk sensor), the product of the kernels above.
 Spectrum pathContribution(const Scene& scene, const std::vector<Vertex>& path);
 

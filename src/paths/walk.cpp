@@ -20,14 +20,18 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     v.triangle = hit.triangle;
     v.material = &scene.materialOf(hit.triangle);
     v.emitter = scene.emitters().emitterOfTriangle(hit.triangle);
+    v.delta = isDelta(*v.material);
     return v;
 }
 
-// Extends `path` from its last vertex along `dir`, which was sampled there with solid-angle pdf
+// Extends `path` from its last vertex along `dir`, sampled there with solid-angle pdf
 // `pdfOmega`; `beta` is the throughput the next vertex receives. Each step multiplies beta by
 //     scatter(x_i) · G(x_i, x_{i+1}) / p_A(x_{i+1}) = f · correction · |cos θ_i| / p_ω,
-// the r² and the far cosine cancelling between G and the area pdf.
-void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, float pdfOmega, Vec3 dir, TransportMode mode,
+// the r² and the far cosine cancelling between G and the area pdf. The vertices' pdfs for MIS
+// are recomputed from the points (generationPdf) rather than taken from the sampler: the ray
+// leaves from an offset origin, and on short segments the direction between the vertices is
+// not quite the sampled one; connections see only the points, so the walks must too.
+void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, TransportMode mode,
                 const WalkSettings& settings, size_t maxVertices, Subpath& path) {
     while (path.size() < maxVertices) {
         const Vertex& from = path.back();
@@ -36,12 +40,14 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, float pdfOmega, Vec
         if (!hit) return;
         Vertex v = surfaceVertex(scene, *hit);
         v.beta = beta;
-        v.pdfFwd = toAreaPdf(pdfOmega, from, v);
+        const Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
+        v.pdfFwd = generationPdf(scene, from, beforeFrom, v);
+        if (beforeFrom) path[path.size() - 2].pdfRev = generationPdf(scene, from, &v, *beforeFrom);
         path.push_back(v);
         if (path.size() == maxVertices) return;
 
-        Vertex& cur = path.back();
-        Vertex& prev = path[path.size() - 2];
+        const Vertex& cur = path.back();
+        const Vertex& prev = path[path.size() - 2];
         const Frame frame(cur.ns);
         const Vec3 wo = normalize(prev.p - cur.p);
         const auto bs = sampleBsdf(*cur.material, frame.toLocal(wo), uniform2(rng), rng.uniform(), mode);
@@ -50,17 +56,6 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, float pdfOmega, Vec
         // Radiance flows against a camera walk (light arrives along wi) and with a light walk.
         const Vec3 towardLight = mode == TransportMode::Radiance ? wi : wo;
         const Spectrum weight = bs->f * (shadingCorrection(cur, towardLight) * absDot(cur.ng, wi) / bs->pdf);
-
-        float pdfRevOmega = 0;
-        if (bs->delta) {
-            cur.delta = true;  // pdfs stay 0: MIS skips strategies that would connect here
-            pdfOmega = 0;
-        } else {
-            pdfOmega = bs->pdf;
-            pdfRevOmega = pdfBsdf(*cur.material, frame.toLocal(wi), frame.toLocal(wo));
-        }
-        prev.pdfRev = toAreaPdf(pdfRevOmega, cur, prev);
-
         beta *= weight;
         if (static_cast<int>(path.size()) >= settings.rrDepth) {
             // Survive with the probability of this bounce's weight, capped below 1 so that even
@@ -94,6 +89,7 @@ Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
     y0.p = es.p;
     y0.ng = es.n;
     y0.emitter = static_cast<int>(es.emitter);
+    y0.triangle = scene.emitters().all()[es.emitter].triangle;
     y0.pdfFwd = es.pdfA;
     y0.beta = Spectrum(1.0f / es.pdfA);
     return y0;
@@ -105,7 +101,7 @@ void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings
     const Camera& cam = scene.camera();
     const Vec3 dir = cam.direction(raster);
     // beta = W_j cos θ / p_pixel = 1 exactly (camera.h); MIS sees the whole-image pdf.
-    randomWalk(scene, rng, Spectrum(1.0f), cam.imagePdf(dir), dir, TransportMode::Radiance, settings,
+    randomWalk(scene, rng, Spectrum(1.0f), dir, TransportMode::Radiance, settings,
                static_cast<size_t>(settings.maxDepth) + 1, path);
 }
 
@@ -120,7 +116,7 @@ void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Su
     if (!(pdfDir > 0)) return;
     const Spectrum beta = y0.beta * scene.emitters().Le(y0.emitter, y0.ng, dir) * (cosine(y0, dir) / pdfDir);
     if (isBlack(beta)) return;
-    randomWalk(scene, rng, beta, pdfDir, dir, TransportMode::Importance, settings,
+    randomWalk(scene, rng, beta, dir, TransportMode::Importance, settings,
                static_cast<size_t>(settings.maxDepth), path);
 }
 
