@@ -1,6 +1,7 @@
 // Helpers shared by the physics tests: rendering at low resolution and simple statistics.
 #pragma once
 #include <cmath>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>

@@ -183,6 +183,13 @@ std::string oneLine(const std::string& text) {
     return out;
 }
 
+// Shortest readable form of a number for messages ("4", "0.25", "1e+39").
+std::string formatNumber(double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
 std::string primitiveModeName(int mode) {
     switch (mode) {
         case TINYGLTF_MODE_POINTS: return "POINTS";
@@ -424,7 +431,7 @@ Vec3 GltfLoader::finiteVec3(const std::vector<double>& values, Vec3 fallback,
 
 float GltfLoader::unitFactor(double value, const std::string& what) const {
     if (!std::isfinite(float(value))) fail(what + " is not finite");
-    if (value < 0 || value > 1) fail(what + " " + std::to_string(value) + " is outside [0, 1]");
+    if (value < 0 || value > 1) fail(what + " " + formatNumber(value) + " is outside [0, 1]");
     return float(value);
 }
 
@@ -724,7 +731,7 @@ void GltfLoader::addCamera(int cameraIndex, const Mat4& world, int nodeIndex) {
     if (scene_.camera.present) return;  // the first perspective camera wins
     const double yfov = camera.perspective.yfov;
     if (!std::isfinite(yfov) || yfov <= 0 || yfov >= kPi)
-        fail("camera " + std::to_string(cameraIndex) + " yfov " + std::to_string(yfov) + " is not in (0, pi)");
+        fail("camera " + std::to_string(cameraIndex) + " yfov " + formatNumber(yfov) + " is not in (0, pi)");
     const Vec3 forward = transformDirection(world, Vec3(0, 0, -1));
     const Vec3 upHint = transformDirection(world, Vec3(0, 1, 0));
     const Vec3 upOrtho = upHint - forward * dot(upHint, forward);

@@ -1,0 +1,92 @@
+// Built-in scenes where light-transport methods fail, each for a reason that is known in advance
+// (issue 6, "Stability where methods fail"). They are registered with the other built-ins
+// (builtin_scenes.cpp) and exported as scenes/<name>.gltf; tests/test_stability.cpp renders each
+// with every integrator and checks what must hold (no NaN, bounded work, agreement where a method
+// can sample the light, black where it provably cannot); docs/failures.md tabulates the errors.
+//
+// Each function's comment says what fails and why. Where a test needs a point of the scene (the
+// centre of a caustic, say), the constant is exported here so the scene and the test agree.
+#pragma once
+#include "geometry/scene_desc.h"
+
+namespace tripath {
+
+// ---- caustics ---------------------------------------------------------------------------------
+// A glass ball on no support above a diffuse floor, lit by a small area light up and to the side:
+// the ball focuses the light into a bright caustic beside its shadow.
+
+// Where the line from the light through the ball's centre meets the floor: inside the caustic.
+Vec3 causticCentre();
+
+// Small area light. PT: a floor point in the caustic is lit only along paths through the glass,
+// which next-event estimation cannot use (the shadow ray hits the ball) and which BSDF sampling
+// finds only when the refracted direction happens to hit the 10 cm light: very noisy.
+// LT and BDPT trace light through the ball and connect the floor vertex to the camera: good.
+SceneDesc causticScene();
+
+// The same with a point light. PT cannot sample the caustic at all: no walk can hit a point,
+// and the shadow ray from the floor is blocked by the glass. The caustic is black under PT,
+// however many samples; LT and BDPT (strategy t = 1) see it.
+SceneDesc causticPointScene();
+
+// ---- specular-diffuse-specular ---------------------------------------------------------------
+// The caustic seen through a glass pane standing between it and the camera: the light's path is
+// L S S D S S E (ball in, ball out, floor, pane in, pane out, eye). A strategy joins two subpaths
+// at a pair of adjacent non-delta vertices, and the only non-delta interior vertex is the floor,
+// whose neighbours are both glass.
+
+// Small area light: the emitter vertex is not delta, so s = 0 (the camera walk hits the light)
+// samples the path: PT and BDPT see the caustic through the pane (noisily); LT sees nothing
+// through the pane at all, since its connection to the pinhole is blocked by the glass.
+SceneDesc sdsScene();
+
+// Point light and pinhole: both ends are delta too, so no (s, t) of any integrator can sample
+// the caustic seen through the pane. It is black under PT, LT and BDPT alike (a known limit
+// of these methods, fixed only by regularisation or manifold walks, which tripath does not do).
+SceneDesc sdsPointScene();
+
+// Where the camera sees causticCentre() through the pane (the pane shifts the ray a little).
+Vec3 sdsPaneCentre();
+
+// ---- visibility ----------------------------------------------------------------------------
+// Two rooms sharing a wall; the door between them is ajar by a few degrees and the only light
+// is on the far room's ceiling. Every path from the light to the camera's room squeezes through
+// the gap at the door's free edge. PT: next-event estimation from the camera's room is almost
+// always blocked and BSDF sampling rarely finds the gap: very noisy. LT/BDPT: light subpaths
+// go through the gap on their own, so the lit stripe and the room it brightens converge well.
+SceneDesc doorAjarScene();
+
+// ---- geometry where surfaces meet ---------------------------------------------------------
+// The Cornell box with two boxes whose faces lie exactly in the walls and floor (coincident,
+// coplanar triangles) and a thin slab floating 1e-4 above the floor. Ray origins must leave the
+// right surface; a wrong offset shows as light leaking into corners or a black self-shadow, and
+// a connection across a 1e-4 gap has g = cos cos / r² up to 1e8: fireflies unless MIS weighs it
+// down (BDPT) — the test measures the largest single sample against the pixel mean.
+SceneDesc contactScene();
+
+// ---- grazing angles --------------------------------------------------------------------------
+// A glossy metal plane (GGX, roughness 0.1) with the camera and a small light each at 89.9° to
+// its normal, the light where the camera sees its reflection. Cosines of 1.7e-3, Smith masking
+// near its limit and Fresnel near 1: any cancellation or division by a cosine shows as NaN,
+// Inf or a bias between the integrators.
+SceneDesc grazingScene();
+
+// ---- degenerate input ------------------------------------------------------------------------
+
+// A Cornell box whose walls have an albedo of exactly 1 (Russian roulette must still end the
+// walks), with zero-area triangles (collinear corners, a repeated vertex, one point), needle
+// triangles 2e-5 m wide and 1.5 m long, an emitter of zero area (dropped; it must not divide by
+// its area) and an emissive needle of 3e-5 m² (chosen by power almost never, yet valid).
+SceneDesc degenerateScene();
+
+// A 1 mm cube on a 10 km ground, seen from 4 mm away. Hit points on the ground come from
+// barycentrics of corners 5 km away, so they carry absolute errors of ~1e-3·(5e3 · 2^-24)…
+// comparable to the cube; ray offsets must not push paths through it.
+SceneDesc degenerateTinyScene();
+
+// The Cornell box scaled 500× and moved to coordinates near 1e6, where float spacing is 0.06 m
+// and ray offsets (relative to the coordinates) are metres. Radiance is scale invariant, so the
+// image should match the unit Cornell box up to leaks at the corners.
+SceneDesc degenerateFarScene();
+
+}  // namespace tripath
