@@ -38,8 +38,6 @@
 
 namespace tripath {
 
-void printWarning(const std::string& message) { std::cerr << "warning: " << message << '\n'; }
-
 namespace {
 
 // A triangle is dropped when sin(angle between two edges) falls below this (zero-area slivers).

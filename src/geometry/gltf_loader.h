@@ -2,18 +2,13 @@
 // What each glTF feature becomes, and what is ignored, is listed in docs/gltf.md and in the
 // comment at the top of gltf_loader.cpp.
 #pragma once
-#include <functional>
 #include <string>
 
 #include "geometry/scene_desc.h"
+#include "geometry/warnings.h"
 
 namespace tripath {
 
-// Receives one warning message (without the "warning: " prefix); each kind is reported once.
-using WarningSink = std::function<void(const std::string&)>;
-
-// The default sink: prints "warning: <message>" on a line of its own to std::cerr.
-void printWarning(const std::string& message);
 
 // Loads the default scene of a glTF 2.0 file (chosen as .glb or .gltf by its magic bytes).
 // Throws InputError with one line "<path>: <problem>" for any bad input: missing or unreadable

@@ -4,13 +4,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <iostream>
 
 #include "geometry/error.h"
 
 namespace tripath {
-
-void warnToStderr(const std::string& message) { std::cerr << "warning: " << message << "\n"; }
 
 // A hit point computed from barycentrics is off the triangle's plane by a few ulps of the LARGEST
 // coordinate involved (not of the coordinate along the normal, which may be near zero), so the

@@ -1,7 +1,6 @@
 // The renderable scene: triangles in one Embree BVH, their materials, the emitters and the
 // sensor. Built from a SceneDesc (gltf_loader or builtin_scenes), validated on the way in.
 #pragma once
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -10,14 +9,13 @@
 #include "geometry/camera.h"
 #include "geometry/emitters.h"
 #include "geometry/scene_desc.h"
+#include "geometry/warnings.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
 
 namespace tripath {
 
-using WarningSink = std::function<void(const std::string&)>;
-void warnToStderr(const std::string& message);
 
 struct Triangle {
     Vec3 p[3];
@@ -45,7 +43,7 @@ Vec3 offsetRayOrigin(Vec3 p, Vec3 ng, Vec3 dir);
 class Scene {
 public:
     // Throws InputError on a scene that cannot be rendered (no emitter, bad material, …).
-    Scene(SceneDesc desc, int width, int height, const WarningSink& warn = warnToStderr);
+    Scene(SceneDesc desc, int width, int height, const WarningSink& warn = printWarning);
     ~Scene();
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;

@@ -1,0 +1,9 @@
+#include "geometry/warnings.h"
+
+#include <iostream>
+
+namespace tripath {
+
+void printWarning(const std::string& message) { std::cerr << "warning: " << message << '\n'; }
+
+}  // namespace tripath

@@ -1,0 +1,646 @@
+// Physics tests of the BSDFs (DESIGN.md §3: reciprocal, non-negative, energy-conserving), plus the
+// contract between sampleBsdf, evalBsdf and pdfBsdf that MIS relies on.
+//
+// Statistical checks use fixed-seed streams, so they are deterministic; thresholds are set from
+// the estimator's own standard error (4σ) or a chi-square p-value of 1e-5, never tuned to pass.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "geometry/material.h"
+#include "geometry/rng.h"
+#include "geometry/sampling.h"
+
+namespace tripath {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Fixtures
+
+Material makeMaterial(MaterialType type, Spectrum albedo, float roughness = 0.5f, float ior = 1.5f) {
+    Material m;
+    m.type = type;
+    m.albedo = albedo;
+    m.roughness = roughness;
+    m.ior = ior;
+    m.name = std::string(materialTypeName(type)) + " r=" + std::to_string(roughness) +
+             " ior=" + std::to_string(ior);
+    return m;
+}
+
+Rng testRng(uint64_t k) { return Rng(1234, static_cast<uint64_t>(StreamDomain::Test), k); }
+Vec2 uniform2(Rng& rng) { return {rng.uniform(), rng.uniform()}; }
+
+// Direction at polar angle θ (degrees) and azimuth φ; negative z for θ > 90°.
+Vec3 directionAtAngle(float thetaDegrees, float phi = 0.3f) {
+    const float t = thetaDegrees * kPi / 180.0f;
+    return {std::sin(t) * std::cos(phi), std::sin(t) * std::sin(phi), std::cos(t)};
+}
+
+Vec3 directionFromCosPhi(double z, double phi) {
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    return {static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)),
+            static_cast<float>(z)};
+}
+
+// The non-delta materials every generic test runs over: a spread of roughness including the
+// clamped extreme 0, coloured F0 and albedo, two coat indices.
+std::vector<Material> nonDeltaMaterials() {
+    return {
+        makeMaterial(MaterialType::Lambertian, {0.7f, 0.5f, 0.2f}),
+        makeMaterial(MaterialType::Conductor, {0.95f, 0.64f, 0.54f}, 0.0f),
+        makeMaterial(MaterialType::Conductor, {0.95f, 0.64f, 0.54f}, 0.1f),
+        makeMaterial(MaterialType::Conductor, {0.9f, 0.9f, 0.9f}, 0.4f),
+        makeMaterial(MaterialType::Conductor, {0.56f, 0.57f, 0.58f}, 0.8f),
+        makeMaterial(MaterialType::Conductor, {1.0f, 1.0f, 1.0f}, 1.0f),
+        makeMaterial(MaterialType::Plastic, {0.8f, 0.3f, 0.1f}, 0.0f),
+        makeMaterial(MaterialType::Plastic, {0.8f, 0.3f, 0.1f}, 0.3f, 1.5f),
+        makeMaterial(MaterialType::Plastic, {0.2f, 0.6f, 0.9f}, 0.7f, 2.2f),
+        makeMaterial(MaterialType::Plastic, {1.0f, 1.0f, 1.0f}, 1.0f, 1.33f),
+    };
+}
+
+bool relativelyEqual(float a, float b, float rel) {
+    return std::abs(a - b) <= rel * std::max(std::abs(a), std::abs(b)) + 1e-30f;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Names and classification
+
+TEST(Bsdf, MaterialTypeNames) {
+    EXPECT_STREQ(materialTypeName(MaterialType::Lambertian), "lambertian");
+    EXPECT_STREQ(materialTypeName(MaterialType::Mirror), "mirror");
+    EXPECT_STREQ(materialTypeName(MaterialType::Dielectric), "dielectric");
+    EXPECT_STREQ(materialTypeName(MaterialType::Conductor), "conductor");
+    EXPECT_STREQ(materialTypeName(MaterialType::Plastic), "plastic");
+}
+
+TEST(Bsdf, DeltaMaterialsHaveNoEvaluableLobe) {
+    for (MaterialType t : {MaterialType::Mirror, MaterialType::Dielectric}) {
+        const Material m = makeMaterial(t, Spectrum(0.9f));
+        EXPECT_TRUE(isDelta(m));
+        const Vec3 wo = directionAtAngle(30);
+        const Vec3 wi = {-wo.x, -wo.y, wo.z};  // even the exact specular direction
+        EXPECT_TRUE(isBlack(evalBsdf(m, wo, wi, TransportMode::Radiance)));
+        EXPECT_EQ(pdfBsdf(m, wo, wi), 0.0f);
+    }
+    for (const Material& m : nonDeltaMaterials()) EXPECT_FALSE(isDelta(m)) << m.name;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Non-negativity and reciprocity: f(wo, wi) = f(wi, wo) (Helmholtz; Veach 1997 §6.2)
+
+// Half the pairs are uniform on the sphere; half are perturbed mirror configurations so that the
+// narrow lobes of smooth conductors are actually exercised.
+std::pair<Vec3, Vec3> randomPair(Rng& rng, int i) {
+    const Vec3 wo = sampleUniformSphere(uniform2(rng));
+    if (i % 2 == 0) return {wo, sampleUniformSphere(uniform2(rng))};
+    const Vec3 jitter = sampleUniformSphere(uniform2(rng)) * (0.05f * rng.uniform());
+    return {wo, normalize(Vec3(-wo.x, -wo.y, wo.z) + jitter)};
+}
+
+TEST(Bsdf, NonNegativeAndReciprocal) {
+    for (const Material& m : nonDeltaMaterials()) {
+        Rng rng = testRng(1);
+        for (int i = 0; i < 20000; ++i) {
+            const auto [wo, wi] = randomPair(rng, i);
+            const Spectrum a = evalBsdf(m, wo, wi, TransportMode::Radiance);
+            const Spectrum b = evalBsdf(m, wi, wo, TransportMode::Radiance);
+            ASSERT_TRUE(isFinite(a)) << m.name;
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_GE(a[c], 0.0f) << m.name;
+                ASSERT_TRUE(relativelyEqual(a[c], b[c], 1e-4f))
+                    << m.name << " channel " << c << ": " << a[c] << " vs " << b[c];
+            }
+        }
+    }
+}
+
+TEST(Bsdf, NonDeltaValuesDoNotDependOnTransportMode) {
+    for (const Material& m : nonDeltaMaterials()) {
+        Rng rng = testRng(2);
+        for (int i = 0; i < 2000; ++i) {
+            const auto [wo, wi] = randomPair(rng, i);
+            EXPECT_EQ(evalBsdf(m, wo, wi, TransportMode::Radiance),
+                      evalBsdf(m, wo, wi, TransportMode::Importance));
+        }
+    }
+}
+
+// Two-sidedness: mirroring both directions through the shading plane changes nothing, and a
+// reflection-only lobe never connects the two sides.
+TEST(Bsdf, TwoSidedReflectionOnly) {
+    for (const Material& m : nonDeltaMaterials()) {
+        Rng rng = testRng(3);
+        for (int i = 0; i < 2000; ++i) {
+            const auto [wo, wi] = randomPair(rng, i);
+            const Vec3 woM(wo.x, wo.y, -wo.z), wiM(wi.x, wi.y, -wi.z);
+            EXPECT_EQ(evalBsdf(m, wo, wi, TransportMode::Radiance),
+                      evalBsdf(m, woM, wiM, TransportMode::Radiance));
+            EXPECT_EQ(pdfBsdf(m, wo, wi), pdfBsdf(m, woM, wiM));
+            if (wo.z * wi.z < 0) {
+                EXPECT_TRUE(isBlack(evalBsdf(m, wo, wi, TransportMode::Radiance))) << m.name;
+                EXPECT_EQ(pdfBsdf(m, wo, wi), 0.0f) << m.name;
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sampling contract: what sampleBsdf reports is what evalBsdf / pdfBsdf say
+
+TEST(Bsdf, SampledValuesMatchEvalAndPdf) {
+    for (const Material& m : nonDeltaMaterials()) {
+        Rng rng = testRng(4);
+        for (int i = 0; i < 20000; ++i) {
+            const Vec3 wo = sampleUniformSphere(uniform2(rng));
+            const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance);
+            if (!s) continue;
+            ASSERT_FALSE(s->delta) << m.name;
+            ASSERT_NEAR(length(s->wi), 1.0f, 1e-4f) << m.name;
+            ASSERT_GT(s->wi.z * wo.z, 0.0f) << m.name;
+            ASSERT_GT(s->pdf, 0.0f) << m.name;
+            const Spectrum f = evalBsdf(m, wo, s->wi, TransportMode::Radiance);
+            for (int c = 0; c < 3; ++c) ASSERT_TRUE(relativelyEqual(s->f[c], f[c], 1e-5f)) << m.name;
+            ASSERT_TRUE(relativelyEqual(s->pdf, pdfBsdf(m, wo, s->wi), 1e-5f)) << m.name;
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Histogram of sampled directions against the integrated pdf (chi-square goodness of fit)
+
+// Bins over the whole sphere in (cos θ, φ), where dω = d(cos θ) dφ; the cos θ = 0 edge falls on
+// a bin boundary, so the pdf's step at the horizon does not spoil the quadrature.
+struct SphereBins {
+    int nCos = 16, nPhi = 32;
+    int count() const { return nCos * nPhi; }
+    int index(Vec3 w) const {
+        const double phi = std::atan2(static_cast<double>(w.y), static_cast<double>(w.x));
+        const int ci = std::clamp(static_cast<int>((w.z + 1.0) * 0.5 * nCos), 0, nCos - 1);
+        const int pi = std::clamp(static_cast<int>((phi + kPi) / (2 * kPi) * nPhi), 0, nPhi - 1);
+        return ci * nPhi + pi;
+    }
+    // ∫ pdf over bin b with an s×s midpoint rule.
+    double integrate(const std::function<float(Vec3)>& pdf, int b, int s) const {
+        const double dz = 2.0 / nCos, dphi = 2 * std::numbers::pi / nPhi;
+        const double z0 = -1.0 + (b / nPhi) * dz, phi0 = -std::numbers::pi + (b % nPhi) * dphi;
+        double sum = 0;
+        for (int i = 0; i < s; ++i)
+            for (int j = 0; j < s; ++j)
+                sum += pdf(directionFromCosPhi(z0 + (i + 0.5) * dz / s, phi0 + (j + 0.5) * dphi / s));
+        return sum * dz * dphi / (s * s);
+    }
+    // Refine the midpoint rule until two resolutions agree: GGX lobes are narrow in some bins.
+    double integrateAdaptive(const std::function<float(Vec3)>& pdf, int b) const {
+        double coarse = integrate(pdf, b, 8);
+        for (int s = 16; s <= 128; s *= 2) {
+            const double fine = integrate(pdf, b, s);
+            if (std::abs(fine - coarse) <= 1e-4 * fine + 1e-9) return fine;
+            coarse = fine;
+        }
+        return coarse;
+    }
+    std::vector<double> probabilities(const std::function<float(Vec3)>& pdf) const {
+        std::vector<double> p(count());
+        for (int b = 0; b < count(); ++b) p[b] = integrateAdaptive(pdf, b);
+        return p;
+    }
+};
+
+// Upper tail P(X ≥ x) of a chi-square variable with k degrees of freedom, by the Wilson-Hilferty
+// cube-root normal approximation (accurate to a few percent in p for k ≳ 30, ample for a 1e-5
+// rejection threshold).
+double chiSquarePValue(double x, int k) {
+    const double v = 2.0 / (9.0 * k);
+    const double z = (std::cbrt(x / k) - (1.0 - v)) / std::sqrt(v);
+    return 0.5 * std::erfc(z / std::sqrt(2.0));
+}
+
+struct ChiSquareResult {
+    double statistic = 0;
+    int dof = 0;
+    double pValue = 1;
+};
+
+// Pearson's statistic after pooling every cell with an expected count below 5 into one cell
+// (and that pool into the smallest regular cell if it is itself too small).
+ChiSquareResult chiSquare(const std::vector<double>& observed, const std::vector<double>& expected) {
+    std::vector<std::pair<double, double>> cells;  // (expected, observed)
+    double poolE = 0, poolO = 0;
+    for (size_t i = 0; i < expected.size(); ++i) {
+        if (expected[i] < 5) {
+            poolE += expected[i];
+            poolO += observed[i];
+        } else {
+            cells.push_back({expected[i], observed[i]});
+        }
+    }
+    if (poolE >= 5 || cells.empty()) {
+        cells.push_back({poolE, poolO});
+    } else {
+        auto smallest = std::min_element(cells.begin(), cells.end());
+        smallest->first += poolE;
+        smallest->second += poolO;
+    }
+    ChiSquareResult r;
+    for (const auto& [e, o] : cells) r.statistic += (o - e) * (o - e) / std::max(e, 1e-12);
+    r.dof = static_cast<int>(cells.size()) - 1;
+    r.pValue = r.dof > 0 ? chiSquarePValue(r.statistic, r.dof) : 1.0;
+    return r;
+}
+
+// Observed histogram of N samples plus a last cell for "no direction produced".
+std::vector<double> sampledHistogram(const Material& m, Vec3 wo, const SphereBins& bins, int n, Rng& rng) {
+    std::vector<double> h(bins.count() + 1, 0.0);
+    for (int i = 0; i < n; ++i) {
+        const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance);
+        h[s ? bins.index(s->wi) : bins.count()] += 1;
+    }
+    return h;
+}
+
+struct SamplingCase {
+    Material m;
+    float thetaDegrees;
+};
+
+std::vector<SamplingCase> samplingCases() {
+    std::vector<SamplingCase> cases;
+    const std::vector<Material> materials = {
+        makeMaterial(MaterialType::Lambertian, Spectrum(0.5f)),
+        makeMaterial(MaterialType::Conductor, Spectrum(0.9f), 0.3f),
+        makeMaterial(MaterialType::Conductor, Spectrum(0.9f), 0.6f),
+        makeMaterial(MaterialType::Conductor, Spectrum(0.9f), 1.0f),
+        makeMaterial(MaterialType::Plastic, Spectrum(0.5f), 0.3f),
+        makeMaterial(MaterialType::Plastic, {0.9f, 0.2f, 0.1f}, 0.8f, 2.0f),
+    };
+    // Normal, oblique, near-grazing, and the back side (two-sided shading).
+    for (const Material& m : materials)
+        for (float theta : {0.0f, 50.0f, 87.0f, 125.0f}) cases.push_back({m, theta});
+    return cases;
+}
+
+TEST(Bsdf, SampledDirectionsFollowPdfChiSquare) {
+    const SphereBins bins;
+    const int n = 100000;
+    int k = 0;
+    for (const SamplingCase& c : samplingCases()) {
+        const Vec3 wo = directionAtAngle(c.thetaDegrees);
+        Rng rng = testRng(100 + k++);
+        const std::vector<double> observed = sampledHistogram(c.m, wo, bins, n, rng);
+        std::vector<double> p = bins.probabilities([&](Vec3 wi) { return pdfBsdf(c.m, wo, wi); });
+        double total = 0;
+        for (double x : p) total += x;
+        p.push_back(std::max(0.0, 1.0 - total));  // probability that sampling fails
+        std::vector<double> expected(p.size());
+        for (size_t i = 0; i < p.size(); ++i) expected[i] = p[i] * n;
+        const ChiSquareResult r = chiSquare(observed, expected);
+        EXPECT_GT(r.pValue, 1e-5) << c.m.name << " θo=" << c.thetaDegrees << ": χ²=" << r.statistic
+                                  << " dof=" << r.dof;
+    }
+}
+
+// ∫ pdf dω is the probability that sampleBsdf produces a direction: 1 for Lambertian, and for
+// the GGX lobes 1 minus the fraction of reflections that fall below the horizon.
+TEST(Bsdf, PdfIntegratesToSamplingProbability) {
+    const SphereBins bins;
+    const int n = 100000;
+    int k = 0;
+    for (const SamplingCase& c : samplingCases()) {
+        const Vec3 wo = directionAtAngle(c.thetaDegrees);
+        double integral = 0;
+        for (double x : bins.probabilities([&](Vec3 wi) { return pdfBsdf(c.m, wo, wi); })) integral += x;
+        Rng rng = testRng(200 + k++);
+        int produced = 0;
+        for (int i = 0; i < n; ++i)
+            produced +=
+                sampleBsdf(c.m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance).has_value();
+        const double rate = static_cast<double>(produced) / n;
+        const double sigma = std::sqrt(std::max(rate * (1 - rate), 1.0 / n) / n);
+        EXPECT_NEAR(integral, rate, 4 * sigma + 1e-3) << c.m.name << " θo=" << c.thetaDegrees;
+        EXPECT_LE(integral, 1.0 + 1e-3) << c.m.name << " θo=" << c.thetaDegrees;
+        if (c.m.type == MaterialType::Lambertian) {
+            EXPECT_NEAR(integral, 1.0, 1e-3);
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Energy: directional albedo ρ(wo) = ∫ f(wo, wi) |cos θi| dωi, estimated with the BSDF's own
+// sampling (the estimator f |cos θi| / pdf, 0 when no direction is produced).
+
+struct Estimate {
+    Spectrum mean{0.0f};
+    Spectrum sigma{0.0f};  // standard error of the mean
+};
+
+Estimate directionalAlbedo(const Material& m, Vec3 wo, TransportMode mode, int n, Rng& rng) {
+    Spectrum sum(0.0f), sum2(0.0f);
+    for (int i = 0; i < n; ++i) {
+        const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), mode);
+        if (!s) continue;
+        const Spectrum w = s->f * (std::abs(s->wi.z) / s->pdf);
+        sum += w;
+        sum2 += w * w;
+    }
+    Estimate e;
+    e.mean = sum / static_cast<float>(n);
+    for (int c = 0; c < 3; ++c)
+        e.sigma[c] = std::sqrt(std::max(0.0f, sum2[c] / n - e.mean[c] * e.mean[c]) / static_cast<float>(n));
+    return e;
+}
+
+const std::vector<float> kAlbedoAngles = {0.0f, 30.0f, 60.0f, 80.0f, 89.0f, 120.0f};
+
+TEST(Bsdf, DirectionalAlbedoAtMostOne) {
+    std::vector<Material> materials = nonDeltaMaterials();
+    materials.push_back(makeMaterial(MaterialType::Mirror, Spectrum(1.0f)));
+    materials.push_back(makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, 1.5f));
+    materials.push_back(makeMaterial(MaterialType::Plastic, Spectrum(1.0f), 0.15f, 3.0f));
+    int k = 0;
+    for (const Material& m : materials)
+        for (float theta : kAlbedoAngles) {
+            // Radiance-mode glass concentrates radiance when leaving the glass (weight η² > 1),
+            // which is physics, not a gain of energy: check importance there (its albedo is 1).
+            const bool leavingGlass = m.type == MaterialType::Dielectric && theta > 90;
+            const TransportMode mode = leavingGlass ? TransportMode::Importance : TransportMode::Radiance;
+            Rng rng = testRng(300 + k++);
+            const Estimate e = directionalAlbedo(m, directionAtAngle(theta), mode, 50000, rng);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_LE(e.mean[c], 1.0f + 4 * e.sigma[c] + 1e-5f) << m.name << " θo=" << theta;
+        }
+}
+
+TEST(Bsdf, LambertianAlbedoIsExact) {
+    const Spectrum a(0.7f, 0.5f, 0.2f);
+    const Material m = makeMaterial(MaterialType::Lambertian, a);
+    Rng rng = testRng(400);
+    for (float theta : kAlbedoAngles) {
+        const Vec3 wo = directionAtAngle(theta);
+        for (int i = 0; i < 2000; ++i) {
+            // Cosine-weighted sampling is perfect importance sampling: every weight equals a.
+            const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance);
+            ASSERT_TRUE(s.has_value());
+            const Spectrum w = s->f * (std::abs(s->wi.z) / s->pdf);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(w[c], a[c], 1e-5f);
+        }
+    }
+}
+
+TEST(Bsdf, MirrorReflectsWithItsAlbedo) {
+    const Spectrum a(0.9f, 0.8f, 0.3f);
+    const Material m = makeMaterial(MaterialType::Mirror, a);
+    for (float theta : kAlbedoAngles) {
+        const Vec3 wo = directionAtAngle(theta);
+        const auto s = sampleBsdf(m, wo, {0.3f, 0.6f}, 0.2f, TransportMode::Radiance);
+        ASSERT_TRUE(s.has_value());
+        EXPECT_TRUE(s->delta);
+        EXPECT_EQ(s->wi, Vec3(-wo.x, -wo.y, wo.z));
+        const Spectrum w = s->f * (std::abs(s->wi.z) / s->pdf);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(w[c], a[c], 1e-6f);
+    }
+}
+
+// Reference Fresnel reflectance for the glass tests, from the amplitude coefficients in terms of
+// the indices themselves (Hecht, Optics, eqs. 4.42-4.43), in double precision.
+double referenceFresnel(double cosI, double etaI, double etaT) {
+    const double sinT = etaI / etaT * std::sqrt(std::max(0.0, 1 - cosI * cosI));
+    if (sinT >= 1) return 1;
+    const double cosT = std::sqrt(1 - sinT * sinT);
+    const double rs = (etaI * cosI - etaT * cosT) / (etaI * cosI + etaT * cosT);
+    const double rp = (etaT * cosI - etaI * cosT) / (etaT * cosI + etaI * cosT);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+// Every glass sample has the exact weight its lobe predicts, goes where the law of reflection or
+// Snell's law says, and reflection is chosen with probability F.
+TEST(Bsdf, DielectricFollowsFresnelAndSnell) {
+    const float ior = 1.5f;
+    const Spectrum tint(0.9f, 0.7f, 0.5f);
+    const Material m = makeMaterial(MaterialType::Dielectric, tint, 0.0f, ior);
+    const int n = 40000;
+    for (float theta : {0.0f, 30.0f, 70.0f, 89.0f, 150.0f, 135.0f, 110.0f}) {
+        const Vec3 wo = directionAtAngle(theta);
+        const bool outside = wo.z > 0;
+        const double etaO = outside ? 1.0 : ior, etaI = outside ? ior : 1.0;  // wo side, wi side
+        const double fr = referenceFresnel(std::abs(wo.z), etaO, etaI);
+        for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
+            Rng rng = testRng(500);
+            int reflected = 0;
+            for (int i = 0; i < n; ++i) {
+                const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), mode);
+                ASSERT_TRUE(s.has_value());
+                ASSERT_TRUE(s->delta);
+                const Spectrum w = s->f * (std::abs(s->wi.z) / s->pdf);
+                if (s->wi.z * wo.z > 0) {
+                    ++reflected;
+                    ASSERT_EQ(s->wi, Vec3(-wo.x, -wo.y, wo.z));
+                    ASSERT_NEAR(s->pdf, fr, 1e-5);
+                    for (int c = 0; c < 3; ++c) ASSERT_NEAR(w[c], 1.0f, 1e-5f);  // white reflection
+                } else {
+                    ASSERT_NEAR(s->pdf, 1 - fr, 1e-5);
+                    // Snell: η_o sin θo = η_i sin θi, tangential direction reversed.
+                    const double sinO = std::hypot(wo.x, wo.y), sinI = std::hypot(s->wi.x, s->wi.y);
+                    ASSERT_NEAR(etaO * sinO, etaI * sinI, 1e-5);
+                    ASSERT_LE(s->wi.x * wo.x + s->wi.y * wo.y, 1e-6f);
+                    // Radiance: (η_o/η_i)² (Veach 1997 §5.2); importance: 1 (the adjoint BTDF).
+                    const double scale =
+                        mode == TransportMode::Radiance ? (etaO * etaO) / (etaI * etaI) : 1.0;
+                    for (int c = 0; c < 3; ++c) ASSERT_NEAR(w[c], tint[c] * scale, 1e-5 * scale);
+                }
+            }
+            const double sigma = std::sqrt(std::max(fr * (1 - fr), 1e-12) / n);
+            EXPECT_NEAR(static_cast<double>(reflected) / n, fr, 4 * sigma + 1e-6) << "θo=" << theta;
+        }
+    }
+}
+
+// Clear glass: in importance mode every sample has weight exactly 1, so the albedo is 1; in
+// radiance mode it is F + (1 − F)/η², matched by the estimate within its standard error.
+TEST(Bsdf, ClearGlassAlbedo) {
+    const float ior = 1.5f;
+    const Material m = makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, ior);
+    int k = 0;
+    for (float theta : {10.0f, 45.0f, 80.0f, 170.0f, 140.0f, 130.0f}) {
+        const Vec3 wo = directionAtAngle(theta);
+        const double etaO = wo.z > 0 ? 1.0 : ior, etaI = wo.z > 0 ? ior : 1.0;
+        const double fr = referenceFresnel(std::abs(wo.z), etaO, etaI);
+        Rng rng = testRng(600 + k++);
+        const Estimate imp = directionalAlbedo(m, wo, TransportMode::Importance, 20000, rng);
+        EXPECT_NEAR(imp.mean.x, 1.0f, 1e-5f) << "θo=" << theta;
+        const Estimate rad = directionalAlbedo(m, wo, TransportMode::Radiance, 20000, rng);
+        const double expected = fr + (1 - fr) * (etaO * etaO) / (etaI * etaI);
+        EXPECT_NEAR(rad.mean.x, expected, 4 * rad.sigma.x + 1e-5) << "θo=" << theta;
+    }
+}
+
+TEST(Bsdf, DielectricTotalInternalReflection) {
+    const float ior = 1.5f;
+    const Material m = makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, ior);
+    const float critical = std::asin(1.0f / ior) * 180.0f / kPi;  // ≈ 41.8°
+    Rng rng = testRng(700);
+    for (float beyond : {0.5f, 10.0f, 40.0f}) {
+        const Vec3 wo = directionAtAngle(180.0f - (critical + beyond));  // inside the glass
+        for (int i = 0; i < 1000; ++i) {
+            const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance);
+            ASSERT_TRUE(s.has_value());
+            EXPECT_EQ(s->wi, Vec3(-wo.x, -wo.y, wo.z));
+            EXPECT_FLOAT_EQ(s->pdf, 1.0f);
+            EXPECT_NEAR(s->f.x * std::abs(s->wi.z), 1.0f, 1e-5f);
+        }
+    }
+}
+
+// White furnace for a perfect conductor (F0 = 1): only Smith masking loses energy, so the albedo
+// is ≤ 1 everywhere and ≈ 1 for smooth surfaces away from grazing.
+TEST(Bsdf, ConductorWhiteFurnace) {
+    int k = 0;
+    for (float roughness : {0.0f, 0.05f, 0.2f, 0.5f, 1.0f})
+        for (float theta : kAlbedoAngles) {
+            const Material m = makeMaterial(MaterialType::Conductor, Spectrum(1.0f), roughness);
+            Rng rng = testRng(800 + k++);
+            const Estimate e =
+                directionalAlbedo(m, directionAtAngle(theta), TransportMode::Radiance, 40000, rng);
+            EXPECT_LE(e.mean.x, 1.0f + 4 * e.sigma.x + 1e-5f) << "r=" << roughness << " θo=" << theta;
+            const bool smoothAndNotGrazing =
+                roughness <= 0.2f && std::abs(std::cos(theta * kPi / 180)) > 0.4f;
+            if (smoothAndNotGrazing) {
+                EXPECT_GT(e.mean.x, 0.98f) << "r=" << roughness << " θo=" << theta;
+            }
+            if (roughness == 1.0f) {
+                EXPECT_GT(e.mean.x, 0.3f) << "θo=" << theta;  // lossy, but not absurdly so
+            }
+        }
+}
+
+// Plastic: by construction (Kelemen & Szirmay-Kalos 2001) the albedo is E(μo) + a (1 − E(μo)).
+// With a white base that is 1 up to the coat table's conservative margin; with a black base it
+// is just the coat, which for normal incidence on a smooth coat is Schlick's F0.
+TEST(Bsdf, PlasticWhiteFurnaceAndCoat) {
+    int k = 0;
+    for (float roughness : {0.0f, 0.1f, 0.4f, 1.0f})
+        for (float ior : {1.33f, 1.5f, 2.5f})
+            for (float theta : kAlbedoAngles) {
+                const Vec3 wo = directionAtAngle(theta);
+                const Material white = makeMaterial(MaterialType::Plastic, Spectrum(1.0f), roughness, ior);
+                Rng rng = testRng(900 + k++);
+                const Estimate e = directionalAlbedo(white, wo, TransportMode::Radiance, 20000, rng);
+                EXPECT_LE(e.mean.x, 1.0f + 4 * e.sigma.x + 1e-5f) << white.name << " θo=" << theta;
+                EXPECT_GT(e.mean.x, 0.985f - 4 * e.sigma.x) << white.name << " θo=" << theta;
+            }
+    const float ior = 1.5f, f0 = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
+    const Material black = makeMaterial(MaterialType::Plastic, Spectrum(0.0f), 0.0f, ior);
+    Rng rng = testRng(999);
+    const Estimate coat = directionalAlbedo(black, directionAtAngle(0), TransportMode::Radiance, 20000, rng);
+    EXPECT_NEAR(coat.mean.x, f0, 4 * coat.sigma.x + 1e-3f);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Robustness: finite, non-negative values for degenerate inputs
+
+TEST(Bsdf, FiniteForDegenerateDirections) {
+    const float tiny = 1e-8f, denormal = 1e-40f;
+    const std::vector<Vec3> dirs = {
+        {0, 0, 1},
+        {0, 0, -1},
+        {1, 0, 0},
+        {0.6f, 0.8f, 0},
+        normalize(Vec3(1, 0, tiny)),
+        normalize(Vec3(1, 0, -tiny)),
+        Vec3(1, 0, denormal),
+        Vec3(0, 1, -denormal),
+        normalize(Vec3(1, 1, 1)),
+        normalize(Vec3(-1, 1, 1)),
+        normalize(Vec3(-1, -1, -1e-3f)),
+    };
+    std::vector<Material> materials = nonDeltaMaterials();
+    materials.push_back(makeMaterial(MaterialType::Mirror, Spectrum(1.0f)));
+    materials.push_back(makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, 1.5f));
+    materials.push_back(makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, 1.0f));
+    materials.push_back(makeMaterial(MaterialType::Plastic, Spectrum(1.0f), 0.5f, 1.0f));
+    materials.push_back(makeMaterial(MaterialType::Plastic, Spectrum(1.0f), 0.5f, 1e4f));
+    const std::vector<Vec2> us = {
+        {0, 0}, {0.99999994f, 0.99999994f}, {0.5f, 0.25f}, {0.99999994f, 0}, {0, 0.5f}};
+    for (const Material& m : materials)
+        for (Vec3 wo : dirs) {
+            for (Vec3 wi : dirs)
+                for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
+                    const Spectrum f = evalBsdf(m, wo, wi, mode);
+                    const float pdf = pdfBsdf(m, wo, wi);
+                    ASSERT_TRUE(isFinite(f) && std::isfinite(pdf)) << m.name;
+                    ASSERT_GE(std::min({f.x, f.y, f.z, pdf}), 0.0f) << m.name;
+                }
+            for (Vec2 u : us)
+                for (float uc : {0.0f, 0.5f, 0.99999994f}) {
+                    const auto s = sampleBsdf(m, wo, u, uc, TransportMode::Radiance);
+                    if (!s) continue;
+                    ASSERT_TRUE(isFinite(s->f) && isFinite(s->wi) && std::isfinite(s->pdf)) << m.name;
+                    ASSERT_GT(s->pdf, 0.0f) << m.name;
+                    ASSERT_GE(std::min({s->f.x, s->f.y, s->f.z}), 0.0f) << m.name;
+                    ASSERT_NEAR(length(s->wi), 1.0f, 1e-3f) << m.name;
+                }
+        }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parameter validation
+
+TEST(Bsdf, ValidateAcceptsSensibleMaterials) {
+    for (const Material& m : nonDeltaMaterials()) EXPECT_EQ(validateMaterial(m), "") << m.name;
+    EXPECT_EQ(validateMaterial(makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, 1.0f)), "");
+    Material emitter = makeMaterial(MaterialType::Lambertian, Spectrum(0.0f));
+    emitter.emission = Spectrum(17.0f, 12.0f, 4.0f);
+    EXPECT_EQ(validateMaterial(emitter), "");
+}
+
+TEST(Bsdf, ValidateRejectsBadParameters) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    auto rejects = [](Material m, const std::string& why) {
+        const std::string msg = validateMaterial(m);
+        EXPECT_FALSE(msg.empty()) << why;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << why;
+    };
+    for (MaterialType t : {MaterialType::Lambertian, MaterialType::Mirror, MaterialType::Dielectric,
+                           MaterialType::Conductor, MaterialType::Plastic}) {
+        const Material ok = makeMaterial(t, Spectrum(0.5f), 0.5f, 1.5f);
+        Material m = ok;
+        m.albedo.y = nan;
+        rejects(m, "NaN albedo");
+        m = ok;
+        m.albedo.z = -0.1f;
+        rejects(m, "negative albedo");
+        m = ok;
+        m.albedo.x = 1.2f;
+        rejects(m, "albedo > 1");
+        m = ok;
+        m.emission = Spectrum(1.0f, inf, 1.0f);
+        rejects(m, "infinite emission");
+        m = ok;
+        m.emission = Spectrum(-1.0f);
+        rejects(m, "negative emission");
+        for (float r : {nan, -0.1f, 1.5f}) {
+            m = ok;
+            m.roughness = r;
+            rejects(m, "roughness " + std::to_string(r));
+        }
+        m = ok;
+        m.ior = nan;
+        rejects(m, "NaN ior");
+    }
+    for (MaterialType t : {MaterialType::Dielectric, MaterialType::Plastic})
+        for (float ior : {0.5f, 0.0f, -1.5f, std::numeric_limits<float>::infinity()})
+            rejects(makeMaterial(t, Spectrum(0.5f), 0.5f, ior), "ior " + std::to_string(ior));
+    EXPECT_NE(validateMaterial(makeMaterial(MaterialType::Lambertian, Spectrum(-1.0f))).find("negative"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace tripath
