@@ -176,8 +176,9 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
 // The unweighted estimate of a strategy is f(x̄) / p_{s,t}(x̄), with f the product of the kernels.
 // (Diffuse scenes: no delta factors. The camera's pdf per pixel is N times the image pdf.)
 TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
-    for (const char* name : {"cornell", "cornell-small", "furnace"}) {
-        const Scene scene(builtinScene(name), 24, 24);
+    // The coarse smooth-normal sphere makes light subpaths carry the adjoint shading correction.
+    for (const char* name : {"cornell", "cornell-small", "furnace", "smooth sphere"}) {
+        const Scene scene(std::string(name) == "smooth sphere" ? cornellTessellated(100) : builtinScene(name), 24, 24);
         const auto paths = samplePaths(scene, 200, MisHeuristic::Balance, {StrategySet::Kind::Bidirectional});
         for (const SampledPath& p : paths) {
             const int k = static_cast<int>(p.x.size()) - 1, t = k + 1 - p.s;
