@@ -38,10 +38,14 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
 
 void validateRenderOptions(const RenderOptions& o) {
     auto fail = [](const std::string& m) { throw InputError(m); };
-    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
-        fail(fmt::format("--width/--height must be between 1 and 16384 (got {}x{})", o.width, o.height));
-    if (o.spp < 0 || o.spp > 1000000) fail(fmt::format("--spp must be between 1 and 1000000 (got {})", o.spp));
-    if (!(o.seconds >= 0) || o.seconds > 1e7) fail(fmt::format("--time must be a positive number of seconds (got {})", o.seconds));
+    // The film keeps 24 bytes a pixel (double RGB) plus the output image: 8192² is ~2.4 GiB.
+    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384 || double(o.width) * o.height > 8192.0 * 8192.0)
+        fail(fmt::format("--width/--height must be at least 1 and at most 16384, with at most 8192x8192 pixels (got {}x{})",
+                         o.width, o.height));
+    if (o.spp != -1 && (o.spp < 1 || o.spp > 1000000))
+        fail(fmt::format("--spp must be between 1 and 1000000 (got {})", o.spp));
+    if (o.seconds != -1 && !(o.seconds > 0 && o.seconds <= 1e7))
+        fail(fmt::format("--time must be a number of seconds above 0 and at most 1e7 (got {})", o.seconds));
     if (o.maxDepth < 1 || o.maxDepth > 1024) fail(fmt::format("--max-depth must be between 1 and 1024 (got {})", o.maxDepth));
     if (o.rrDepth < 1) fail(fmt::format("--rr-depth must be at least 1 (got {})", o.rrDepth));
     if (o.threads < 0 || o.threads > 4096) fail(fmt::format("--threads must be between 0 and 4096 (got {})", o.threads));
@@ -63,7 +67,7 @@ std::unique_ptr<Scene> loadScene(const RenderOptions& o) {
 
 RenderSettings renderSettings(const RenderOptions& o) {
     RenderSettings s;
-    s.seconds = o.seconds;
+    s.seconds = std::max(0.0, o.seconds);
     s.spp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : 16);
     s.seed = o.seed;
     s.threads = o.threads;
