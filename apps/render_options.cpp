@@ -18,9 +18,13 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                        "pt: path tracing with next-event estimation; lt: light tracing; bdpt: bidirectional "
                        "path tracing with MIS over every (s,t)")
             ->capture_default_str();
-    auto* spp = cmd.add_option("--spp", o.spp, "Samples per pixel, one per pass (default 16 when --time is not given)");
-    auto* time = cmd.add_option("--time", o.seconds,
-                                "Wall-clock budget in seconds: render whole passes until it is spent (at least one)");
+    // Functions rather than plain bindings: a given value is checked, whatever it is (even 0 or -1).
+    auto* spp = cmd.add_option_function<int>(
+        "--spp", [&o](int v) { o.spp = v, o.sppGiven = true; },
+        "Samples per pixel, one per pass (default 16 when --time is not given)");
+    auto* time = cmd.add_option_function<double>(
+        "--time", [&o](double v) { o.seconds = v, o.timeGiven = true; },
+        "Wall-clock budget in seconds: render whole passes until it is spent (at least one)");
     spp->excludes(time);
     cmd.add_option("--width", o.width, "Image width in pixels")->capture_default_str();
     cmd.add_option("--height", o.height, "Image height in pixels")->capture_default_str();
@@ -42,9 +46,9 @@ void validateRenderOptions(const RenderOptions& o) {
     if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384 || double(o.width) * o.height > 8192.0 * 8192.0)
         fail(fmt::format("--width/--height must be at least 1 and at most 16384, with at most 8192x8192 pixels (got {}x{})",
                          o.width, o.height));
-    if (o.spp != -1 && (o.spp < 1 || o.spp > 1000000))
+    if (o.sppGiven && (o.spp < 1 || o.spp > 1000000))
         fail(fmt::format("--spp must be between 1 and 1000000 (got {})", o.spp));
-    if (o.seconds != -1 && !(o.seconds > 0 && o.seconds <= 1e7))
+    if (o.timeGiven && !(o.seconds > 0 && o.seconds <= 1e7))
         fail(fmt::format("--time must be a number of seconds above 0 and at most 1e7 (got {})", o.seconds));
     if (o.maxDepth < 1 || o.maxDepth > 1024) fail(fmt::format("--max-depth must be between 1 and 1024 (got {})", o.maxDepth));
     if (o.rrDepth < 1) fail(fmt::format("--rr-depth must be at least 1 (got {})", o.rrDepth));
@@ -67,7 +71,7 @@ std::unique_ptr<Scene> loadScene(const RenderOptions& o) {
 
 RenderSettings renderSettings(const RenderOptions& o) {
     RenderSettings s;
-    s.seconds = std::max(0.0, o.seconds);
+    s.seconds = o.seconds;
     s.spp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : 16);
     s.seed = o.seed;
     s.threads = o.threads;

@@ -15,8 +15,9 @@ namespace tripath::app {
 struct RenderOptions {
     std::string scene;
     std::string integrator = "bdpt";
-    int spp = -1;           // -1: not given
-    double seconds = -1;    // -1: not given
+    int spp = 0;            // 0 unless --spp was given
+    double seconds = 0;     // 0 unless --time was given
+    bool sppGiven = false, timeGiven = false;
     int width = 512, height = 512;
     int maxDepth = 16;
     int rrDepth = 3;

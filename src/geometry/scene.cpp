@@ -99,6 +99,7 @@ void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
                 continue;
             }
             const Vec3 ng = normalize(c);
+            t.ng = ng;
             for (int k = 0; k < 3; ++k) {
                 Vec3 n = t.smooth ? m.normals[m.indices[i + k]] : ng;
                 if (!isFinite(n) || !(lengthSquared(n) > 0)) n = ng;
