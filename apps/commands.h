@@ -6,5 +6,9 @@ namespace tripath::app {
 
 void addRenderCommand(CLI::App& app);
 void addScenesCommand(CLI::App& app);
+void addReferenceCommand(CLI::App& app);
+void addCompareCommand(CLI::App& app);
+void addExportCommand(CLI::App& app);
+void addMontageCommand(CLI::App& app);
 
 }  // namespace tripath::app

@@ -13,10 +13,16 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     tripath::app::addRenderCommand(app);
     tripath::app::addScenesCommand(app);
+    tripath::app::addReferenceCommand(app);
+    tripath::app::addCompareCommand(app);
+    tripath::app::addExportCommand(app);
+    tripath::app::addMontageCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::cerr << "error: " << e.what() << "\n";     // one line, like every other error
+        return 1;
     } catch (const tripath::InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 1;

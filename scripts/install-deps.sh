@@ -4,7 +4,8 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config
   libembree-dev libopenexr-dev libopenimageio-dev libtinygltf-dev nlohmann-json3-dev
-  libbenchmark-dev libgtest-dev libtbb-dev libcli11-dev libfmt-dev)
+  libbenchmark-dev libgtest-dev libtbb-dev libcli11-dev libfmt-dev
+  fonts-dejavu-core)  # the labels of `tripath compare`'s charts and side-by-side images
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -108,7 +108,7 @@ CameraDesc lookAt(Vec3 from, Vec3 to, float yfov) {
 
 // ---- caustics ---------------------------------------------------------------------------------
 // Ball of radius 0.5 and index 1.5: focal length n r / (2 (n − 1)) = 0.75 from its centre. With
-// the light 3.3 m away the image forms ~1.0 m behind the centre; the floor is 0.85 m away along
+// the light 3.4 m away the image forms 0.96 m behind the centre; the floor is 0.85 m away along
 // the axis, a little before the focus, so the caustic is a bright spot ~0.2 m across.
 
 const Vec3 kBallCentre(0.0f, 0.6f, 0.0f);
@@ -125,7 +125,7 @@ SceneDesc causticStage() {
     addQuad(s, "floor", floor, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4});
     const int wall = addMaterial(s, lambertian("back wall", Spectrum(0.5f)));
     addQuad(s, "back wall", wall, {-4, 0, -2}, {4, 0, -2}, {4, 4, -2}, {-4, 4, -2});
-    addSphere(s, "glass ball", addMaterial(s, glass("glass")), kBallCentre, kBallRadius, 32);
+    addSphere(s, "glass ball", addMaterial(s, glass("glass")), kBallCentre, kBallRadius, 24);
     s.camera = lookAt({0.9f, 1.5f, 2.8f}, {0.2f, 0.3f, 0.0f}, 0.75f);
     return s;
 }
@@ -174,8 +174,6 @@ void addPane(SceneDesc& s) {
 
 }  // namespace
 
-Vec3 sdsPaneCentre() { return causticCentre(); }
-
 SceneDesc sdsScene() {
     SceneDesc s = causticStage();
     addSmallLight(s);
@@ -217,7 +215,7 @@ SceneDesc doorAjarScene() {
     const Vec3 hinge(0.1f, 0.0f, -0.5f);
     addBox(s, "door", door, {0.1f, 0.0f, -0.5f}, {0.14f, 2.0f, 0.5f}, 4.0f * kPi / 180.0f, hinge);
     // The light: on room B's ceiling, far from the door, facing down.
-    const int light = addMaterial(s, emitter("light", Spectrum(40.0f)));
+    const int light = addMaterial(s, emitter("light", Spectrum(4000.0f)));  // room A reads ~0.3
     addSquare(s, "light", light, {3.0f, 2.49f, 0.0f}, {0, -1, 0}, 0.5f);
     s.camera = lookAt({-3.6f, 1.7f, 1.6f}, {0.0f, 0.7f, -0.3f}, 1.0f);
     return s;
@@ -322,7 +320,7 @@ SceneDesc degenerateTinyScene() {
     // Distant walls make the scene's extent 10 km in every direction, as the BVH sees it.
     addQuad(s, "far wall", ground, {-5000, 0, -5000}, {5000, 0, -5000}, {5000, 1000, -5000}, {-5000, 1000, -5000});
     addBox(s, "1 mm cube", cube, {-0.0005f, 0, -0.0005f}, {0.0005f, 0.001f, 0.0005f});
-    const int light = addMaterial(s, emitter("light", Spectrum(10.0f)));
+    const int light = addMaterial(s, emitter("light", Spectrum(100.0f)));
     const Vec3 lightPos(-2, 4, 3);
     addSquare(s, "light", light, lightPos, normalize(Vec3(0) - lightPos), 0.5f);
     s.camera = lookAt({0.0025f, 0.002f, 0.003f}, {0, 0.0004f, 0}, 0.6f);

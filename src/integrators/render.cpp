@@ -82,7 +82,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     std::vector<TileOutput> outputs(tiles);
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
     const auto start = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    double callbackSeconds = 0;  // spent in onPass: the caller's time, not the render's
+    auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    auto elapsed = [&] { return since(start) - callbackSeconds; };
 
     while (true) {
         if (settings.spp > 0 && result.passes >= settings.spp) break;
@@ -104,6 +106,11 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         ++result.passes;
         result.seconds = elapsed();
         if (settings.progress) settings.progress(result.passes, result.seconds);
+        if (settings.onPass) {
+            const auto t0 = std::chrono::steady_clock::now();
+            settings.onPass(result.film, result.passes, result.seconds);
+            callbackSeconds += since(t0);
+        }
     }
     return result;
 }

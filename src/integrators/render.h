@@ -19,6 +19,10 @@ struct RenderSettings {
     FilmLayers layers;
     // Called after each pass with (passes done, seconds so far); may be empty.
     std::function<void(int, double)> progress;
+    // Called after each pass with the film so far (its image is film.image(passes)); may be empty.
+    // Time spent inside it belongs to the caller (e.g. measuring error against a reference), so it
+    // counts neither towards `seconds` nor towards RenderResult::seconds.
+    std::function<void(const Film&, int passes, double seconds)> onPass;
     // Set from elsewhere (a signal handler) to stop at the next pass boundary.
     const std::atomic<bool>* stop = nullptr;
 };

@@ -1,0 +1,172 @@
+// `tripath compare`: several integrators, the same wall-clock budget each, their error against
+// a reference over time, and a report (CSV, chart, images, summary, index.html) in one directory.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "commands.h"
+#include "compare.h"
+#include "geometry/error.h"
+#include "image/inset.h"
+#include "image/text.h"
+
+namespace tripath::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CompareCommand {
+    CompareOptions options;
+    std::string integrators = "pt,lt,bdpt";
+    std::string crop;
+};
+
+std::vector<std::string> splitCommas(const std::string& s) {
+    std::vector<std::string> parts;
+    std::stringstream in(s);
+    for (std::string part; std::getline(in, part, ',');) {
+        const auto b = part.find_first_not_of(" \t"), e = part.find_last_not_of(" \t");
+        parts.push_back(b == std::string::npos ? "" : part.substr(b, e - b + 1));
+    }
+    if (!s.empty() && s.back() == ',') parts.push_back("");
+    return parts;
+}
+
+std::vector<std::string> parseMethods(const std::string& list) {
+    std::vector<std::string> methods;
+    std::set<std::string> seen;
+    for (const std::string& m : splitCommas(list)) {
+        if (m.empty()) throw InputError(fmt::format("--integrators '{}' has an empty entry", list));
+        makeIntegrator(m, {});  // throws for an unknown name
+        if (!seen.insert(m).second) throw InputError(fmt::format("--integrators lists '{}' twice", m));
+        methods.push_back(m);
+    }
+    if (methods.empty()) throw InputError("--integrators is empty");
+    return methods;
+}
+
+std::optional<Region> parseCrop(const std::string& text, int width, int height) {
+    if (text.empty()) return std::nullopt;
+    const auto parts = splitCommas(text);
+    int v[4];
+    bool ok = parts.size() == 4;
+    for (size_t i = 0; ok && i < 4; ++i) {
+        size_t used = 0;
+        try {
+            v[i] = std::stoi(parts[i], &used);
+        } catch (const std::exception&) {
+            ok = false;
+        }
+        ok = ok && used == parts[i].size();
+    }
+    if (!ok) throw InputError(fmt::format("--crop must be x,y,w,h in pixels (got '{}')", text));
+    if (v[2] <= 0 || v[3] <= 0 || v[0] < 0 || v[1] < 0 || v[0] > width - v[2] || v[1] > height - v[3])
+        throw InputError(fmt::format("--crop {} is not inside the {}x{} image", text, width, height));
+    return Region{v[0], v[1], v[2], v[3]};
+}
+
+void prepareOutDir(const std::string& dir) {
+    std::error_code ec;
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+        throw InputError(fmt::format("--out '{}' exists and is not a directory", dir));
+    fs::create_directories(dir, ec);
+    if (ec) throw InputError(fmt::format("cannot create --out directory '{}': {}", dir, ec.message()));
+    checkWritable((fs::path(dir) / "error.csv").string());
+}
+
+// Every check that can fail before the first sample is rendered.
+void validate(CompareCommand& c) {
+    CompareOptions& o = c.options;
+    validateRenderOptions(o.render);
+    if (!(o.render.seconds > 0)) throw InputError("--time must be more than 0 seconds");
+    if (o.runs < 1 || o.runs > 100) throw InputError(fmt::format("--runs must be between 1 and 100 (got {})", o.runs));
+    o.methods = parseMethods(c.integrators);
+    o.crop = parseCrop(c.crop, o.render.width, o.render.height);
+    if (!o.referencePath.empty() && !fs::exists(o.referencePath))
+        throw InputError(fmt::format("cannot read reference '{}': file does not exist", o.referencePath));
+    requireFont();
+    prepareOutDir(o.outDir);
+}
+
+// The user's crop, or a window of an eighth of the image (at least 8 pixels) where the methods differ most.
+Region insetRegion(const CompareOptions& o, const Reference& ref, const std::map<std::string, Image>& images) {
+    if (o.crop) return *o.crop;
+    std::vector<Image> list;
+    for (const std::string& m : o.methods) list.push_back(images.at(m));
+    const int w = std::min(ref.image.width, std::max(8, ref.image.width / 8));
+    const int h = std::min(ref.image.height, std::max(8, ref.image.height / 8));
+    return regionOfLargestDifference(ref.image, list, w, h);
+}
+
+void writeReport(Report& report, const std::string& dir) {
+    auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
+    for (const std::string& m : report.options.methods) report.curves.push_back(curveOf(report.runs, m));
+    report.summaries = summarize(report.runs, report.curves);
+    report.inset = insetRegion(report.options, report.reference, report.images);
+    writeCsv(report, path("error.csv"));
+    writeChart(report, path("error-vs-time.svg"), path("error-vs-time.png"));
+    writeSideBySide(report, path("side-by-side.png"));
+    writeSummary(report, path("summary.md"));
+    writeIndexHtml(report, path("index.html"));
+}
+
+void run(CompareCommand& c) {
+    validate(c);
+    const CompareOptions& o = c.options;
+    const auto scene = loadScene(o.render);
+    const Reference ref = obtainReference(o, *scene);
+    writePng((fs::path(o.outDir) / "reference.png").string(), ref.image);
+
+    // Run-major order: a change in machine load during the comparison hits every method alike.
+    std::vector<Run> runs;
+    std::map<std::string, Image> images;
+    for (int r = 0; r < o.runs; ++r)
+        for (const std::string& m : o.methods) {
+            RunOutput out = runMethod(o, *scene, m, r, ref.image);
+            if (r == 0) {
+                writeExr((fs::path(o.outDir) / (m + ".exr")).string(), out.image, out.meta);
+                writePng((fs::path(o.outDir) / (m + ".png")).string(), out.image);
+                images[m] = std::move(out.image);
+            }
+            runs.push_back(std::move(out.run));
+        }
+    Report report{o, ref, runs, images, {}, {}, {}};
+    writeReport(report, o.outDir);
+    const MethodSummary& best = report.summaries[bestMethod(report.summaries)];
+    std::cerr << fmt::format("lowest error at equal time: {} (relMSE {:.4g}); report in {}\n", best.method,
+                             best.error.relMse, (fs::path(o.outDir) / "index.html").string());
+}
+
+}  // namespace
+
+void addCompareCommand(CLI::App& app) {
+    auto c = std::make_shared<CompareCommand>();
+    auto* cmd = app.add_subcommand(
+        "compare",
+        "Render a scene with several integrators for the same wall-clock time each and compare their error "
+        "against a reference over time: error.csv, error-vs-time.svg/.png, side-by-side.png, summary.md and "
+        "index.html in --out");
+    addRenderOptions(*cmd, c->options.render, false);
+    // Every method gets the same time; a sample count would not be a fair budget across methods.
+    cmd->remove_option(cmd->get_option("--spp"));
+    cmd->get_option("--time")->required()->description("Wall-clock budget in seconds for each run of each integrator");
+    cmd->add_option("--integrators", c->integrators, "Comma-separated integrators to compare (pt, lt, bdpt)")
+        ->capture_default_str();
+    cmd->add_option("--reference", c->options.referencePath,
+                    "Reference EXR of the same scene and size (see `tripath reference`); without it, bdpt renders "
+                    "one for 10x --time into <out>/reference.exr");
+    cmd->add_option("--runs", c->options.runs,
+                    "Independent runs per integrator (seeds seed, seed+1, ...); the chart shows their mean and "
+                    "min-max band")
+        ->capture_default_str();
+    cmd->add_option("--crop", c->crop,
+                    "x,y,w,h: region magnified in side-by-side.png (default: where the methods' errors differ most)");
+    cmd->add_option("--out", c->options.outDir, "Output directory (created if missing)")->required();
+    cmd->callback([c] { run(*c); });
+}
+
+}  // namespace tripath::app

@@ -1,0 +1,129 @@
+// The report files of `tripath compare` other than index.html: error.csv, the error-vs-time
+// chart (SVG and PNG), side-by-side.png and summary.md.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "compare.h"
+#include "geometry/error.h"
+#include "image/chart.h"
+#include "image/compose.h"
+
+namespace tripath::app {
+
+namespace {
+
+// Colours of the usual plotting palette, so pt/lt/bdpt look as in most papers' plots.
+std::array<uint8_t, 3> colorOf(size_t i) {
+    static const std::array<std::array<uint8_t, 3>, 6> palette{
+        {{31, 119, 180}, {255, 127, 14}, {44, 160, 44}, {214, 39, 40}, {148, 103, 189}, {140, 86, 75}}};
+    return palette[i % palette.size()];
+}
+
+const MethodSummary& summaryOf(const Report& r, const std::string& method) {
+    for (const MethodSummary& s : r.summaries)
+        if (s.method == method) return s;
+    throw std::logic_error("no summary for " + method);
+}
+
+}  // namespace
+
+void writeText(const std::string& path, const std::string& text) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp, std::ios::binary);
+        f << text;
+        if (!f.flush()) throw InputError(fmt::format("cannot write '{}'", path));
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw InputError(fmt::format("cannot write '{}'", path));
+}
+
+std::string timeToBestText(const MethodSummary& s) {
+    if (!std::isfinite(s.timeToBest)) return "not reached (error levels off)";
+    return s.extrapolated ? fmt::format("~{} (extrapolated)", formatSeconds(s.timeToBest)) : formatSeconds(s.timeToBest);
+}
+
+std::string formatSeconds(double s) { return s < 10 ? fmt::format("{:.3g} s", s) : fmt::format("{:.0f} s", s); }
+
+std::string settingsLine(const CompareOptions& o) {
+    const RenderOptions& r = o.render;
+    const std::string seeds = o.runs == 1 ? fmt::format("seed {}", r.seed)
+                                          : fmt::format("seeds {}..{}", r.seed, r.seed + o.runs - 1);
+    return fmt::format("{}x{}, max depth {}, {} MIS, {} per method and run, {} thread{}, {} run{} per method ({})",
+                       r.width, r.height, r.maxDepth, r.mis, formatSeconds(r.seconds),
+                       r.threads > 0 ? std::to_string(r.threads) : "all", r.threads == 1 ? "" : "s", o.runs,
+                       o.runs == 1 ? "" : "s", seeds);
+}
+
+void writeCsv(const Report& r, const std::string& path) {
+    std::string s = "integrator,run,seconds,spp,relmse,mse,mae\n";
+    for (const Run& run : r.runs)
+        for (const Checkpoint& c : run.checkpoints)
+            s += fmt::format("{},{},{:.6f},{},{:.8g},{:.8g},{:.8g}\n", run.method, run.index, c.seconds, c.spp,
+                             c.error.relMse, c.error.mse, c.error.mae);
+    writeText(path, s);
+}
+
+void writeChart(const Report& r, const std::string& svgPath, const std::string& pngPath) {
+    LogLogChart chart;
+    chart.title = r.options.runs > 1
+                      ? fmt::format("{}: relMSE against time, mean of {} runs (band: min to max)", r.options.render.scene,
+                                    r.options.runs)
+                      : fmt::format("{}: relMSE against time", r.options.render.scene);
+    chart.xLabel = "render time (s)";
+    chart.yLabel = "relMSE (lower is better)";
+    for (size_t i = 0; i < r.curves.size(); ++i) {
+        const Curve& c = r.curves[i];
+        ChartSeries s{c.method, colorOf(i), c.seconds, c.relMse, {}, {}};
+        if (r.options.runs > 1) {
+            s.low = c.low;
+            s.high = c.high;
+        }
+        chart.series.push_back(std::move(s));
+    }
+    writeText(svgPath, chartSvg(chart));
+    writePng(pngPath, chartImage(chart));
+}
+
+void writeSideBySide(const Report& r, const std::string& path) {
+    std::vector<Panel> panels{{r.reference.image, "reference", r.reference.description}};
+    for (const std::string& m : r.options.methods) {
+        const Run& run0 = *std::find_if(r.runs.begin(), r.runs.end(), [&](const Run& x) { return x.method == m && x.index == 0; });
+        panels.push_back({r.images.at(m), m,
+                          fmt::format("{} spp, {}, relMSE {:.3g}", run0.final().spp, formatSeconds(run0.final().seconds),
+                                      run0.final().error.relMse)});
+    }
+    writePng(path, sideBySide(panels, r.inset));
+}
+
+void writeSummary(const Report& r, const std::string& path) {
+    const MethodSummary& best = r.summaries[bestMethod(r.summaries)];
+    const bool many = r.options.runs > 1;
+    std::string s = fmt::format("# tripath compare: {}\n\n{}.\n\nReference: {} (`{}`).\n\n", r.options.render.scene,
+                                settingsLine(r.options), r.reference.description, r.reference.file);
+    s += fmt::format("| method | relMSE | MSE | MAE | spp | time to reach {}'s relMSE | efficiency 1/(relMSE·s) |\n",
+                     best.method);
+    s += "|---|---|---|---|---|---|---|\n";
+    for (const std::string& m : r.options.methods) {
+        const MethodSummary& x = summaryOf(r, m);
+        const std::string rel = many ? fmt::format("{:.4g} ± {:.2g}", x.error.relMse, x.relMseStd)
+                                     : fmt::format("{:.4g}", x.error.relMse);
+        s += fmt::format("| {} | {} | {:.4g} | {:.4g} | {:.0f} | {} | {:.4g} |\n", m, rel, x.error.mse, x.error.mae,
+                         x.spp, timeToBestText(x), x.efficiency);
+    }
+    s += fmt::format(
+        "\nLowest error at equal time: **{}**. Errors are against the reference{}; relMSE = mean of "
+        "(x − r)² / (r² + 0.01) over pixels and channels. Efficiency is higher for better methods; the ratio of two "
+        "methods' efficiencies is how many times longer the worse one needs for the same error. Time spent "
+        "measuring the error at the checkpoints is not counted in the render time.\n",
+        best.method, many ? ", means over runs (± one standard deviation)" : "");
+    s += "\nFiles: `error.csv` (every checkpoint), `error-vs-time.svg`/`.png`, `side-by-side.png`, "
+         "`<method>.exr`/`.png` (run 0), `index.html`.\n";
+    writeText(path, s);
+}
+
+}  // namespace tripath::app

@@ -1,0 +1,99 @@
+// The renders of `tripath compare`: the reference (read or rendered) and each method's runs,
+// with their error measured at checkpoints while they render.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include "compare.h"
+#include "geometry/error.h"
+
+namespace tripath::app {
+
+namespace {
+
+// Without --reference, bdpt renders one for this many times the per-method budget. Its own
+// noise then adds about 1/10 of bdpt's error to every measurement: fine for ranking methods,
+// and the message says how to do better.
+constexpr double kReferenceBudget = 10;
+
+// The largest k with t_k <= seconds, or -1 before t_0.
+int targetReached(double seconds, double budget) {
+    if (!(seconds > 0)) return -1;
+    const double k = std::floor(kTargets + kPerDecade * std::log10(seconds / budget) + 1e-9);
+    return static_cast<int>(std::min<double>(kTargets, std::max(-1.0, k)));
+}
+
+Reference readGivenReference(const CompareOptions& o) {
+    const RenderOptions& r = o.render;
+    ReferenceFile file = readReference(o.referencePath);
+    requireSize(file, r.width, r.height);
+    // A reference of another scene or depth limit converges to another image; an external file
+    // without metadata is taken on trust.
+    requireSettings(file, {{"tripath:scene", r.scene}, {"tripath:max-depth", std::to_string(r.maxDepth)}}, true);
+    if (const auto seed = file.value("tripath:seed")) {
+        const uint64_t s = std::strtoull(seed->c_str(), nullptr, 10);
+        if (s >= r.seed && s < r.seed + uint64_t(o.runs))
+            throw InputError(fmt::format("reference '{}' was rendered with seed {}, which run {} would reuse "
+                                         "(shared samples hide error): pass e.g. --seed {}",
+                                         o.referencePath, s, s - r.seed, s + 1));
+    }
+    return {std::move(file.image), file.description(), o.referencePath};
+}
+
+Reference renderReference(const CompareOptions& o, const Scene& scene) {
+    RenderOptions r = o.render;
+    r.integrator = "bdpt";
+    r.seconds = kReferenceBudget * o.render.seconds;
+    r.seed = o.render.seed + o.runs;  // the seed after the runs' seeds: independent samples
+    const std::string file = (std::filesystem::path(o.outDir) / "reference.exr").string();
+    std::cerr << fmt::format(
+        "no --reference: rendering one with bdpt for {:g} x {} = {} (seed {}) into {}; its own noise adds about "
+        "1/{:g} of bdpt's error to each measurement. For a cleaner one, see `tripath reference`.\n",
+        kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds), r.seed, file, kReferenceBudget);
+    const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
+    RenderSettings rs = renderSettings(r);
+    rs.progress = progressReporter(rs, r.width, r.height, "reference bdpt " + r.scene);
+    const RenderResult result = render(scene, *integrator, rs);
+    printSummary("reference bdpt " + r.scene, result, r.width, r.height);
+    writeExr(file, result.image(), renderMetadata(r, integrator->name(), result));
+    return {result.image(), fmt::format("bdpt, {} spp, {:.0f} s", result.passes, result.seconds), file};
+}
+
+}  // namespace
+
+Reference obtainReference(const CompareOptions& o, const Scene& scene) {
+    return o.referencePath.empty() ? renderReference(o, scene) : readGivenReference(o);
+}
+
+RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::string& method, int index,
+                    const Image& reference) {
+    RenderOptions ro = o.render;
+    ro.integrator = method;
+    ro.seed = o.render.seed + uint64_t(index);
+    Run run{method, index, ro.seed, {}};
+    const auto integrator = makeIntegrator(method, integratorSettings(ro));
+    RenderSettings rs = renderSettings(ro);
+    const std::string label = fmt::format("{} run {}/{}", method, index + 1, o.runs);
+    rs.progress = progressReporter(rs, ro.width, ro.height, label);
+    // Measuring happens inside onPass, whose time the render loop leaves out of the budget.
+    rs.onPass = [&](const Film& film, int passes, double seconds) {
+        const int k = targetReached(seconds, ro.seconds);
+        if (k < 0 || (!run.checkpoints.empty() && k <= run.checkpoints.back().target)) return;
+        run.checkpoints.push_back({k, seconds, passes, compareImages(film.image(passes), reference)});
+    };
+    const RenderResult r = render(scene, *integrator, rs);
+    Image image = r.image();
+    // The finished render is the last checkpoint, at target T, whatever the last pass measured.
+    if (run.checkpoints.empty() || run.checkpoints.back().spp != r.passes)
+        run.checkpoints.push_back({kTargets, r.seconds, r.passes, compareImages(image, reference)});
+    run.checkpoints.back().target = kTargets;
+    printSummary(label, r, ro.width, ro.height);
+    std::cerr << fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}\n", label, run.final().error.relMse,
+                             run.final().error.mse, run.final().error.mae);
+    return {std::move(run), std::move(image), renderMetadata(ro, integrator->name(), r)};
+}
+
+}  // namespace tripath::app

@@ -1,0 +1,116 @@
+// `tripath reference`: a long render to measure other renders against. Run again on its own
+// output with the same settings, it adds fresh samples instead of starting over, so a reference
+// can be refined over several sessions.
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include "commands.h"
+#include "geometry/error.h"
+#include "reference_file.h"
+#include "render_options.h"
+
+namespace tripath::app {
+
+namespace {
+
+struct ReferenceCommand {
+    RenderOptions options;
+    std::string out, png;
+};
+
+// The settings that must match for new samples to estimate the same image as the old ones
+// (the seed too: the new passes continue the old sample indices, so only the same seed keeps
+// them fresh).
+std::vector<std::pair<std::string, std::string>> settingsToMatch(const RenderOptions& o, const std::string& integrator) {
+    return {{"tripath:scene", o.scene},
+            {"tripath:integrator", integrator},
+            {"tripath:max-depth", std::to_string(o.maxDepth)},
+            {"tripath:rr-depth", std::to_string(o.rrDepth)},
+            {"tripath:mis", o.mis},
+            {"tripath:seed", std::to_string(o.seed)}};
+}
+
+// The reference already at --out, checked against this run's settings; nullopt if there is none.
+std::optional<ReferenceFile> previous(const ReferenceCommand& c, const std::string& integrator) {
+    if (!std::filesystem::exists(c.out)) return std::nullopt;
+    ReferenceFile ref = readReference(c.out);
+    requireSettings(ref, settingsToMatch(c.options, integrator), false);
+    requireSize(ref, c.options.width, c.options.height);
+    if (ref.spp() < 1) throw InputError(fmt::format("'{}' records {} spp: nothing to add to", c.out, ref.spp()));
+    return ref;
+}
+
+// The average of all passes from the two averages and their pass counts, in double.
+Image combine(const Image& a, int passesA, const Image& b, int passesB) {
+    Image out(a.width, a.height);
+    const double total = double(passesA) + passesB;
+    for (size_t i = 0; i < out.rgb.size(); ++i)
+        out.rgb[i] = static_cast<float>((double(a.rgb[i]) * passesA + double(b.rgb[i]) * passesB) / total);
+    return out;
+}
+
+void validate(const ReferenceCommand& c) {
+    validateRenderOptions(c.options);
+    if (!c.options.sppGiven && !c.options.timeGiven) throw InputError("reference needs a budget: --spp N or --time SECONDS");
+    if (std::filesystem::path(c.out).extension() != ".exr") throw InputError("--out must name an .exr file: " + c.out);
+    if (!c.png.empty() && std::filesystem::path(c.png).extension() != ".png")
+        throw InputError("--png must name a .png file: " + c.png);
+    checkWritable(c.out);
+    if (!c.png.empty()) checkWritable(c.png);
+}
+
+void run(const ReferenceCommand& c) {
+    const RenderOptions& o = c.options;
+    validate(c);
+    const auto integrator = makeIntegrator(o.integrator, integratorSettings(o));
+    const std::optional<ReferenceFile> old = previous(c, integrator->name());
+    const auto scene = loadScene(o);
+
+    RenderSettings rs = renderSettings(o);
+    rs.firstPass = old ? old->spp() : 0;  // fresh sample indices after the ones already in the file
+    rs.stop = installInterruptHandler();
+    const std::string label = fmt::format("reference {} {}", o.integrator, o.scene);
+    rs.progress = progressReporter(rs, o.width, o.height, label);
+    const RenderResult r = render(*scene, *integrator, rs);
+    printSummary(label, r, o.width, o.height);
+
+    Metadata meta = renderMetadata(o, integrator->name(), r);
+    Image image = r.image();
+    if (old) {
+        image = combine(old->image, old->spp(), image, r.passes);
+        const int spp = old->spp() + r.passes;
+        const double seconds = old->seconds() + r.seconds;
+        const std::string oldDropped = old->value("tripath:dropped-samples").value_or("0");
+        const uint64_t dropped = std::strtoull(oldDropped.c_str(), nullptr, 10) + r.droppedSamples;
+        setMetadata(meta, "tripath:spp", std::to_string(spp));
+        setMetadata(meta, "tripath:seconds", fmt::format("{:.3f}", seconds));
+        setMetadata(meta, "tripath:dropped-samples", std::to_string(dropped));
+        std::cerr << fmt::format("added {} spp to the {} spp in {}: {} spp, {:.1f} s in all\n", r.passes, old->spp(),
+                                 c.out, spp, seconds);
+    }
+    writeExr(c.out, image, meta);
+    if (!c.png.empty()) writePng(c.png, image);
+    std::cerr << "wrote " << c.out << (c.png.empty() ? "" : " and " + c.png) << "\n";
+}
+
+}  // namespace
+
+void addReferenceCommand(CLI::App& app) {
+    auto c = std::make_shared<ReferenceCommand>();
+    auto* cmd = app.add_subcommand(
+        "reference",
+        "Render a reference image for `tripath compare`; run again on an existing reference with the same settings "
+        "to add samples to it");
+    addRenderOptions(*cmd, c->options);
+    cmd->add_option("--out", c->out,
+                    "Reference EXR. If it exists (same scene, integrator, size, max depth, RR depth, MIS and seed), "
+                    "the new samples are added to it and its spp and seconds become the totals")
+        ->required();
+    cmd->add_option("--png", c->png, "Also write an sRGB PNG preview of the (combined) reference here");
+    cmd->callback([c] { run(*c); });
+}
+
+}  // namespace tripath::app

@@ -1,0 +1,90 @@
+#include "reference_file.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "geometry/error.h"
+
+namespace tripath::app {
+
+namespace {
+
+// Two spellings of one glTF file (relative and absolute) are the same scene; built-in names
+// compare as text.
+bool sameScene(const std::string& a, const std::string& b) {
+    if (a == b) return true;
+    std::error_code ec;
+    return std::filesystem::equivalent(a, b, ec) && !ec;
+}
+
+}  // namespace
+
+std::optional<std::string> ReferenceFile::value(const std::string& key) const {
+    for (const auto& [k, v] : meta)
+        if (k == key) return v;
+    return std::nullopt;
+}
+
+int ReferenceFile::spp() const {
+    const auto v = value("tripath:spp");
+    try {
+        return v ? std::stoi(*v) : 0;
+    } catch (const std::exception&) {
+        throw InputError(fmt::format("'{}': tripath:spp is not a number ('{}')", path, *v));
+    }
+}
+
+double ReferenceFile::seconds() const {
+    const auto v = value("tripath:seconds");
+    try {
+        return v ? std::stod(*v) : 0;
+    } catch (const std::exception&) {
+        throw InputError(fmt::format("'{}': tripath:seconds is not a number ('{}')", path, *v));
+    }
+}
+
+std::string ReferenceFile::description() const {
+    const auto integrator = value("tripath:integrator");
+    if (!integrator) return "external reference";
+    return fmt::format("{}, {} spp, {:.0f} s", *integrator, spp(), seconds());
+}
+
+ReferenceFile readReference(const std::string& path) {
+    ReferenceFile ref;
+    ref.path = path;
+    ref.image = readExr(path, &ref.meta);
+    return ref;
+}
+
+void requireSize(const ReferenceFile& ref, int width, int height) {
+    if (ref.image.width != width || ref.image.height != height)
+        throw InputError(fmt::format("reference '{}' is {}x{}, but this render is {}x{} (--width/--height)", ref.path,
+                                     ref.image.width, ref.image.height, width, height));
+}
+
+void requireSettings(const ReferenceFile& ref, const std::vector<std::pair<std::string, std::string>>& expected,
+                     bool allowMissing) {
+    for (const auto& [key, want] : expected) {
+        const auto got = ref.value(key);
+        if (!got && allowMissing) continue;
+        if (!got)
+            throw InputError(fmt::format("'{}' has no {} metadata: not a tripath reference (choose another file)",
+                                         ref.path, key));
+        const bool same = key == "tripath:scene" ? sameScene(*got, want) : *got == want;
+        if (!same)
+            throw InputError(fmt::format("reference '{}' has {} {}, but this render has {} {}", ref.path,
+                                         key.substr(8), *got, key.substr(8), want));
+    }
+}
+
+void setMetadata(Metadata& meta, const std::string& key, const std::string& value) {
+    for (auto& [k, v] : meta)
+        if (k == key) {
+            v = value;
+            return;
+        }
+    meta.emplace_back(key, value);
+}
+
+}  // namespace tripath::app

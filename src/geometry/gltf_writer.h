@@ -1,0 +1,35 @@
+// SceneDesc → glTF 2.0 (.gltf JSON with one embedded base64 buffer): the inverse of gltf_loader,
+// so that a built-in scene can be shipped as a file and loaded like any user's (scenes/*.gltf).
+//
+// Materials are written so that the loader's mapping (top of gltf_loader.cpp) gives them back:
+//   Lambertian  metallic 0, roughness 1
+//   Plastic     metallic 0, roughness r (< 0.99), KHR_materials_ior when ior ≠ 1.5
+//   Mirror      metallic 1, roughness 0
+//   Conductor   metallic 1, roughness r (≥ 0.01)
+//   Dielectric  metallic 0, roughness 0, KHR_materials_transmission 1, KHR_materials_ior
+// Emission is emissiveFactor × KHR_materials_emissive_strength with the strength a power of two,
+// so the factor (≤ 1, as glTF requires) times the strength gives the radiance back exactly; point
+// lights likewise split into KHR_lights_punctual colour × intensity. Positions and normals go into
+// the buffer as the floats they are, one node per mesh with no transform, so triangles come back
+// bit for bit. The camera becomes a perspective camera on a node whose matrix maps glTF's −z/+y
+// view to the scene's forward/up.
+#pragma once
+#include <functional>
+#include <string>
+
+#include "geometry/scene_desc.h"
+
+namespace tripath {
+
+using WarningSink = std::function<void(const std::string&)>;
+
+// The glTF JSON text. Warns (once per material) where the file cannot say exactly what the scene
+// holds: a Conductor smoother than 0.01 (it would load as a Mirror) or a Plastic rougher than 0.99
+// (it would load as Lambertian). Throws InputError for non-finite values, which JSON cannot hold.
+std::string gltfJson(const SceneDesc& scene, const WarningSink& warn);
+
+// Writes gltfJson to `path` through a temporary file renamed over it, so a failed write never
+// leaves a truncated file. Throws InputError (one line naming the path) when it cannot write.
+void writeGltf(const SceneDesc& scene, const std::string& path, const WarningSink& warn);
+
+}  // namespace tripath

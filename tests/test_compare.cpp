@@ -1,0 +1,343 @@
+// `tripath reference` and `tripath compare`, end to end through the built binary (TRIPATH_BINARY),
+// plus the pieces they are made of: the render loop's per-pass callback, the chart, the comparison
+// sheet and the choice of its inset. Every render is 32x32 and at most a few seconds.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "geometry/builtin_scenes.h"
+#include "geometry/error.h"
+#include "image/chart.h"
+#include "image/compose.h"
+#include "image/image.h"
+#include "image/inset.h"
+#include "image/metrics.h"
+#include "support.h"
+
+namespace fs = std::filesystem;
+using namespace tripath;
+
+namespace {
+
+// A fresh directory per test, removed afterwards.
+class TempDir {
+public:
+    TempDir() {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        path_ = fs::temp_directory_path() /
+                (std::string("tripath_test_compare_") + std::to_string(::getpid()) + "_" + info->name());
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+
+private:
+    fs::path path_;
+};
+
+std::string readFile(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+struct Outcome {
+    int exitCode;
+    std::string err;
+};
+
+// Runs `tripath <args>` with stderr captured into the temporary directory.
+Outcome tripathCli(const TempDir& dir, const std::string& args) {
+    const std::string errFile = dir / "stderr.txt";
+    const std::string cmd = std::string("'") + TRIPATH_BINARY + "' " + args + " > /dev/null 2> '" + errFile + "'";
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(errFile)};
+}
+
+// A failure must be exactly one line, starting with "error:", that mentions `what`.
+void expectOneLineError(const Outcome& o, const std::string& what) {
+    EXPECT_NE(o.exitCode, 0);
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_EQ(o.err.rfind("error: ", 0), 0u) << o.err;
+    EXPECT_NE(o.err.find(what), std::string::npos) << "expected '" << what << "' in: " << o.err;
+}
+
+std::string metaValue(const Metadata& meta, const std::string& key) {
+    for (const auto& [k, v] : meta)
+        if (k == key) return v;
+    return "";
+}
+
+struct CsvRow {
+    std::string integrator;
+    int run, spp;
+    double seconds, relMse, mse, mae;
+};
+
+std::vector<CsvRow> parseCsv(const std::string& text) {
+    std::istringstream in(text);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "integrator,run,seconds,spp,relmse,mse,mae");
+    std::vector<CsvRow> rows;
+    while (std::getline(in, line)) {
+        std::vector<std::string> f;
+        std::stringstream ls(line);
+        for (std::string cell; std::getline(ls, cell, ',');) f.push_back(cell);
+        EXPECT_EQ(f.size(), 7u) << line;
+        if (f.size() != 7) continue;
+        rows.push_back({f[0], std::stoi(f[1]), std::stoi(f[3]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]),
+                        std::stod(f[6])});
+    }
+    return rows;
+}
+
+const std::string kSmall = "--scene cornell --width 32 --height 32";
+
+}  // namespace
+
+TEST(RenderLoop, OnPassSeesEveryPassAndTheFilmSoFar) {
+    test::RenderRequest req;
+    req.spp = 5;
+    const Scene scene(builtinScene("cornell"), req.width, req.height);
+    const auto integrator = makeIntegrator("pt", {});
+    RenderSettings rs;
+    rs.spp = req.spp;
+    std::vector<int> passes;
+    Image last;
+    rs.onPass = [&](const Film& film, int p, double seconds) {
+        passes.push_back(p);
+        EXPECT_GE(seconds, 0.0);
+        last = film.image(p);
+    };
+    const RenderResult r = render(scene, *integrator, rs);
+    EXPECT_EQ(passes, (std::vector<int>{1, 2, 3, 4, 5}));
+    EXPECT_EQ(last.rgb, r.image().rgb);
+}
+
+TEST(Chart, SvgHasAxesLegendAndOneLinePerSeries) {
+    LogLogChart c;
+    c.title = "t & <title>";
+    c.xLabel = "render time (s)";
+    c.yLabel = "relMSE";
+    c.series.push_back({"pt", {31, 119, 180}, {0.01, 0.1, 1}, {1, 0.1, 0.01}, {0.5, 0.05, 0.005}, {2, 0.2, 0.02}});
+    c.series.push_back({"lt", {255, 127, 14}, {0.01, 1}, {2, 0.02}, {}, {}});
+    const std::string svg = chartSvg(c);
+    EXPECT_EQ(svg.rfind("<svg ", 0), 0u);
+    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+    auto count = [&](const std::string& s) {
+        size_t n = 0;
+        for (size_t p = svg.find(s); p != std::string::npos; p = svg.find(s, p + 1)) ++n;
+        return n;
+    };
+    EXPECT_EQ(count("<polyline"), 2u);
+    EXPECT_EQ(count("<polygon"), 1u);  // only pt has a band
+    EXPECT_NE(svg.find("t &amp; &lt;title&gt;"), std::string::npos);
+    EXPECT_NE(svg.find(">render time (s)<"), std::string::npos);
+    EXPECT_NE(svg.find(">0.01<"), std::string::npos);  // a decade tick label
+    EXPECT_NE(svg.find(">lt<"), std::string::npos);    // legend entry
+
+    const Image png = chartImage(c);
+    EXPECT_EQ(png.width, c.width);
+    EXPECT_EQ(png.height, c.height);
+    // Something other than the white background was drawn in the plot area.
+    size_t coloured = 0;
+    for (size_t i = 0; i < png.rgb.size(); i += 3)
+        if (png.rgb[i] < 0.5f && png.rgb[i + 2] > 0.2f) ++coloured;
+    EXPECT_GT(coloured, 200u);
+}
+
+TEST(Compose, InsetFindsTheRegionWhereMethodsDiffer) {
+    Image ref(64, 48), good(64, 48), bad(64, 48);
+    for (float& v : ref.rgb) v = 0.5f;
+    good.rgb = ref.rgb;
+    bad.rgb = ref.rgb;
+    for (int y = 30; y < 38; ++y)
+        for (int x = 40; x < 48; ++x) bad.at(x, y)[1] = 3.0f;  // the one place the methods disagree
+    const Region r = regionOfLargestDifference(ref, {good, bad}, 8, 8);
+    EXPECT_LE(std::abs(r.x - 40), 1);
+    EXPECT_LE(std::abs(r.y - 30), 1);
+    EXPECT_EQ(r.w, 8);
+    EXPECT_THROW(regionOfLargestDifference(ref, {Image(8, 8)}, 8, 8), InputError);
+    EXPECT_THROW(regionOfLargestDifference(ref, {good}, 65, 8), InputError);
+
+    const Image sheet = sideBySide({{ref, "reference", "a"}, {good, "pt", "b"}, {bad, "lt", "c"}}, r);
+    // 64x48 panels are magnified 4x to reach 256 wide; the 8x8 inset grows to the panel's height.
+    EXPECT_EQ(sheet.width, 8 + 3 * (256 + 8));
+    EXPECT_EQ(sheet.height, 44 + 192 + 8 + 192 + 8);
+    EXPECT_THROW(sideBySide({{ref, "r", ""}, {Image(8, 8), "x", ""}}, r), InputError);
+    EXPECT_THROW(sideBySide({{ref, "r", ""}}, Region{60, 0, 8, 8}), InputError);
+}
+
+TEST(ReferenceCommand, AddingSamplesEqualsRenderingThemAtOnce) {
+    TempDir dir;
+    const std::string ref = dir / "ref.exr", once = dir / "once.exr";
+    ASSERT_EQ(tripathCli(dir, "reference " + kSmall + " --spp 8 --seed 7 --out " + ref).exitCode, 0);
+    Metadata first;
+    readExr(ref, &first);
+    EXPECT_EQ(metaValue(first, "tripath:spp"), "8");
+
+    const Outcome again = tripathCli(dir, "reference " + kSmall + " --spp 8 --seed 7 --out " + ref);
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_NE(again.err.find("added 8 spp"), std::string::npos) << again.err;
+    Metadata meta;
+    const Image added = readExr(ref, &meta);
+    EXPECT_EQ(metaValue(meta, "tripath:spp"), "16");
+    EXPECT_GE(std::stod(metaValue(meta, "tripath:seconds")), std::stod(metaValue(first, "tripath:seconds")));
+    for (const char* key : {"tripath:scene", "tripath:integrator", "tripath:seed", "tripath:max-depth",
+                            "tripath:rr-depth", "tripath:mis"})
+        EXPECT_EQ(metaValue(meta, key), metaValue(first, key)) << key;
+
+    // Passes 8..15 were fresh sample indices: the result is the 16-pass render, up to rounding.
+    ASSERT_EQ(tripathCli(dir, "reference " + kSmall + " --spp 16 --seed 7 --out " + once).exitCode, 0);
+    const Image whole = readExr(once);
+    ASSERT_EQ(whole.rgb.size(), added.rgb.size());
+    for (size_t i = 0; i < whole.rgb.size(); ++i)
+        ASSERT_NEAR(added.rgb[i], whole.rgb[i], 1e-5 * (1 + std::abs(whole.rgb[i]))) << "value " << i;
+}
+
+TEST(ReferenceCommand, RefusesToMixDifferentSettings) {
+    TempDir dir;
+    const std::string ref = dir / "ref.exr";
+    ASSERT_EQ(tripathCli(dir, "reference " + kSmall + " --spp 2 --seed 7 --out " + ref).exitCode, 0);
+    expectOneLineError(tripathCli(dir, "reference " + kSmall + " --spp 2 --seed 8 --out " + ref), "seed");
+    expectOneLineError(tripathCli(dir, "reference " + kSmall + " --spp 2 --seed 7 --mis balance --out " + ref), "mis");
+    expectOneLineError(
+        tripathCli(dir, "reference " + kSmall + " --spp 2 --seed 7 --integrator pt --out " + ref), "integrator");
+    expectOneLineError(
+        tripathCli(dir, "reference --scene cornell --width 16 --height 16 --spp 2 --seed 7 --out " + ref), "32x32");
+    expectOneLineError(tripathCli(dir, "reference " + kSmall + " --out " + ref), "--spp");
+    // Still the first render: nothing was added by the refused runs.
+    Metadata meta;
+    readExr(ref, &meta);
+    EXPECT_EQ(metaValue(meta, "tripath:spp"), "2");
+}
+
+TEST(CompareCommand, BadInputGivesOneLineError) {
+    TempDir dir;
+    const std::string ref = dir / "ref.exr", out = dir / "out";
+    ASSERT_EQ(tripathCli(dir, "reference " + kSmall + " --spp 1 --seed 50 --out " + ref).exitCode, 0);
+    const std::string base = "compare " + kSmall + " --time 0.1 --out " + out;
+    expectOneLineError(tripathCli(dir, base + " --integrators pt,foo --reference " + ref), "foo");
+    expectOneLineError(tripathCli(dir, base + " --integrators pt,pt --reference " + ref), "twice");
+    expectOneLineError(tripathCli(dir, base + " --crop 0,0,40,8 --reference " + ref), "--crop");
+    expectOneLineError(tripathCli(dir, base + " --crop 1,2,x --reference " + ref), "--crop");
+    expectOneLineError(tripathCli(dir, base + " --runs 0 --reference " + ref), "--runs");
+    expectOneLineError(tripathCli(dir, base + " --reference " + (dir / "missing.exr")), "missing.exr");
+    expectOneLineError(
+        tripathCli(dir, "compare --scene cornell --width 16 --height 16 --time 0.1 --out " + out + " --reference " + ref),
+        "32x32");
+    expectOneLineError(tripathCli(dir, base + " --seed 50 --reference " + ref), "seed 50");
+    expectOneLineError(
+        tripathCli(dir, "compare --scene furnace --width 32 --height 32 --time 0.1 --out " + out + " --reference " + ref),
+        "scene");
+    EXPECT_FALSE(fs::exists(out + "/error.csv"));
+}
+
+// The full report from one comparison: every file, a CSV that parses, and errors that fall with
+// time for every method (all three are unbiased on this diffuse scene). Two runs, compared
+// through their means, keep the check far from noise: from the first checkpoint (a pass or so)
+// to the last (~100 passes here) the error falls by well over 10x, and the test asks for 3x.
+TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
+    TempDir dir;
+    const std::string ref = dir / "ref.exr", out = dir / "out";
+    ASSERT_EQ(tripathCli(dir, "reference " + kSmall + " --spp 256 --seed 100 --out " + ref).exitCode, 0);
+    const Outcome o = tripathCli(dir, "compare " + kSmall +
+                                          " --integrators pt,lt,bdpt --time 0.5 --runs 2 --reference " + ref +
+                                          " --out " + out);
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+
+    for (const char* f : {"pt.exr", "pt.png", "lt.exr", "lt.png", "bdpt.exr", "bdpt.png", "reference.png",
+                          "side-by-side.png", "error.csv", "error-vs-time.svg", "error-vs-time.png", "summary.md",
+                          "index.html"})
+        EXPECT_TRUE(fs::is_regular_file(out + "/" + f)) << f;
+    EXPECT_EQ(readImage(out + "/error-vs-time.png").width, 800);
+    EXPECT_EQ(readImage(out + "/side-by-side.png").width, 8 + 4 * (256 + 8));
+    Metadata meta;
+    EXPECT_EQ(readExr(out + "/lt.exr", &meta).width, 32);
+    EXPECT_EQ(metaValue(meta, "tripath:integrator"), "lt");
+
+    std::map<std::pair<std::string, int>, std::vector<CsvRow>> byRun;
+    for (const CsvRow& r : parseCsv(readFile(out + "/error.csv"))) byRun[{r.integrator, r.run}].push_back(r);
+    ASSERT_EQ(byRun.size(), 6u);
+    std::map<std::string, double> first, last, firstSpp, lastSpp;
+    for (const auto& [key, rows] : byRun) {
+        ASSERT_GE(rows.size(), 3u) << key.first;
+        for (size_t i = 1; i < rows.size(); ++i) {
+            EXPECT_GT(rows[i].seconds, rows[i - 1].seconds);
+            EXPECT_GT(rows[i].spp, rows[i - 1].spp);
+        }
+        EXPECT_GE(rows.back().seconds, 0.45);
+        EXPECT_LT(rows.back().seconds, 5.0);
+        first[key.first] += rows.front().relMse / 2;
+        last[key.first] += rows.back().relMse / 2;
+        firstSpp[key.first] += rows.front().spp / 2.0;
+        lastSpp[key.first] += rows.back().spp / 2.0;
+        for (const CsvRow& r : rows) EXPECT_TRUE(r.relMse > 0 && r.mse > 0 && r.mae > 0);
+    }
+    // relMSE of an unbiased method falls like 1/spp until the reference's own noise is reached.
+    // Asked for: half the drop that law predicts, capped at 3x (the cap is for fast machines,
+    // where the methods reach the reference's noise), so a slow machine with few passes passes too.
+    for (const char* m : {"pt", "lt", "bdpt"}) {
+        const double expectedDrop = lastSpp[m] / firstSpp[m];
+        ASSERT_GE(expectedDrop, 2.0) << m;
+        EXPECT_LT(last[m], first[m] / std::min(3.0, expectedDrop / 2)) << m << ": " << first[m] << " -> " << last[m];
+    }
+
+    const std::string summary = readFile(out + "/summary.md");
+    for (const char* m : {"| pt |", "| lt |", "| bdpt |", "relMSE", "efficiency"})
+        EXPECT_NE(summary.find(m), std::string::npos) << m;
+    EXPECT_NE(readFile(out + "/error-vs-time.svg").find("<polyline"), std::string::npos);
+}
+
+// index.html opened by headless Chromium: the page marks <body data-images="loaded"> when every
+// image decoded and lists script errors in #console-errors; the page logs nothing on purpose, so
+// any console line in Chromium's log is a failure. Chromium must be there (CI installs it with
+// scripts/install-test-deps.sh): a missing browser fails, it does not skip.
+TEST(CompareCommand, IndexHtmlLoadsInHeadlessChromium) {
+    TempDir dir;
+    const std::string out = dir / "out";
+    // No --reference: the command renders its own, which this also covers.
+    const Outcome o = tripathCli(dir, "compare " + kSmall + " --integrators pt,lt,bdpt --time 0.1 --out " + out);
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    EXPECT_NE(o.err.find("no --reference"), std::string::npos) << o.err;
+    Metadata refMeta;
+    readExr(out + "/reference.exr", &refMeta);
+    EXPECT_EQ(metaValue(refMeta, "tripath:seed"), "2");  // the seed after the one run's
+
+    const int found = std::system("command -v chromium > /dev/null 2>&1");
+    ASSERT_EQ(found, 0) << "chromium not found: run scripts/install-test-deps.sh";
+    const std::string dom = dir / "dom.html", log = dir / "chromium.log", profile = dir / "profile";
+    const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-background-networking "
+                            "--disable-component-update --disable-sync --no-first-run --user-data-dir='" + profile +
+                            "' --enable-logging=stderr --v=0 --dump-dom 'file://" + out + "/index.html' > '" + dom +
+                            "' 2> '" + log + "'";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << readFile(log);
+    const std::string html = readFile(dom), messages = readFile(log);
+    EXPECT_NE(html.find("data-images=\"loaded\""), std::string::npos) << html.substr(0, 2000);
+    EXPECT_NE(html.find("data-image-count=\"6\""), std::string::npos);  // chart, reference, 3 methods, sheet
+    EXPECT_NE(html.find("id=\"chart\" src=\"error-vs-time.svg\""), std::string::npos);
+    EXPECT_NE(html.find("<pre id=\"console-errors\"></pre>"), std::string::npos) << html;
+    EXPECT_EQ(html.find("data-errors"), std::string::npos);
+    std::istringstream lines(messages);
+    for (std::string line; std::getline(lines, line);) {
+        EXPECT_EQ(line.find(":CONSOLE"), std::string::npos) << line;
+        EXPECT_EQ(line.find("Uncaught"), std::string::npos) << line;
+    }
+}

@@ -1,0 +1,693 @@
+// Stability where methods fail (issue 6): the failure scenes of geometry/failure_scenes.h under
+// every integrator. What must hold everywhere: no NaN or infinite sample, bounded work per sample.
+// What must hold where a method can sample the light: agreement with the others within
+// statistical error. Where a method provably cannot, the test states it and measures it (a
+// black caustic), so the limitation is documented by something that fails if it changes.
+// Also: glTF export round trips, the scenes/*.gltf copies, and the fuzzing regression inputs.
+//
+// Statistics: every comparison uses R independent runs with fixed seeds; the standard error of
+// a mean comes from the spread of the runs, and two estimates agree when they differ by less
+// than 4 standard errors of the difference. Seeds are fixed, so the outcome is reproducible.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "geometry/builtin_scenes.h"
+#include "geometry/error.h"
+#include "geometry/failure_scenes.h"
+#include "geometry/gltf_loader.h"
+#include "geometry/gltf_writer.h"
+#include "geometry/rng.h"
+#include "geometry/scene.h"
+#include "integrators/integrator.h"
+#include "integrators/render.h"
+
+namespace tripath {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kFailureScenes = {"caustic", "caustic-point", "sds",        "sds-point",
+                                                 "door-ajar", "contact",     "grazing",    "degenerate",
+                                                 "degenerate-tiny", "degenerate-far"};
+const std::vector<std::string> kIntegrators = {"pt", "lt", "bdpt"};
+
+void silent(const std::string&) {}
+
+// ---- rendering and statistics ----------------------------------------------------------------
+
+struct Job {
+    std::string integrator = "bdpt";
+    int size = 24;          // square image
+    int spp = 4;
+    uint64_t seed = 1;
+    uint64_t firstPass = 0;
+    int maxDepth = 16;
+};
+
+RenderResult renderJob(const Scene& scene, const Job& j) {
+    IntegratorSettings is;
+    is.walk.maxDepth = j.maxDepth;
+    const auto integrator = makeIntegrator(j.integrator, is);
+    RenderSettings rs;
+    rs.spp = j.spp;
+    rs.seed = j.seed;
+    rs.firstPass = j.firstPass;
+    return render(scene, *integrator, rs);
+}
+
+struct Block {
+    int x = 0, y = 0, w = 0, h = 0;
+};
+
+// Mean over a block of pixels and the three channels.
+double regionMean(const Image& img, Block r) {
+    double sum = 0;
+    for (int y = r.y; y < r.y + r.h; ++y)
+        for (int x = r.x; x < r.x + r.w; ++x)
+            for (int c = 0; c < 3; ++c) sum += img.at(x, y)[c];
+    return sum / (3.0 * r.w * r.h);
+}
+
+// The (2 half + 1)² pixels around where the camera sees world point p.
+Block around(const Scene& scene, Vec3 p, int half) {
+    const auto r = scene.camera().raster(normalize(p - scene.camera().position()));
+    EXPECT_TRUE(r.has_value()) << "the point is outside the view";
+    const int cx = r ? static_cast<int>(r->x) : 0, cy = r ? static_cast<int>(r->y) : 0;
+    const int w = scene.camera().width(), h = scene.camera().height();
+    const int x0 = std::clamp(cx - half, 0, w - 1), y0 = std::clamp(cy - half, 0, h - 1);
+    return {x0, y0, std::min(2 * half + 1, w - x0), std::min(2 * half + 1, h - y0)};
+}
+
+struct Estimate {
+    double mean = 0, stderr_ = 0;
+};
+
+Estimate estimate(const std::vector<double>& runs) {
+    Estimate e;
+    for (double x : runs) e.mean += x;
+    e.mean /= runs.size();
+    double var = 0;
+    for (double x : runs) var += (x - e.mean) * (x - e.mean);
+    e.stderr_ = std::sqrt(var / (runs.size() - 1) / runs.size());
+    return e;
+}
+
+// Block means of `runs` independent renders (seeds 1000 + i); also checks no sample was dropped.
+std::vector<std::vector<double>> regionRuns(const Scene& scene, Job job, int runs, const std::vector<Block>& regions) {
+    std::vector<std::vector<double>> out(regions.size());
+    for (int i = 0; i < runs; ++i) {
+        job.seed = 1000 + static_cast<uint64_t>(i);
+        const RenderResult r = renderJob(scene, job);
+        EXPECT_EQ(r.droppedSamples, 0u) << scene.name() << " " << job.integrator << ": NaN/Inf samples";
+        const Image img = r.image();
+        for (size_t k = 0; k < regions.size(); ++k) out[k].push_back(regionMean(img, regions[k]));
+    }
+    return out;
+}
+
+std::string show(const Estimate& e) { return std::to_string(e.mean) + " ± " + std::to_string(e.stderr_); }
+
+// ---- the scenes are registered and valid --------------------------------------------------------
+
+TEST(FailureScenes, AreBuiltinsAndBuildValidScenes) {
+    for (const std::string& name : kFailureScenes) {
+        ASSERT_TRUE(isBuiltinScene(name)) << name;
+        const Scene scene(builtinScene(name), 8, 8, silent);
+        EXPECT_FALSE(scene.emitters().empty()) << name;
+        EXPECT_FALSE(scene.triangles().empty()) << name;
+    }
+}
+
+// ---- no NaN/Inf, bounded work ------------------------------------------------------------------
+
+// Checks every contribution of a sample as the integrator hands it over, before the render loop
+// could drop a bad one: finite, an MIS weight in [0, 1], a path length within max-depth.
+class CheckingSink final : public ContributionSink {
+public:
+    CheckingSink(int maxDepth, const Camera& camera) : maxDepth_(maxDepth), camera_(camera) {}
+    void add(int s, int t, const Connection& c) override {
+        ++calls;
+        if (!isFinite(c.unweighted) || !std::isfinite(c.weight)) ++nonFinite;
+        if (!(c.weight >= 0.0f && c.weight <= 1.0f + 1e-4f)) ++badWeight;
+        if (s < 0 || t < 1 || s + t - 1 > maxDepth_) ++badLength;
+        if (t == 1 && (!c.raster || !(c.raster->x >= 0 && c.raster->x < camera_.width() && c.raster->y >= 0 &&
+                                      c.raster->y < camera_.height())))
+            ++badRaster;
+    }
+    int calls = 0, nonFinite = 0, badWeight = 0, badLength = 0, badRaster = 0;
+
+private:
+    int maxDepth_;
+    const Camera& camera_;
+};
+
+// Work per sample is counted, not timed: a camera subpath has at most max-depth + 1 vertices, a
+// light subpath at most max-depth, and the strategies number at most (D + 1)(D + 2) / 2 — one
+// connection (one shadow ray) each. A walk that loops (albedo 1, a ray stuck between coincident
+// faces) would break the first two.
+TEST(FailureScenes, EverySampleIsFiniteAndItsWorkBounded) {
+    constexpr int kMaxDepth = 6, kSize = 12, kSamples = 4;
+    constexpr int kMaxStrategies = (kMaxDepth + 1) * (kMaxDepth + 2) / 2;
+    for (const std::string& name : kFailureScenes) {
+        const Scene scene(builtinScene(name), kSize, kSize, silent);
+        for (const std::string& integratorName : kIntegrators) {
+            IntegratorSettings is;
+            is.walk.maxDepth = kMaxDepth;
+            const auto integrator = makeIntegrator(integratorName, is);
+            PathBuffers paths;
+            CheckingSink sink(kMaxDepth, scene.camera());
+            size_t vertices = 0, longestCamera = 0, longestLight = 0;
+            int mostCalls = 0;
+            for (int i = 0; i < kSize * kSize * kSamples; ++i) {
+                Rng rng(7, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(i));
+                const int pixel = i % (kSize * kSize);
+                const Vec2 raster{(pixel % kSize) + rng.uniform(), (pixel / kSize) + rng.uniform()};
+                const int before = sink.calls;
+                integrator->sample(scene, raster, rng, paths, sink);
+                mostCalls = std::max(mostCalls, sink.calls - before);
+                longestCamera = std::max(longestCamera, paths.camera.size());
+                longestLight = std::max(longestLight, paths.light.size());
+                vertices += paths.camera.size() + paths.light.size();
+            }
+            const std::string what = name + " " + integratorName;
+            EXPECT_EQ(sink.nonFinite, 0) << what;
+            EXPECT_EQ(sink.badWeight, 0) << what;
+            EXPECT_EQ(sink.badLength, 0) << what;
+            EXPECT_EQ(sink.badRaster, 0) << what;
+            EXPECT_LE(longestCamera, size_t(kMaxDepth + 1)) << what;
+            EXPECT_LE(longestLight, size_t(kMaxDepth)) << what;
+            EXPECT_LE(mostCalls, kMaxStrategies) << what;
+            RecordProperty(what + " mean vertices per sample",
+                           std::to_string(double(vertices) / (kSize * kSize * kSamples)));
+        }
+    }
+}
+
+// The render loop's own count of dropped (NaN/Inf) samples, at the default max-depth.
+TEST(FailureScenes, RendersDropNoSample) {
+    for (const std::string& name : kFailureScenes) {
+        const Scene scene(builtinScene(name), 16, 16, silent);
+        for (const std::string& integrator : kIntegrators) {
+            Job job;
+            job.integrator = integrator;
+            job.size = 16;
+            job.spp = 4;
+            const RenderResult r = renderJob(scene, job);
+            EXPECT_EQ(r.droppedSamples, 0u) << name << " " << integrator;
+            for (float v : r.image().rgb) ASSERT_TRUE(std::isfinite(v) && v >= 0) << name << " " << integrator;
+        }
+    }
+}
+
+// ---- agreement where every compared method can sample every path --------------------------------
+
+// Pixels LT can sample: its one strategy (t = 1) joins a non-delta vertex to the pinhole, so a
+// pixel whose camera ray meets glass or a mirror first is black under LT, whatever lies behind.
+// A pixel counts as visible when none of a 3×3 grid of rays through it meets a delta surface.
+std::vector<bool> ltVisible(const Scene& scene) {
+    const Camera& cam = scene.camera();
+    std::vector<bool> mask(static_cast<size_t>(cam.width() * cam.height()), true);
+    for (int y = 0; y < cam.height(); ++y)
+        for (int x = 0; x < cam.width(); ++x)
+            for (int k = 0; k < 9; ++k) {
+                const Vec2 r{x + (0.5f + (k % 3)) / 3.0f, y + (0.5f + (k / 3)) / 3.0f};
+                const auto hit = scene.intersect(cam.position(), cam.direction(r));
+                if (hit && isDelta(scene.materialOf(hit->triangle))) mask[static_cast<size_t>(y * cam.width() + x)] = false;
+            }
+    return mask;
+}
+
+// Mean over the pixels of a block that the mask keeps (all of them for an empty mask).
+double maskedMean(const Image& img, Block b, const std::vector<bool>& mask) {
+    double sum = 0;
+    int n = 0;
+    for (int y = b.y; y < b.y + b.h; ++y)
+        for (int x = b.x; x < b.x + b.w; ++x) {
+            if (!mask.empty() && !mask[static_cast<size_t>(y * img.width + x)]) continue;
+            for (int c = 0; c < 3; ++c) sum += img.at(x, y)[c];
+            ++n;
+        }
+    return n > 0 ? sum / (3.0 * n) : 0.0;
+}
+
+struct AgreementCase {
+    std::string scene;
+    std::vector<std::string> integrators;  // those that sample all of the image's light: must agree
+    int runs, spp;
+    const char* why;                      // who is left out, and why
+    // Integrators that can sample the light only by rare events at test budgets (a 10 cm light
+    // found through glass by BSDF sampling): they may read low, by at most 1 − minFraction of
+    // the others' value per block, but never high.
+    std::vector<std::string> onlyMiss = {};
+    double minFraction = 1.0;
+    bool skipCaustic = false;  // leave the caustic spot out of onlyMiss checks (see Caustic)
+};
+
+std::ostream& operator<<(std::ostream& os, const AgreementCase& c) { return os << c.scene; }
+
+class Agreement : public testing::TestWithParam<AgreementCase> {};
+
+// The whole image and its four quadrants; every pair of the listed integrators must agree
+// within 4 standard errors of the difference. Pairs with LT compare only the pixels LT can
+// sample (ltVisible). An estimator that lives on rare events (PT finding a 10 cm light through
+// glass by BSDF sampling, with probability ~1e-4 per bounce, or its reflection in the ball,
+// ~1e-6) mostly misses them: its mean is low and its spread, which the misses leave out,
+// understates the error, so no number of runs a test can afford makes a 4σ test fair. Those
+// are checked one-sidedly (onlyMiss): never above the others, and low by a bounded fraction.
+TEST_P(Agreement, IntegratorsAgreeWithinStatisticalError) {
+    const AgreementCase& c = GetParam();
+    constexpr int kSize = 24;
+    const Scene scene(builtinScene(c.scene), kSize, kSize, silent);
+    const std::vector<bool> visible = ltVisible(scene);
+    std::vector<bool> noCaustic(visible.size(), true);
+    if (c.skipCaustic) {
+        const Block spot = around(scene, causticCentre(), 2);
+        for (int y = spot.y; y < spot.y + spot.h; ++y)
+            for (int x = spot.x; x < spot.x + spot.w; ++x) noCaustic[static_cast<size_t>(y * kSize + x)] = false;
+    }
+    std::vector<bool> visibleNoCaustic(visible.size());
+    for (size_t i = 0; i < visible.size(); ++i) visibleNoCaustic[i] = visible[i] && noCaustic[i];
+    const int h = kSize / 2;
+    const std::vector<Block> blocks = {{0, 0, kSize, kSize}, {0, 0, h, h}, {h, 0, h, h}, {0, h, h, h}, {h, h, h, h}};
+    // runs[integrator][mask][block]: one value per run; masks: none, lt-visible, and the same
+    // two without the caustic spot
+    const std::vector<std::vector<bool>> masks = {{}, visible, noCaustic, visibleNoCaustic};
+    std::map<std::string, std::vector<std::vector<std::vector<double>>>> runs;
+    std::vector<std::string> all = c.integrators;
+    all.insert(all.end(), c.onlyMiss.begin(), c.onlyMiss.end());
+    for (const std::string& integrator : all) {
+        auto& r = runs[integrator];
+        r.assign(masks.size(), std::vector<std::vector<double>>(blocks.size()));
+        Job job;
+        job.integrator = integrator;
+        job.size = kSize;
+        job.spp = c.spp;
+        for (int i = 0; i < c.runs; ++i) {
+            job.seed = 1000 + static_cast<uint64_t>(i);
+            const RenderResult res = renderJob(scene, job);
+            EXPECT_EQ(res.droppedSamples, 0u) << c.scene << " " << integrator;
+            const Image img = res.image();
+            for (size_t m = 0; m < masks.size(); ++m)
+                for (size_t k = 0; k < blocks.size(); ++k) r[m][k].push_back(maskedMean(img, blocks[k], masks[m]));
+        }
+    }
+    for (size_t a = 0; a < c.integrators.size(); ++a)
+        for (size_t b = a + 1; b < c.integrators.size(); ++b) {
+            const std::string &ia = c.integrators[a], &ib = c.integrators[b];
+            const int masked = (ia == "lt" || ib == "lt") ? 1 : 0;
+            for (size_t k = 0; k < blocks.size(); ++k) {
+                const Estimate ea = estimate(runs[ia][masked][k]), eb = estimate(runs[ib][masked][k]);
+                const double sigma = std::hypot(ea.stderr_, eb.stderr_);
+                EXPECT_LE(std::abs(ea.mean - eb.mean), 4 * sigma + 1e-7 * std::abs(ea.mean))
+                    << c.scene << " block " << k << (masked ? " (lt-visible pixels)" : "") << ": " << ia << " "
+                    << show(ea) << " vs " << ib << " " << show(eb);
+            }
+        }
+    for (const std::string& low : c.onlyMiss)
+        for (const std::string& ref : c.integrators) {
+            const int masked = ((low == "lt" || ref == "lt") ? 1 : 0) + (c.skipCaustic ? 2 : 0);
+            for (size_t k = 0; k < blocks.size(); ++k) {
+                const Estimate el = estimate(runs[low][masked][k]), er = estimate(runs[ref][masked][k]);
+                const double sigma = std::hypot(el.stderr_, er.stderr_);
+                const std::string what = c.scene + " block " + std::to_string(k) + ": " + low + " " + show(el) + " vs " +
+                                         ref + " " + show(er);
+                EXPECT_LE(el.mean, er.mean + 4 * sigma) << what << " (reads high: not a missed event)";
+                EXPECT_GE(el.mean, c.minFraction * er.mean - 4 * sigma) << what << " (misses too much)";
+            }
+        }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    FailureScenes, Agreement,
+    testing::Values(
+        AgreementCase{"caustic", {"lt", "bdpt"}, 16, 8, "pt: rare events (the caustic, the ball's reflection)", {"pt"}, 0.9, true},
+        AgreementCase{"caustic-point", {"lt", "bdpt"}, 16, 8, "pt cannot sample the caustic: see CausticPoint"},
+        AgreementCase{"sds", {"lt", "bdpt"}, 16, 8, "pt: rare events (also the light through the pane)", {"pt"}, 0.8, true},
+        AgreementCase{"sds-point", {"lt", "bdpt"}, 16, 8, "pt misses every point-light caustic; see SdsPoint"},
+        AgreementCase{"door-ajar", {"pt", "lt", "bdpt"}, 32, 8, "all can; pt and lt are noisy: more runs"},
+        AgreementCase{"contact", {"pt", "lt", "bdpt"}, 16, 8, "all can"},
+        AgreementCase{"grazing", {"pt", "bdpt"}, 16, 8, "lt: see Grazing"},
+        AgreementCase{"degenerate", {"pt", "lt", "bdpt"}, 16, 8, "all can"},
+        AgreementCase{"degenerate-tiny", {"pt", "bdpt"}, 16, 8, "lt: see DegenerateTiny"},
+        AgreementCase{"degenerate-far", {"pt", "lt", "bdpt"}, 16, 8, "all can"}),
+    [](const testing::TestParamInfo<AgreementCase>& info) {
+        std::string name = info.param.scene;
+        std::replace(name.begin(), name.end(), '-', '_');
+        return name;
+    });
+
+// ---- documented failures: what a method cannot sample is black -----------------------------------
+
+// caustic: PT can sample the caustic, but only when a BSDF-sampled direction from the floor
+// passes through the ball and hits the 10 cm light: rare, so its estimate in the caustic is
+// mostly too low with the occasional huge sample. Its relative spread over independent runs is
+// many times that of LT and BDPT, which trace the light through the ball.
+TEST(Caustic, PathTracingIsNoisyInTheCaustic) {
+    constexpr int kSize = 48, kRuns = 8;
+    const Scene scene(builtinScene("caustic"), kSize, kSize, silent);
+    const Block caustic = around(scene, causticCentre(), 1);
+    std::map<std::string, double> spread;
+    for (const std::string& integrator : kIntegrators) {
+        Job job;
+        job.integrator = integrator;
+        job.size = kSize;
+        job.spp = 8;
+        const Estimate e = estimate(regionRuns(scene, job, kRuns, {caustic})[0]);
+        spread[integrator] = e.stderr_ / e.mean;
+        std::cout << "caustic, caustic region, " << integrator << ": " << show(e) << "\n";
+    }
+    EXPECT_GT(spread["pt"], 3 * spread["lt"]);
+    EXPECT_GT(spread["pt"], 3 * spread["bdpt"]);
+}
+
+// caustic-point: the caustic on the floor is lit only through the glass ball by a point light.
+// PT's walks cannot hit a point and its shadow rays from the floor hit the ball, so in the
+// caustic PT sees only the little light that reaches it by other ways (the lit floor seen
+// through the ball): under 10% of the truth. LT and BDPT (strategy t = 1) see the caustic and agree.
+TEST(CausticPoint, PathTracingCannotSampleTheCaustic) {
+    constexpr int kSize = 48, kRuns = 6;
+    const Scene scene(builtinScene("caustic-point"), kSize, kSize, silent);
+    const Block caustic = around(scene, causticCentre(), 1);
+    std::map<std::string, Estimate> e;
+    for (const std::string& integrator : kIntegrators) {
+        Job job;
+        job.integrator = integrator;
+        job.size = kSize;
+        job.spp = 8;
+        e[integrator] = estimate(regionRuns(scene, job, kRuns, {caustic})[0]);
+        std::cout << "caustic-point, caustic region, " << integrator << ": " << show(e[integrator]) << "\n";
+    }
+    EXPECT_GT(e["lt"].mean, 10 * e["lt"].stderr_) << "lt sees the caustic";
+    EXPECT_LE(std::abs(e["lt"].mean - e["bdpt"].mean), 4 * std::hypot(e["lt"].stderr_, e["bdpt"].stderr_));
+    EXPECT_LT(e["pt"].mean, 0.1 * e["lt"].mean) << "pt cannot sample a point-light caustic";
+}
+
+// sds, sds-point: nothing reaches the camera through the pane under LT, since its only strategy
+// (t = 1) connects a non-delta vertex straight to the pinhole and the pane is in the way. Exactly
+// zero, not just small. The same region under the caustic scene without the pane is bright.
+TEST(Sds, LightTracingSeesNothingThroughThePane) {
+    constexpr int kSize = 32;
+    for (const char* name : {"sds", "sds-point"}) {
+        const Scene scene(builtinScene(name), kSize, kSize, silent);
+        Job job;
+        job.integrator = "lt";
+        job.size = kSize;
+        job.spp = 8;
+        const Image img = renderJob(scene, job).image();
+        EXPECT_EQ(regionMean(img, around(scene, causticCentre(), 2)), 0.0) << name;
+    }
+}
+
+// sds-point: the caustic seen through the pane is the path L S S D S S E with delta ends (point
+// light, pinhole): every vertex next to the only diffuse one is specular, so no strategy (s, t) of
+// any integrator can join the subpaths. All three miss it. How much light that is: the same
+// caustic without the pane (caustic-point, seen by LT) is ~8, and a 2 cm pane of index 1.5
+// passes ~90% of it; each integrator sees under 10% of that through the pane.
+//
+// (With the small area light, scene sds, PT and BDPT can reach the caustic through the pane by
+// strategy s = 0 alone — a camera walk through pane, floor and ball that happens to hit the 10 cm
+// light — which at test budgets yields a few fireflies: see Agreement/sds.)
+TEST(SdsPoint, NoIntegratorCanSampleTheCausticThroughThePane) {
+    constexpr int kSize = 48, kRuns = 6;
+    const Scene withoutPane(builtinScene("caustic-point"), kSize, kSize, silent);
+    const Scene withPane(builtinScene("sds-point"), kSize, kSize, silent);
+    const Block caustic = around(withoutPane, causticCentre(), 1);
+    Job job;
+    job.integrator = "lt";
+    job.size = kSize;
+    job.spp = 8;
+    const Estimate truth = estimate(regionRuns(withoutPane, job, kRuns, {caustic})[0]);
+    std::cout << "caustic-point (no pane), caustic region, lt: " << show(truth) << "\n";
+    EXPECT_GT(truth.mean, 10 * truth.stderr_) << "lt sees the caustic without the pane";
+    for (const std::string& integrator : kIntegrators) {
+        job.integrator = integrator;
+        const Estimate missed = estimate(regionRuns(withPane, job, kRuns, {caustic})[0]);
+        std::cout << "sds-point, caustic through the pane, " << integrator << ": " << show(missed) << "\n";
+        EXPECT_LT(missed.mean, 0.1 * truth.mean) << integrator << " cannot sample an SDS path with delta ends";
+    }
+}
+
+// grazing: LT reaches the glossy reflection only with light paths that meet the plane within a
+// few hundredths of a degree of the mirror direction toward a 1°-wide view: about 1e-5 of them.
+// Unbiased in principle, but at test budgets its reflection is a few fireflies, while PT and
+// BDPT (which agree, see Agreement) converge. The light seen directly is the same for all three.
+TEST(Grazing, LightTracingRarelyFindsTheGlossyReflection) {
+    constexpr int kSize = 24;
+    const Scene scene(builtinScene("grazing"), kSize, kSize, silent);
+    // The reflection: the rows below the light, which the camera sees at the image's centre line.
+    const auto light = scene.camera().raster(normalize(Vec3(0, 0.5f, -573.0f) - scene.camera().position()));
+    ASSERT_TRUE(light);
+    const Block reflection{0, static_cast<int>(light->y) + 2, kSize, kSize - static_cast<int>(light->y) - 2};
+    const Block direct{0, static_cast<int>(light->y) - 1, kSize, 2};
+    std::map<std::string, double> reflected, seen;
+    for (const std::string& integrator : kIntegrators) {
+        Job job;
+        job.integrator = integrator;
+        job.size = kSize;
+        job.spp = 64;
+        job.maxDepth = 2;
+        const Image img = renderJob(scene, job).image();
+        reflected[integrator] = regionMean(img, reflection);
+        seen[integrator] = regionMean(img, direct);
+        std::cout << "grazing, " << integrator << ": reflection " << reflected[integrator] << ", light "
+                  << seen[integrator] << "\n";
+    }
+    EXPECT_LT(reflected["lt"], 0.2 * reflected["bdpt"]);
+    EXPECT_NEAR(seen["lt"], seen["bdpt"], 0.05 * seen["bdpt"]);
+    EXPECT_NEAR(seen["pt"], seen["bdpt"], 0.05 * seen["bdpt"]);
+}
+
+// degenerate-tiny: the camera sees 3 mm of a 10 km scene. LT is unbiased in principle, but a
+// light path lands in view with a probability of about (3 mm / 5 m)² ~ 1e-7: at test budgets its
+// image is black while PT and BDPT (which agree, see Agreement) see the cube and the ground.
+TEST(DegenerateTiny, LightTracingPracticallyNeverReachesTheView) {
+    const Scene scene(builtinScene("degenerate-tiny"), 16, 16, silent);
+    Job job;
+    job.size = 16;
+    job.spp = 4;
+    job.integrator = "pt";
+    const double pt = regionMean(renderJob(scene, job).image(), {0, 0, 16, 16});
+    job.integrator = "lt";
+    const double lt = regionMean(renderJob(scene, job).image(), {0, 0, 16, 16});
+    EXPECT_GT(pt, 0.0);
+    EXPECT_LT(lt, 0.01 * pt);
+}
+
+// degenerate-far is the same box as a unit-scale one, scaled 500× and moved to 1e6: radiance is
+// scale invariant, so the two images must agree; what float precision at 1e6 costs (ray offsets
+// of metres, coordinates on a 6 cm grid) shows here as a difference.
+TEST(DegenerateFar, MatchesTheSameBoxAtUnitScale) {
+    constexpr int kSize = 24, kRuns = 8;
+    const SceneDesc far = builtinScene("degenerate-far");
+    SceneDesc unit = far;
+    const Vec3 origin(1e6f, 1e6f, 1e6f);
+    for (MeshDesc& m : unit.meshes)
+        for (Vec3& p : m.positions) p = (p - origin) / 500.0f;  // the subtraction is exact; the division rounds
+    unit.camera.position = (unit.camera.position - origin) / 500.0f;
+    const Scene farScene(far, kSize, kSize, silent), unitScene(unit, kSize, kSize, silent);
+    Job job;
+    job.integrator = "bdpt";
+    job.size = kSize;
+    job.spp = 8;
+    const std::vector<Block> regions = {{0, 0, kSize, kSize}};
+    const Estimate f = estimate(regionRuns(farScene, job, kRuns, regions)[0]);
+    const Estimate u = estimate(regionRuns(unitScene, job, kRuns, regions)[0]);
+    std::cout << "box at 1e6: " << show(f) << ", at unit scale: " << show(u) << "\n";
+    EXPECT_LE(std::abs(f.mean - u.mean), 4 * std::hypot(f.stderr_, u.stderr_));
+}
+
+// ---- fireflies ------------------------------------------------------------------------------
+
+// contact: each pixel is rendered as M independent one-sample estimates (1 spp per pass,
+// M passes; a pass of LT traces one light path per pixel); the firefly ratio of a pixel is its
+// largest one-sample estimate over its mean, and the scene's is the largest over the pixels
+// (M bounds it: one sample holding all the energy).
+//
+// Bound for BDPT: with the power heuristic a strategy's weighted estimate is at most half the
+// unweighted estimate of path tracing by BSDF sampling, w_s f/p_s = p_s f / Σ p_i² ≤ f / (2 p_0),
+// and in this scene (Lambertian, flat normals, albedo ≤ 0.725, Russian roulette by albedo)
+// f / p_0 ≤ Le. Connections across the 1e-4 gap or the coincident faces therefore cannot make a
+// sample exceed a fixed multiple of what the plain Cornell box (no contacts) produces; the
+// assertion allows twice the Cornell box's ratio.
+TEST(Contact, FireflyRatioIsBoundedForBdpt) {
+    constexpr int kSize = 16, kPasses = 256;
+    auto fireflyRatio = [&](const std::string& sceneName, const std::string& integrator) {
+        const Scene scene(builtinScene(sceneName), kSize, kSize, silent);
+        std::vector<double> sum(kSize * kSize, 0.0), most(kSize * kSize, 0.0);
+        for (int pass = 0; pass < kPasses; ++pass) {
+            Job job;
+            job.integrator = integrator;
+            job.size = kSize;
+            job.spp = 1;
+            job.seed = 5;
+            job.firstPass = static_cast<uint64_t>(pass);
+            const RenderResult r = renderJob(scene, job);
+            EXPECT_EQ(r.droppedSamples, 0u);
+            const Image img = r.image();
+            for (int p = 0; p < kSize * kSize; ++p) {
+                const float* v = img.rgb.data() + 3 * p;
+                const double lum = 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+                sum[p] += lum;
+                most[p] = std::max(most[p], lum);
+            }
+        }
+        double ratio = 0;
+        for (int p = 0; p < kSize * kSize; ++p)
+            if (sum[p] > 0) ratio = std::max(ratio, most[p] / (sum[p] / kPasses));
+        return ratio;
+    };
+    std::map<std::string, double> contact;
+    for (const std::string& integrator : kIntegrators) {
+        contact[integrator] = fireflyRatio("contact", integrator);
+        std::cout << "contact, largest one-sample estimate / pixel mean, " << integrator << ": " << contact[integrator]
+                  << " (of at most " << kPasses << ")\n";
+        RecordProperty("firefly ratio " + integrator, std::to_string(contact[integrator]));
+    }
+    const double cornell = fireflyRatio("cornell", "bdpt");
+    std::cout << "cornell, the same for bdpt: " << cornell << "\n";
+    EXPECT_LE(contact["bdpt"], 2.0 * cornell);
+}
+
+// ---- glTF: export round trip and the shipped copies ---------------------------------------------
+
+void expectSameMaterial(const Material& a, const Material& b, const std::string& what) {
+    EXPECT_EQ(a.name, b.name) << what;
+    EXPECT_EQ(a.type, b.type) << what;
+    EXPECT_TRUE(a.albedo == b.albedo) << what;
+    EXPECT_TRUE(a.emission == b.emission) << what;
+    EXPECT_EQ(a.twoSidedEmission, b.twoSidedEmission) << what;
+    if (a.type == MaterialType::Conductor || a.type == MaterialType::Plastic) {
+        EXPECT_EQ(a.roughness, b.roughness) << what;
+    }
+    if (a.type == MaterialType::Dielectric || a.type == MaterialType::Plastic) {
+        EXPECT_EQ(a.ior, b.ior) << what;
+    }
+}
+
+// Compares what rendering sees: the Scene's triangles (after both sides dropped degenerate ones),
+// the materials, the point lights and the camera.
+void expectSameScene(const SceneDesc& original, const SceneDesc& loaded, const std::string& what) {
+    ASSERT_EQ(original.materials.size(), loaded.materials.size()) << what;
+    for (size_t i = 0; i < original.materials.size(); ++i)
+        expectSameMaterial(original.materials[i], loaded.materials[i], what + " material " + std::to_string(i));
+    ASSERT_EQ(original.pointLights.size(), loaded.pointLights.size()) << what;
+    for (size_t i = 0; i < original.pointLights.size(); ++i) {
+        EXPECT_TRUE(original.pointLights[i].position == loaded.pointLights[i].position) << what;
+        EXPECT_TRUE(original.pointLights[i].intensity == loaded.pointLights[i].intensity) << what;
+    }
+    const CameraDesc &ca = original.camera, &cb = loaded.camera;
+    EXPECT_EQ(ca.present, cb.present) << what;
+    if (ca.present && cb.present) {
+        EXPECT_TRUE(ca.position == cb.position) << what;
+        EXPECT_EQ(ca.yfov, cb.yfov) << what;
+        EXPECT_NEAR(length(ca.forward - cb.forward), 0.0f, 1e-6f) << what;
+        EXPECT_NEAR(length(ca.up - cb.up), 0.0f, 1e-6f) << what;
+    }
+    const Scene sa(original, 8, 8, silent), sb(loaded, 8, 8, silent);
+    ASSERT_EQ(sa.triangles().size(), sb.triangles().size()) << what;
+    for (size_t i = 0; i < sa.triangles().size(); ++i) {
+        const Triangle &ta = sa.triangles()[i], &tb = sb.triangles()[i];
+        ASSERT_EQ(ta.material, tb.material) << what << " triangle " << i;
+        ASSERT_EQ(ta.smooth, tb.smooth) << what << " triangle " << i;
+        for (int k = 0; k < 3; ++k) {
+            ASSERT_TRUE(ta.p[k] == tb.p[k]) << what << " triangle " << i;
+            ASSERT_NEAR(length(ta.n[k] - tb.n[k]), 0.0f, 1e-6f) << what << " triangle " << i;
+        }
+    }
+    EXPECT_EQ(sa.emitters().all().size(), sb.emitters().all().size()) << what;
+}
+
+TEST(GltfExport, EveryBuiltinRoundTrips) {
+    const fs::path dir = fs::temp_directory_path() / ("tripath-export-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    fs::create_directories(dir);
+    for (const BuiltinInfo& info : builtinScenes()) {
+        const SceneDesc original = builtinScene(info.name);
+        const std::string path = (dir / (info.name + ".gltf")).string();
+        std::vector<std::string> warnings;
+        writeGltf(original, path, [&](const std::string& w) { warnings.push_back(w); });
+        EXPECT_TRUE(warnings.empty()) << info.name << ": " << (warnings.empty() ? "" : warnings.front());
+        expectSameScene(original, loadGltf(path, silent), info.name);
+    }
+    fs::remove_all(dir);
+}
+
+// scenes/<name>.gltf are the files users load; they must still be what the built-ins are.
+// Regenerate with `tripath export --scene NAME --out scenes/NAME.gltf`.
+TEST(GltfExport, ShippedCopiesMatchTheBuiltins) {
+    for (const std::string& name : kFailureScenes) {
+        const fs::path path = fs::path(TRIPATH_SOURCE_DIR) / "scenes" / (name + ".gltf");
+        ASSERT_TRUE(fs::exists(path)) << path;
+        expectSameScene(builtinScene(name), loadGltf(path.string(), silent), path.string());
+    }
+}
+
+TEST(GltfExport, MaterialsMapBackThroughTheLoadersTable) {
+    SceneDesc d;
+    d.name = "materials";
+    auto add = [&](MaterialType type, float roughness, float ior, Spectrum emission, bool twoSided) {
+        Material m;
+        m.name = "m" + std::to_string(d.materials.size());
+        m.type = type;
+        m.albedo = Spectrum(0.25f, 0.5f, 0.75f);
+        m.roughness = roughness;
+        m.ior = ior;
+        m.emission = emission;
+        m.twoSidedEmission = twoSided;
+        d.materials.push_back(m);
+    };
+    add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(0.0f), false);
+    add(MaterialType::Mirror, 0.0f, 1.5f, Spectrum(0.0f), false);
+    add(MaterialType::Conductor, 0.3f, 1.5f, Spectrum(0.0f), false);
+    add(MaterialType::Plastic, 0.4f, 1.7f, Spectrum(0.0f), false);
+    add(MaterialType::Dielectric, 0.0f, 1.33f, Spectrum(0.0f), false);
+    add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(17.0f, 12.0f, 4.0f), true);  // strength 32
+    add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(0.3f, 0.2f, 0.1f), false);   // no strength needed
+    add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(1e6f, 3.3f, 0.0f), false);
+    for (int i = 0; i < static_cast<int>(d.materials.size()); ++i)
+        d.meshes.push_back({"tri", {{float(i), 0, 0}, {float(i) + 1, 0, 0}, {float(i), 1, 0}}, {}, {0, 1, 2}, i});
+    d.pointLights.push_back({{1, 2, 3}, Spectrum(100.0f, 0.5f, 0.0f)});
+    d.camera = CameraDesc{true, {0.1f, 0.2f, 5}, normalize(Vec3(0.1f, -0.2f, -1)), {}, 0.5f};
+    d.camera.up = normalize(cross(cross(d.camera.forward, Vec3(0, 1, 0)), d.camera.forward));
+    const fs::path path = fs::temp_directory_path() / "tripath-export-materials.gltf";
+    writeGltf(d, path.string(), silent);
+    expectSameScene(d, loadGltf(path.string(), silent), "materials");
+    fs::remove(path);
+}
+
+TEST(GltfExport, RefusesToWriteIntoAMissingFolder) {
+    EXPECT_THROW(writeGltf(builtinScene("contact"), "/nonexistent-folder/x.gltf", silent), InputError);
+}
+
+// ---- fuzzing regressions --------------------------------------------------------------------------
+
+// Every input the fuzzer (fuzz/gltf_fuzzer.cpp) found to crash, hang or throw something else is
+// kept in tests/data/fuzz/; each must now load, or fail with an InputError, and build a Scene.
+TEST(Fuzz, SavedInputsLoadOrFailCleanly) {
+    const fs::path dir = fs::path(TRIPATH_SOURCE_DIR) / "tests" / "data" / "fuzz";
+    if (!fs::exists(dir)) GTEST_SKIP() << "no saved fuzzer inputs";
+    int files = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        if (!entry.is_regular_file() || entry.path().extension() == ".md") continue;
+        ++files;
+        const std::string path = entry.path().string();
+        try {
+            const Scene scene(loadGltf(path, silent), 4, 4, silent);
+            SUCCEED() << path << " loads";
+        } catch (const InputError&) {
+            SUCCEED() << path << " is rejected";
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << path << ": threw something other than InputError: " << e.what();
+        }
+    }
+    RecordProperty("inputs", files);
+}
+
+}  // namespace
+}  // namespace tripath
