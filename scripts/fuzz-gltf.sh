@@ -3,6 +3,8 @@
 # AddressSanitizer, at the lowest CPU priority.
 #
 #   scripts/fuzz-gltf.sh [SECONDS]      default 600
+#   KEEP_GOING=1 scripts/fuzz-gltf.sh   fork mode: save each crash, hang or OOM and carry on
+#                                       (libFuzzer otherwise stops at the first one)
 #
 # Needs clang with libFuzzer (Debian: clang and libclang-rt-<version>-dev). Builds into
 # build-fuzz/ (-DTRIPATH_FUZZ=ON). The seed corpus is scenes/*.gltf plus fuzz/seeds/ (a .glb and
@@ -18,6 +20,8 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo 
 nice -n 19 cmake --build build-fuzz -j"$(nproc)" --target gltf_fuzzer
 
 mkdir -p build-fuzz/corpus build-fuzz/artifacts
+extra=()
+[ "${KEEP_GOING:-0}" = 1 ] && extra=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
 # -max_len: big enough for the small scenes; the 135 KB caustic files are seeds too, but the
 # mutator works on their first 64 KB (their JSON header and the start of the buffer).
 # -timeout: an input that takes more than 10 s to load (a hang) is an artifact too.
@@ -25,5 +29,5 @@ mkdir -p build-fuzz/corpus build-fuzz/artifacts
 # into std::bad_alloc (which escapes the fuzzer as a crash with its input) rather than an abort.
 ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
 nice -n 19 ./build-fuzz/gltf_fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-  -max_len=65536 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/ \
+  -max_len=65536 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/ "${extra[@]}" \
   build-fuzz/corpus scenes fuzz/seeds

@@ -5,82 +5,14 @@
 #include <cmath>
 
 #include "geometry/error.h"
+#include "geometry/scene_builder.h"
 #include "geometry/failure_scenes.h"
 
 namespace tripath {
 
 namespace {
 
-// ---- building blocks --------------------------------------------------------------------------
-
-int addMaterial(SceneDesc& s, Material m) {
-    s.materials.push_back(std::move(m));
-    return static_cast<int>(s.materials.size()) - 1;
-}
-
-Material lambertian(const char* name, Spectrum albedo) {
-    Material m;
-    m.name = name;
-    m.type = MaterialType::Lambertian;
-    m.albedo = albedo;
-    return m;
-}
-
-Material emitter(const char* name, Spectrum radiance) {
-    Material m = lambertian(name, Spectrum(0.0f));
-    m.emission = radiance;
-    return m;
-}
-
-// Quad a b c d, counter-clockwise seen from its front (the side its normal points to).
-void addQuad(SceneDesc& s, const char* name, int material, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    s.meshes.push_back(MeshDesc{name, {a, b, c, d}, {}, {0, 1, 2, 0, 2, 3}, material});
-}
-
-// Axis-aligned box of half-size h, rotated by `angle` about +y, resting on y = 0; faces outward.
-void addBox(SceneDesc& s, const char* name, int material, Vec3 centre, Vec3 h, float angle) {
-    const float c = std::cos(angle), sn = std::sin(angle);
-    auto corner = [&](float x, float y, float z) {
-        return Vec3(centre.x + c * x * h.x + sn * z * h.z, centre.y + y * h.y, centre.z - sn * x * h.x + c * z * h.z);
-    };
-    MeshDesc m{name, {}, {}, {}, material};
-    for (int i = 0; i < 8; ++i) m.positions.push_back(corner(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
-    // Corner i has bit 0 = +x, bit 1 = +y, bit 2 = +z; each face listed counter-clockwise from outside.
-    const uint32_t faces[6][4] = {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3}, {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}};
-    for (const auto& f : faces)
-        for (uint32_t k : {f[0], f[1], f[2], f[0], f[2], f[3]}) m.indices.push_back(k);
-    s.meshes.push_back(std::move(m));
-}
-
-// UV sphere, with smooth shading normals unless `flat`; `inward` turns its front faces inside.
-void addSphere(SceneDesc& s, const char* name, int material, Vec3 centre, float radius, int rings, bool inward = false,
-               bool flat = false) {
-    MeshDesc m{name, {}, {}, {}, material};
-    const int segments = 2 * rings;
-    for (int i = 0; i <= rings; ++i) {
-        const float theta = kPi * i / rings;
-        for (int j = 0; j <= segments; ++j) {
-            const float phi = 2.0f * kPi * j / segments;
-            const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-            m.positions.push_back(centre + n * radius);
-            if (!flat) m.normals.push_back(inward ? -n : n);
-        }
-    }
-    auto at = [&](int i, int j) { return static_cast<uint32_t>(i * (segments + 1) + j); };
-    for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-            // Outward winding is (i,j) (i+1,j+1) (i+1,j) here; reverse it for inward.
-            const uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-            // At the poles one triangle of each quad has zero area: leave it out.
-            auto triangle = [&](uint32_t p, uint32_t q, uint32_t r) {
-                if (inward) std::swap(p, r);
-                m.indices.insert(m.indices.end(), {p, q, r});
-            };
-            if (i != rings - 1) triangle(a, c, b);
-            if (i != 0) triangle(a, d, c);
-        }
-    s.meshes.push_back(std::move(m));
-}
+using namespace build;
 
 // ---- the Cornell box family -------------------------------------------------------------------
 // A 2 m box: x ∈ [-1,1] (red left, green right), y ∈ [0,2], z ∈ [-1,1], open at z = +1 where
@@ -109,8 +41,9 @@ void addCeilingLight(SceneDesc& s, float half, Spectrum radiance) {
 
 void addCornellBoxes(SceneDesc& s) {
     const int white = addMaterial(s, lambertian("box", Spectrum(0.725f, 0.71f, 0.68f)));
-    addBox(s, "tall box", white, {-0.34f, 0.6f, -0.3f}, {0.3f, 0.6f, 0.3f}, 0.3f);
-    addBox(s, "short box", white, {0.35f, 0.3f, 0.3f}, {0.3f, 0.3f, 0.3f}, -0.3f);
+    const Vec3 tall(-0.34f, 0.6f, -0.3f), shortBox(0.35f, 0.3f, 0.3f);
+    addBox(s, "tall box", white, tall - Vec3(0.3f, 0.6f, 0.3f), tall + Vec3(0.3f, 0.6f, 0.3f), 0.3f, tall);
+    addBox(s, "short box", white, shortBox - Vec3(0.3f), shortBox + Vec3(0.3f), -0.3f, shortBox);
 }
 
 SceneDesc cornell() {
@@ -129,13 +62,8 @@ SceneDesc cornellSpheres() {
     mirror.name = "mirror";
     mirror.type = MaterialType::Mirror;
     mirror.albedo = Spectrum(0.95f);
-    Material glass;
-    glass.name = "glass";
-    glass.type = MaterialType::Dielectric;
-    glass.albedo = Spectrum(1.0f);
-    glass.ior = 1.5f;
     addSphere(s, "mirror sphere", addMaterial(s, mirror), {-0.45f, 0.4f, -0.35f}, 0.4f, 48);
-    addSphere(s, "glass sphere", addMaterial(s, glass), {0.45f, 0.4f, 0.3f}, 0.4f, 48);
+    addSphere(s, "glass sphere", addMaterial(s, glass("glass")), {0.45f, 0.4f, 0.3f}, 0.4f, 48);
     return s;
 }
 
@@ -166,8 +94,7 @@ SceneDesc cornellPoint() {
 
 SceneDesc veachMis() {
     SceneDesc s;
-    s.camera = CameraDesc{true, {0, 2.5f, 10.0f}, normalize(Vec3(0, -0.36f, -1)), {}, 0.6f};
-    s.camera.up = normalize(cross(cross(s.camera.forward, Vec3(0, 1, 0)), s.camera.forward));
+    s.camera = lookAt({0, 2.5f, 10.0f}, Vec3(0, 2.5f, 10.0f) + Vec3(0, -0.36f, -1), 0.6f);
     const int backdrop = addMaterial(s, lambertian("backdrop", Spectrum(0.2f)));
     addQuad(s, "floor", backdrop, {-10, -3, 6}, {10, -3, 6}, {10, -3, -8}, {-10, -3, -8});
     addQuad(s, "wall", backdrop, {-10, -3, -8}, {10, -3, -8}, {10, 8, -8}, {-10, 8, -8});

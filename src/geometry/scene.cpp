@@ -47,9 +47,13 @@ void checkMesh(const SceneDesc& desc, const MeshDesc& m) {
         if (i >= m.positions.size())
             throw InputError(fmt::format("{}: mesh '{}' index {} is out of range ({} positions)", desc.name,
                                          m.name, i, m.positions.size()));
+    // Beyond 1e15 m, squared distances between vertices (r² in g and every area pdf) come close to
+    // float's range; nothing physical needs such coordinates.
+    constexpr float kMaxCoordinate = 1e15f;
     for (const Vec3& p : m.positions)
-        if (!isFinite(p))
-            throw InputError(fmt::format("{}: mesh '{}' has a non-finite vertex position", desc.name, m.name));
+        if (!isFinite(p) || maxComponent(abs(p)) > kMaxCoordinate)
+            throw InputError(fmt::format("{}: mesh '{}' has a vertex position that is not finite or beyond ±1e15",
+                                         desc.name, m.name));
 }
 
 }  // namespace
@@ -77,7 +81,11 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
     emitters_ = Emitters(triangles_, materials_, points);
     if (emitters_.empty()) throw InputError(fmt::format("{}: the scene has no emitter (nothing emits light)", name_));
 
-    camera_ = Camera(desc.camera.present ? desc.camera : frameBounds(lo_, hi_), width, height);
+    const CameraDesc cam = desc.camera.present ? desc.camera : frameBounds(lo_, hi_);
+    if (!isFinite(cam.position) || !isFinite(cam.forward) || !isFinite(cam.up) || !(lengthSquared(cam.forward) > 0) ||
+        !(lengthSquared(cross(cam.forward, cam.up)) > 0) || !(cam.yfov > 0 && cam.yfov < kPi))
+        throw InputError(fmt::format("{}: the camera is degenerate (non-finite position or direction, or a bad yfov)", name_));
+    camera_ = Camera(cam, width, height);
     buildBvh();
 }
 
