@@ -33,13 +33,19 @@ echo "before: $(uptime)" | tee out/load-1-before.txt
 # Whole renders through the CLI: the render loop's own seconds (scene loading and EXR writing
 # excluded) are in the summary line "N spp in S s". Depth 16 is the CLI default, 8 the depth the
 # targets are stated at.
+# /usr/bin/time adds the process's CPU seconds: on a shared machine the wall-clock spp/s says
+# how many cores we were given as much as how fast the code is. A 1-pixel render measures the
+# fixed CPU cost (process start-up, scene build, EXR writing) to take off.
+/usr/bin/time -f "cpu %U %S" ./build-bench/tripath render --scene cornell --integrator pt --spp 1 \
+    --width 1 --height 1 --out /tmp/tripath-bench-fixed.exr > out/render-fixed.txt 2>&1
 for depth in 16 8; do
     for integrator in pt lt bdpt; do
         spp=16
         [ "$integrator" = bdpt ] && spp=8
-        ./build-bench/tripath render --scene cornell --integrator "$integrator" --spp "$spp" \
-            --max-depth "$depth" --width 512 --height 512 --out "/tmp/tripath-bench-$integrator.exr" \
-            2>&1 | tee "out/render-$integrator-d$depth.txt" | grep spp || true
+        /usr/bin/time -f "cpu %U %S" ./build-bench/tripath render --scene cornell --integrator "$integrator" \
+            --spp "$spp" --max-depth "$depth" --width 512 --height 512 --out "/tmp/tripath-bench-$integrator.exr" \
+            > "out/render-$integrator-d$depth.txt" 2>&1
+        grep -h "spp in\|^cpu" "out/render-$integrator-d$depth.txt" | tr '\n' ' '; echo
     done
 done
 echo "after: $(uptime)" | tee out/load-2-after.txt
