@@ -7,22 +7,13 @@
 #include <algorithm>
 
 #include "compare.h"
+#include "image/markup.h"
 
 namespace tripath::app {
 
 namespace {
 
-std::string escape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '&') out += "&amp;";
-        else if (c == '<') out += "&lt;";
-        else if (c == '>') out += "&gt;";
-        else if (c == '"') out += "&quot;";
-        else out += c;
-    }
-    return out;
-}
+std::string escape(const std::string& s) { return escapeMarkup(s); }
 
 // Registered first, in <head>, so that errors while the images load are caught too.
 constexpr const char* kErrorCapture = R"(<script>

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Installs tripath's build dependencies from Debian's packages. Idempotent and quick when
-# everything is already present: apt is only touched when a package is missing.
+# Installs tripath's build dependencies from Debian's packages, plus any package named as an
+# argument. Idempotent and quick when everything is already present: apt is only touched when a
+# package is missing.
 set -euo pipefail
 packages=(build-essential cmake pkg-config
   libembree-dev libopenexr-dev libopenimageio-dev libtinygltf-dev nlohmann-json3-dev
   libbenchmark-dev libgtest-dev libtbb-dev libcli11-dev libfmt-dev
-  fonts-dejavu-core)  # the labels of `tripath compare`'s charts and side-by-side images
+  fonts-dejavu-core  # the labels of `tripath compare`'s charts and side-by-side images
+  "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "image/chart_layout.h"
+#include "image/markup.h"
 
 namespace tripath {
 
@@ -9,17 +10,7 @@ namespace {
 
 using chart::Layout;
 
-std::string escape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '&') out += "&amp;";
-        else if (c == '<') out += "&lt;";
-        else if (c == '>') out += "&gt;";
-        else if (c == '"') out += "&quot;";
-        else out += c;
-    }
-    return out;
-}
+std::string escape(const std::string& s) { return escapeMarkup(s); }
 
 std::string hex(const std::array<uint8_t, 3>& c) { return fmt::format("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]); }
 
