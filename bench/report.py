@@ -241,11 +241,18 @@ def main(out):
     p("### Targets\n")
     def verdict(ok):
         return "**met**" if ok else "**missed**"
+    # The verdict uses the per-CPU-second fraction: the wall-clock one compares two runs made at
+    # different moments, each with whatever share of the cores the machine left it, and is only
+    # meaningful when both had the two cores (CPU use near 2.0).
     for k in ("pt", "bdpt"):
         if ("cornell", k) in fractions:
             w, c = fractions[("cornell", k)]
-            p(f"- {k} on cornell, max-depth 8, 2 threads: rays/s = {w:.0%} of the ceiling (wall), "
-              f"{c:.0%} per CPU-second; target ≥ 60%: {verdict(max(w, c) >= 0.6)}")
+            r2 = runs[f"sample/{k}/cornell/depth:8/threads:2"]
+            ci = runs["ceiling/intersect/cornell/threads:2"]
+            co = runs["ceiling/occluded/cornell/threads:2"]
+            uses = f"CPU use {r2['cpu_time'] / r2['real_time']:.2f} vs ceiling {ci['cpu_time'] / ci['real_time']:.2f}/{co['cpu_time'] / co['real_time']:.2f}"
+            p(f"- {k} on cornell, max-depth 8, 2 threads: rays/s = {c:.0%} of the ceiling per CPU-second "
+              f"(wall: {w:.0%}, {uses}); target ≥ 60%: {verdict(c >= 0.6)}")
     for k, target in (("pt", 7), ("bdpt", 2)):
         for d in (16, 8):
             if (k, d) in renders:

@@ -160,6 +160,9 @@ Vec3 Scene::shadingNormal(uint32_t triangle, float u, float v) const {
 }
 
 std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) const {
+    // Debian's Embree asserts on invalid rays; a non-finite ray (which validation should have made
+    // impossible) must cost a sample, never the process.
+    if (!isFinite(origin) || !isFinite(dir)) return std::nullopt;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
@@ -194,6 +197,7 @@ bool Scene::unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const {
     const bool aSurface = lengthSquared(aNormal) > 0, bSurface = lengthSquared(bNormal) > 0;
     const Vec3 from = aSurface ? offsetRayOrigin(a, aNormal, b - a) : a;
     const Vec3 to = bSurface ? offsetRayOrigin(b, bNormal, a - b) : b;
+    if (!isFinite(from) || !isFinite(to)) return false;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay ray;
