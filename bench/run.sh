@@ -4,7 +4,7 @@
 # fresh process (out/memory.json), times full 512×512 renders of cornell per integrator
 # (out/render-*.txt), and prints the README's tables (also kept in out/report.md).
 #
-# About 6-8 minutes on the 2-core development machine when it is otherwise idle. Knobs:
+# About 6 minutes on the 2-core development machine at load 3, 9 at load 5-8. Knobs:
 #   MIN_TIME=0.5   seconds per benchmark and repetition (Google Benchmark 1.7 takes a bare number)
 #   REPS=3         repetitions; the report uses the medians
 #   FILTER=...     a --benchmark_filter regex, to run a subset (the report shows what ran)
