@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "geometry/scene.h"
 
@@ -18,6 +20,12 @@ constexpr int kWidth = 512, kHeight = 512;
 std::string tessellatedKey(size_t triangles);
 // The scene for a key, built on first use (outside any timed region) and kept for the process.
 const Scene& cachedScene(const std::string& key);
+
+// The scenes whole samples and the ray ceiling are measured on: (label, cache key).
+inline std::vector<std::pair<const char*, std::string>> sampleScenes() {
+    return {{"cornell", "cornell"}, {"cornell-spheres", "cornell-spheres"}, {"veach-mis", "veach-mis"},
+            {"tess-1M", tessellatedKey(1'000'000)}};
+}
 
 // What building a cached scene cost. The peak is the process's resident high-water mark, reset
 // just before the build (Linux: writing 5 to /proc/self/clear_refs), so it is the peak during the

@@ -76,13 +76,7 @@ void runCeiling(benchmark::State& state, const std::string& key, RayKind kind, i
 }
 
 const bool registered = [] {
-    const std::pair<const char*, std::string> scenes[] = {
-        {"cornell", "cornell"},
-        {"cornell-spheres", "cornell-spheres"},
-        {"veach-mis", "veach-mis"},
-        {"tess-1M", tessellatedKey(1'000'000)},
-    };
-    for (const auto& [label, key] : scenes)
+    for (const auto& [label, key] : sampleScenes())
         for (RayKind kind : {RayKind::Intersect, RayKind::Occluded})
             for (int threads : {1, 2}) {
                 const std::string name = std::string("ceiling/") + (kind == RayKind::Intersect ? "intersect" : "occluded") +

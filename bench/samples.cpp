@@ -145,13 +145,7 @@ benchmark::internal::Benchmark* registerSampleBenchmark(const std::string& prefi
 namespace {
 
 const bool registered = [] {
-    const std::pair<const char*, std::string> scenes[] = {
-        {"cornell", "cornell"},
-        {"cornell-spheres", "cornell-spheres"},
-        {"veach-mis", "veach-mis"},
-        {"tess-1M", tessellatedKey(1'000'000)},
-    };
-    for (const auto& [label, key] : scenes)
+    for (const auto& [label, key] : sampleScenes())
         for (SampleKind kind : {SampleKind::CameraSubpath, SampleKind::LightSubpath, SampleKind::PT, SampleKind::LT,
                                 SampleKind::BDPT})
             for (int threads : {1, 2}) registerSampleBenchmark("sample", {key, label, kind, 8, threads});

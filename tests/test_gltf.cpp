@@ -14,6 +14,7 @@
 
 #include "geometry/error.h"
 #include "geometry/gltf_loader.h"
+#include "geometry/gltf_writer.h"
 
 namespace tripath {
 namespace {
@@ -26,21 +27,6 @@ constexpr int kUnsignedInt = 5125;
 constexpr int kFloat = 5126;
 const float kSin45 = std::sqrt(0.5f);
 
-std::string base64(const std::vector<unsigned char>& data) {
-    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < data.size(); i += 3) {
-        const uint32_t b0 = data[i];
-        const uint32_t b1 = i + 1 < data.size() ? data[i + 1] : 0;
-        const uint32_t b2 = i + 2 < data.size() ? data[i + 2] : 0;
-        const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
-        out += table[(triple >> 18) & 63];
-        out += table[(triple >> 12) & 63];
-        out += i + 1 < data.size() ? table[(triple >> 6) & 63] : '=';
-        out += i + 2 < data.size() ? table[triple & 63] : '=';
-    }
-    return out;
-}
 
 std::string join(const std::vector<std::string>& items) {
     std::string out;

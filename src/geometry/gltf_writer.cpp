@@ -43,7 +43,7 @@ std::string num(float x) {
     return fmt::format("{}", x);
 }
 
-std::string vec3(Vec3 v) { return "[" + num(v.x) + "," + num(v.y) + "," + num(v.z) + "]"; }
+std::string vec3(Vec3 v) { return fmt::format("[{},{},{}]", num(v.x), num(v.y), num(v.z)); }
 
 std::string join(const std::vector<std::string>& items) {
     std::string out;
@@ -51,22 +51,6 @@ std::string join(const std::vector<std::string>& items) {
     return out;
 }
 
-std::string base64(const std::vector<unsigned char>& data) {
-    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((data.size() + 2) / 3 * 4);
-    for (size_t i = 0; i < data.size(); i += 3) {
-        const uint32_t b0 = data[i];
-        const uint32_t b1 = i + 1 < data.size() ? data[i + 1] : 0;
-        const uint32_t b2 = i + 2 < data.size() ? data[i + 2] : 0;
-        const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
-        out += table[(triple >> 18) & 63];
-        out += table[(triple >> 12) & 63];
-        out += i + 1 < data.size() ? table[(triple >> 6) & 63] : '=';
-        out += i + 2 < data.size() ? table[triple & 63] : '=';
-    }
-    return out;
-}
 
 // ---- splitting a radiance or intensity into a factor in [0, 1] and a scale --------------------
 
@@ -254,6 +238,23 @@ std::string Writer::json() {
 }
 
 }  // namespace
+
+std::string base64(const std::vector<unsigned char>& data) {
+    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    out.reserve((data.size() + 2) / 3 * 4);
+    for (size_t i = 0; i < data.size(); i += 3) {
+        const uint32_t b0 = data[i];
+        const uint32_t b1 = i + 1 < data.size() ? data[i + 1] : 0;
+        const uint32_t b2 = i + 2 < data.size() ? data[i + 2] : 0;
+        const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
+        out += table[(triple >> 18) & 63];
+        out += table[(triple >> 12) & 63];
+        out += i + 1 < data.size() ? table[(triple >> 6) & 63] : '=';
+        out += i + 2 < data.size() ? table[triple & 63] : '=';
+    }
+    return out;
+}
 
 std::string gltfJson(const SceneDesc& scene, const WarningSink& warn) { return Writer(scene, warn).json(); }
 

@@ -14,14 +14,17 @@
 // bit for bit. The camera becomes a perspective camera on a node whose matrix maps glTF's −z/+y
 // view to the scene's forward/up.
 #pragma once
-#include <functional>
 #include <string>
+#include <vector>
 
 #include "geometry/scene_desc.h"
+#include "geometry/warnings.h"
 
 namespace tripath {
 
-using WarningSink = std::function<void(const std::string&)>;
+// Standard base64 (RFC 4648, with padding), for data: URIs.
+std::string base64(const std::vector<unsigned char>& data);
+
 
 // The glTF JSON text. Warns (once per material) where the file cannot say exactly what the scene
 // holds: a Conductor smoother than 0.01 (it would load as a Mirror) or a Plastic rougher than 0.99
