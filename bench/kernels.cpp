@@ -119,8 +119,8 @@ const VertexPools& vertexPools() {
         for (uint64_t i = 0; p.triples.size() < kPool || p.emitterEdges.size() < kPool || surfaces.size() < 2 * kPool; ++i) {
             Rng rng = testRng(1000 + i);
             const float x = rng.uniform() * kWidth, y = rng.uniform() * kHeight;
-            cameraSubpath(scene, {x, y}, rng, walk, cam);
-            lightSubpath(scene, rng, walk, light);
+            cameraSubpath(scene, {x, y}, rng, walk, WalkPdfs::All, cam);
+            lightSubpath(scene, rng, walk, WalkPdfs::All, light);
             if (cam.size() >= 2 && p.sensorEdges.size() < kPool) p.sensorEdges.push_back({cam[1], cam[0]});
             if (light.size() >= 2 && p.emitterEdges.size() < kPool) p.emitterEdges.push_back({light[0], light[1]});
             for (size_t j = 1; j + 1 < cam.size() && p.triples.size() < kPool; ++j)
@@ -182,12 +182,16 @@ void registerPathKernels() {
         });
         st.counters["visible_fraction"] = double(visible) / double(st.iterations());
     });
-    // The area pdf of generating one vertex from another, recomputed from the points: the walks
-    // call it twice per vertex and connect() up to four times per connection.
-    reg("kernel/generationPdf", [](benchmark::State& st, const Scene& scene, const VertexPools& p) {
+    // Everything a connection evaluates at one endpoint from the same local geometry: the
+    // scatter factor and the pdfs of generating either neighbour (frame and directions once).
+    reg("kernel/localScattering", [](benchmark::State& st, const Scene& scene, const VertexPools& p) {
         cycle(st, kPool, [&](size_t i) {
-            float v = generationPdf(scene, p.triples[i][1], &p.triples[i][0], p.triples[i][2]);
-            benchmark::DoNotOptimize(v);
+            const auto& [light, v, camera] = p.triples[i];
+            const LocalScattering at(scene, v, directionTo(v, &light), directionTo(v, &camera));
+            Spectrum f = at.value();
+            float pdfs = at.pdfTowardCamera() + at.pdfTowardLight();
+            benchmark::DoNotOptimize(f);
+            benchmark::DoNotOptimize(pdfs);
         });
     });
     reg("kernel/toAreaPdf", [](benchmark::State& st, const Scene&, const VertexPools& p) {
@@ -263,8 +267,8 @@ void runConnect(benchmark::State& state, int s, int t) {
         Rng rng = testRng(1'000'000 + i);
         SubpathPair p;
         const float x = rng.uniform() * kWidth, y = rng.uniform() * kHeight;
-        cameraSubpath(scene, {x, y}, rng, walk, p.camera);
-        lightSubpath(scene, rng, walk, p.light);
+        cameraSubpath(scene, {x, y}, rng, walk, WalkPdfs::All, p.camera);
+        lightSubpath(scene, rng, walk, WalkPdfs::All, p.light);
         if (static_cast<int>(p.camera.size()) < t || static_cast<int>(p.light.size()) < s) continue;
         if (s == 0 && p.camera[t - 1].emitter < 0) continue;
         pairs.push_back(std::move(p));

@@ -71,11 +71,11 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
         const Vec2 raster{x + jx, y + jy};
         switch (spec.kind) {
             case SampleKind::CameraSubpath:
-                cameraSubpath(scene, raster, rng, settings.walk, w.paths.camera);
+                cameraSubpath(scene, raster, rng, settings.walk, WalkPdfs::All, w.paths.camera);
                 w.sink.sum += w.paths.camera.back().beta.x;
                 break;
             case SampleKind::LightSubpath:
-                lightSubpath(scene, rng, settings.walk, w.paths.light);
+                lightSubpath(scene, rng, settings.walk, WalkPdfs::All, w.paths.light);
                 if (!w.paths.light.empty()) w.sink.sum += w.paths.light.back().beta.x;
                 break;
             default: integrator->sample(scene, raster, rng, w.paths, w.sink); break;

@@ -79,8 +79,8 @@ std::vector<SampledPath> samplePaths(const Scene& scene, int samples, MisHeurist
     for (int i = 0; i < samples; ++i) {
         Rng rng(11, static_cast<uint64_t>(StreamDomain::Test), i);
         const float rx = rng.uniform() * scene.camera().width(), ry = rng.uniform() * scene.camera().height();
-        cameraSubpath(scene, {rx, ry}, rng, ws, camera);
-        lightSubpath(scene, rng, ws, light);
+        cameraSubpath(scene, {rx, ry}, rng, ws, set.cameraWalkPdfs(), camera);
+        lightSubpath(scene, rng, ws, set.lightWalkPdfs(), light);
         for (int t = 1; t <= static_cast<int>(camera.size()); ++t)
             for (int s = 0; s <= static_cast<int>(light.size()); ++s) {
                 if (s + t < 2 || s + t - 1 > maxDepth || !set.enabled(s, t)) continue;

@@ -14,8 +14,8 @@ public:
     std::string name() const override { return "bdpt"; }
     StrategySet strategies() const override { return {StrategySet::Kind::Bidirectional}; }
     void sample(const Scene& scene, Vec2 raster, Rng& rng, PathBuffers& paths, ContributionSink& sink) const override {
-        cameraSubpath(scene, raster, rng, settings().walk, paths.camera);
-        lightSubpath(scene, rng, settings().walk, paths.light);
+        cameraSubpath(scene, raster, rng, settings().walk, strategies().cameraWalkPdfs(), paths.camera);
+        lightSubpath(scene, rng, settings().walk, strategies().lightWalkPdfs(), paths.light);
         connectAll(scene, paths, rng, sink);
     }
 };

@@ -15,7 +15,7 @@ public:
     std::string name() const override { return "lt"; }
     StrategySet strategies() const override { return {StrategySet::Kind::LightTracing}; }
     void sample(const Scene& scene, Vec2, Rng& rng, PathBuffers& paths, ContributionSink& sink) const override {
-        lightSubpath(scene, rng, settings().walk, paths.light);
+        lightSubpath(scene, rng, settings().walk, strategies().lightWalkPdfs(), paths.light);
         paths.camera.assign(1, sensorVertex(scene));
         connectAll(scene, paths, rng, sink);
     }

@@ -14,7 +14,7 @@ public:
     std::string name() const override { return "pt"; }
     StrategySet strategies() const override { return {StrategySet::Kind::PathTracing}; }
     void sample(const Scene& scene, Vec2 raster, Rng& rng, PathBuffers& paths, ContributionSink& sink) const override {
-        cameraSubpath(scene, raster, rng, settings().walk, paths.camera);
+        cameraSubpath(scene, raster, rng, settings().walk, strategies().cameraWalkPdfs(), paths.camera);
         paths.light.clear();
         connectAll(scene, paths, rng, sink);
     }

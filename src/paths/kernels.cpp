@@ -15,12 +15,17 @@ float inverseSquaredDistance(const Vertex& a, const Vertex& b) {
     return d2 > 0 ? 1.0f / d2 : std::numeric_limits<float>::infinity();
 }
 
-float geometricFactor(const Vertex& a, const Vertex& b) {
-    const float d2 = lengthSquared(a.p - b.p);
-    if (!(d2 > 0)) return 0.0f;  // coincident points carry no transport
-    const Vec3 w = (b.p - a.p) / std::sqrt(d2);
-    return cosine(a, w) * cosine(b, w) / d2;
+float Segment::G() const {
+    if (!(d2_ > 0)) return 0.0f;  // coincident points carry no transport
+    return cosine(a_, w_) * cosine(b_, w_) / d2_;
 }
+
+float Segment::toArea(float pdfOmega, const Vertex& to) const {
+    if (!(d2_ > 0)) return 0.0f;
+    return pdfOmega * cosine(to, w_) / d2_;
+}
+
+float geometricFactor(const Vertex& a, const Vertex& b) { return Segment(a, b).G(); }
 
 bool visible(const Scene& scene, const Vertex& a, const Vertex& b) {
     return scene.unoccluded(a.p, a.offsetNormal(), b.p, b.offsetNormal());
@@ -50,43 +55,33 @@ float shadingCorrection(const Vertex& v, Vec3 towardLight) {
     return cosG > 0 ? absDot(v.ns, towardLight) / cosG : 0.0f;
 }
 
+bool LocalScattering::emits() const {
+    return v_.kind == Vertex::Kind::Emitter || (v_.kind == Vertex::Kind::Surface && !light_);
+}
+
+Spectrum LocalScattering::value() const {
+    if (v_.kind == Vertex::Kind::Sensor) return Spectrum(scene_.camera().importance(*light_));
+    if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, *camera_);
+    return evalBsdf(*v_.material, cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, *light_);
+}
+
+float LocalScattering::pdfTowardCamera() const {
+    if (v_.kind == Vertex::Kind::Sensor) return 0.0f;  // the path's end: nothing lies beyond it
+    if (emits()) return scene_.emitters().directionPdf(v_.emitter, v_.ng, *camera_);
+    return pdfBsdf(*v_.material, lightLocal_, cameraLocal_);
+}
+
+float LocalScattering::pdfTowardLight() const {
+    if (v_.kind == Vertex::Kind::Sensor) return scene_.camera().imagePdf(*light_);
+    if (emits()) return 0.0f;  // the path's start: nothing lies before it
+    return pdfBsdf(*v_.material, cameraLocal_, lightLocal_);
+}
+
 Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera) {
-    switch (v.kind) {
-        case Vertex::Kind::Sensor:
-            return Spectrum(W(scene, *towardLight, v));
-        case Vertex::Kind::Emitter:
-            return scene.emitters().Le(v.emitter, v.ng, unitDirection(v, *towardCamera));
-        case Vertex::Kind::Surface: {
-            if (!towardLight) return scene.emitters().Le(v.emitter, v.ng, unitDirection(v, *towardCamera));
-            const Vec3 l = unitDirection(v, *towardLight), c = unitDirection(v, *towardCamera);
-            const Frame frame(v.ns);
-            return evalBsdf(*v.material, frame.toLocal(c), frame.toLocal(l), TransportMode::Radiance) *
-                   shadingCorrection(v, l);
-        }
-    }
-    return Spectrum(0.0f);
+    return LocalScattering(scene, v, directionTo(v, towardLight), directionTo(v, towardCamera)).value();
 }
 
-float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to) {
-    const float d2 = lengthSquared(to.p - from.p);
-    if (!(d2 > 0)) return 0.0f;
-    return pdfOmega * cosine(to, (to.p - from.p) / std::sqrt(d2)) / d2;
-}
-
-float generationPdf(const Scene& scene, const Vertex& v, const Vertex* from, const Vertex& to) {
-    const Vec3 w = unitDirection(v, to);
-    float pdfOmega = 0;
-    switch (v.kind) {
-        case Vertex::Kind::Sensor: pdfOmega = scene.camera().imagePdf(w); break;
-        case Vertex::Kind::Emitter: pdfOmega = scene.emitters().directionPdf(v.emitter, v.ng, w); break;
-        case Vertex::Kind::Surface: {
-            const Frame frame(v.ns);
-            pdfOmega = pdfBsdf(*v.material, frame.toLocal(unitDirection(v, *from)), frame.toLocal(w));
-            break;
-        }
-    }
-    return toAreaPdf(pdfOmega, v, to);
-}
+float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to) { return Segment(from, to).toArea(pdfOmega, to); }
 
 Spectrum pathContribution(const Scene& scene, const std::vector<Vertex>& x) {
     const size_t k = x.size() - 1;

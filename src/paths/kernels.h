@@ -20,6 +20,9 @@
 // geometric and symmetric, and makes light subpaths use Veach's adjoint BSDF (thesis §5.3)
 // automatically, so light tracing and path tracing agree on smooth-normal meshes.
 #pragma once
+#include <cmath>
+#include <optional>
+
 #include "paths/vertex.h"
 
 namespace tripath {
@@ -29,6 +32,26 @@ namespace tripath {
 float cosine(const Vertex& v, Vec3 w);
 // Squared distance, guarded: coincident vertices give +inf for 1/r², never NaN.
 float inverseSquaredDistance(const Vertex& a, const Vertex& b);
+
+// The segment between two vertices, its direction and length computed once for the kernels
+// that share it (G, and the area pdfs at either end).
+class Segment {
+public:
+    Segment(const Vertex& a, const Vertex& b) : a_(a), b_(b), d2_(lengthSquared(b.p - a.p)) {
+        w_ = (b.p - a.p) / std::sqrt(d2_);
+    }
+    Vec3 direction() const { return w_; }  // unit, a → b
+    // G(a,b) = |cos θa| |cos θb| / |a − b|², without visibility; 0 for coincident points.
+    float G() const;
+    // Solid-angle pdf at one end → area pdf at the other end, `to`: p_A = p_ω |cos θ_to| / r².
+    float toArea(float pdfOmega, const Vertex& to) const;
+
+private:
+    const Vertex &a_, &b_;
+    float d2_;
+    Vec3 w_;
+};
+
 // G(a,b) = |cos θa| |cos θb| / |a − b|², without visibility.
 float geometricFactor(const Vertex& a, const Vertex& b);
 // Visibility V(a, b): a shadow ray between the two, offset off their surfaces.
@@ -45,20 +68,61 @@ float W(const Scene& scene, const Vertex& xkm1, const Vertex& xk);
 
 // Shading-normal factor |ns·ℓ| / |ng·ℓ| for a surface vertex, ℓ toward the light side (1 elsewhere).
 float shadingCorrection(const Vertex& v, Vec3 towardLight);
-// The per-vertex factor of the regrouped product: Le (emitter endpoint), f_r × shading
-// correction (surface), W (sensor). `towardLight`/`towardCamera` are the neighbours' positions;
-// an endpoint ignores the one it lacks.
+
+// Vertex v between its light-side and camera-side neighbours: the factor it contributes to the
+// regrouped product, and the pdfs with which it generates either neighbour. The directions to
+// the neighbours and, on a surface, the shading frame and local directions are computed once for
+// all of them; `connect` evaluates every one at both ends of the connecting segment. Walks and
+// connections both take their pdfs from here, with directions from the points alone (never the
+// sampled direction, which an offset ray origin bends on short segments), so that every
+// strategy's pdf of a path is computed the same way: the MIS weights depend on it.
+//
+// The neighbours are given as unit directions from v. An endpoint lacks one: the sensor its
+// camera side, an emitter point its light side -- as does a surface a camera walk hit, taken as
+// the start of the light's path (strategy s = 0).
+class LocalScattering {
+public:
+    // (Inline, as is directionTo: the optional directions must not cross a call boundary on
+    // this hot path, where passing them through memory stalls store forwarding.)
+    LocalScattering(const Scene& scene, const Vertex& v, std::optional<Vec3> towardLight,
+                    std::optional<Vec3> towardCamera)
+        : scene_(scene), v_(v), light_(towardLight), camera_(towardCamera) {
+        if (v.kind == Vertex::Kind::Surface && light_ && camera_) {
+            const Frame frame(v.ns);
+            lightLocal_ = frame.toLocal(*light_);
+            cameraLocal_ = frame.toLocal(*camera_);
+        }
+    }
+    // scatter(v): Le toward the camera side at an emitter end, f_r × shading correction at a
+    // surface, W toward the light side at the sensor.
+    Spectrum value() const;
+    // Solid-angle pdf with which v, reached from its light side, generates the camera-side
+    // direction: its BSDF's, or an emitter's emission distribution.
+    float pdfTowardCamera() const;
+    // Solid-angle pdf with which v, reached from its camera side, generates the light-side
+    // direction: its BSDF's, or the sensor's over the image. Zero through a delta lobe.
+    float pdfTowardLight() const;
+
+private:
+    bool emits() const;  // an emitter end: no light side
+    const Scene& scene_;
+    const Vertex& v_;
+    std::optional<Vec3> light_, camera_;
+    Vec3 lightLocal_, cameraLocal_;  // in v's shading frame (surfaces between two neighbours)
+};
+
+// The unit direction from v to `other`, if there is another vertex.
+inline std::optional<Vec3> directionTo(const Vertex& v, const Vertex* other) {
+    if (!other) return std::nullopt;
+    return normalize(other->p - v.p);
+}
+
+// The per-vertex factor of the regrouped product, from the neighbours' positions:
+// LocalScattering(v, directions to the two).value(). An endpoint ignores the one it lacks.
 Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera);
 
-// Solid-angle pdf p_ω at `from` → area pdf at `to`: p_A = p_ω |cos θ_to| / r².
+// Solid-angle pdf at `from` → area pdf at `to`: p_A = p_ω |cos θ_to| / r².
 float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to);
-
-// Area pdf with which vertex v, reached from `from` (null at a subpath's endpoint), generates the
-// point `to`: its BSDF's (surface), the emission distribution's (emitter) or the sensor's over
-// the image (camera), converted to area measure at `to`. Zero through a delta lobe. Walks and
-// connections both take their pdfs from here, as functions of the points alone, so every
-// strategy's pdf of a path is computed the same way (the MIS weights depend on it).
-float generationPdf(const Scene& scene, const Vertex& v, const Vertex* from, const Vertex& to);
 
 // f(x̄) for a whole path x0 … xk (x0 emitter, xk sensor), the product of the kernels above.
 Spectrum pathContribution(const Scene& scene, const std::vector<Vertex>& path);

@@ -32,15 +32,16 @@ float term(float r, MisHeuristic h) {
 float misWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t, MisHeuristic heuristic,
                 StrategySet strategies) {
     float sum = 0;
-    // Hand camera vertices z_{t-1}, z_{t-2}, … one by one to the light side: strategy (s+t−i, i).
+    // Hand camera vertices z_{t-1}, z_{t-2}, … one by one to the light side: strategy (s+t−i, i),
+    // as far as the strategy set enables any (mis.h).
     float r = 1;
-    for (int i = t - 1; i > 0; --i) {
+    for (int i = t - 1; strategies.readsCameraPdfs(i, s, t); --i) {
         r *= remap0(camera[i].pdfRev) / remap0(camera[i].pdfFwd);
         if (!camera[i].delta && !camera[i - 1].delta && strategies.enabled(s + t - i, i)) sum += term(r, heuristic);
     }
     // Hand light vertices y_{s-1}, … , y_0 to the camera side: strategy (i, s+t−i).
     r = 1;
-    for (int i = s - 1; i >= 0; --i) {
+    for (int i = s - 1; strategies.readsLightPdfs(i, s, t); --i) {
         r *= remap0(light[i].pdfRev) / remap0(light[i].pdfFwd);
         const bool deltaBefore = i > 0 ? light[i - 1].delta : light[0].isDeltaLight();
         if (!light[i].delta && !deltaBefore && strategies.enabled(i, s + t - i)) sum += term(r, heuristic);

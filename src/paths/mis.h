@@ -9,9 +9,10 @@
 // and so on outward. A strategy that would connect at a delta vertex (mirror, glass), or hit a
 // point light, has p_i = 0 and drops out; so does every strategy the integrator disabled.
 //
-// Cost: O(k) per connection. Paths here are short (Russian roulette, max depth), the loop is a few
-// multiplies per vertex with no ray casts, and it lets any subset of strategies be enabled, which
-// the running-sum form of Georgiev et al. cannot; bench/ measures it against path length.
+// Cost: O(k) per connection under BDPT. Paths here are short (Russian roulette, max depth), the
+// loop is a few multiplies per vertex with no ray casts, and it lets any subset of strategies be
+// enabled, which the running-sum form of Georgiev et al. cannot; bench/ measures it against path
+// length. The loops stop at the last strategy the set enables: one ratio for PT, none for LT.
 #pragma once
 #include <span>
 #include <string>
@@ -23,21 +24,39 @@ namespace tripath {
 enum class MisHeuristic { Balance, Power, Uniform };
 MisHeuristic parseMisHeuristic(const std::string& name);  // "balance" | "power" | "none"
 
+// Which pdfs a subpath walk records for MIS: every vertex's pdfFwd and pdfRev, only the pdfFwd
+// of vertices that lie on an emitter, or none.
+enum class WalkPdfs { All, AtEmitters, None };
+
 // The strategies an integrator switches on.
 struct StrategySet {
     enum class Kind { PathTracing, LightTracing, Bidirectional };
     Kind kind = Kind::Bidirectional;
     // PT: s = 0 (hit an emitter) and s = 1 (next-event estimation). LT: t = 1 (connect to the
     // sensor). BDPT: every (s, t). t = 0 is impossible with a pinhole and never enabled.
-    bool enabled(int s, int t) const {
-        if (t < 1) return false;
-        switch (kind) {
-            case Kind::PathTracing: return s <= 1;
-            case Kind::LightTracing: return t == 1;
-            case Kind::Bidirectional: return true;
-        }
-        return false;
+    // Each set is a box s ≤ maxS, 1 ≤ t ≤ maxT.
+    int maxS() const { return kind == Kind::PathTracing ? 1 : kUnbounded; }
+    int maxT() const { return kind == Kind::LightTracing ? 1 : kUnbounded; }
+    bool enabled(int s, int t) const { return t >= 1 && s <= maxS() && t <= maxT(); }
+
+    // The weight of (s, t) walks outward from the connection through strategies (s+t−i, i) on the
+    // camera side and (i, s+t−i) on the light side, multiplying one pdf ratio per vertex, and needs
+    // to go only as far as the last enabled one. So it reads the pdfs of camera vertex i ≥ 1 only
+    // when s + t − i ≤ maxS, and of light vertex i only when s + t − i ≤ maxT. `connect` sets no
+    // other pdf, and the walks record no other.
+    bool readsCameraPdfs(int i, int s, int t) const { return i >= 1 && i < t && s + t - i <= maxS(); }
+    bool readsLightPdfs(int i, int s, int t) const { return i >= 0 && i < s && s + t - i <= maxT(); }
+    // What that leaves the walks to record. Camera vertex i's pdfs are read by (s, t) = (0, i+1)
+    // when maxS ≥ 1 -- a non-zero contribution only if the vertex lies on an emitter -- and by
+    // some (s ≥ 1, t) or (s, t ≥ i+2) only when maxS ≥ 2. Light vertex i's are read by (i+1, 1)
+    // and beyond when maxT ≥ 2; nothing plays the part of s = 0 (t = 0 is never enabled).
+    WalkPdfs cameraWalkPdfs() const {
+        return maxS() >= 2 ? WalkPdfs::All : maxS() == 1 ? WalkPdfs::AtEmitters : WalkPdfs::None;
     }
+    WalkPdfs lightWalkPdfs() const { return maxT() >= 2 ? WalkPdfs::All : WalkPdfs::None; }
+
+private:
+    static constexpr int kUnbounded = 1 << 20;
 };
 
 // Weight of strategy (s, t) for the path light[0..s) + camera[0..t) reversed. The endpoints'

@@ -13,6 +13,13 @@
 
 namespace tripath {
 
+// Strategy (1, t): next-event estimation from a fresh emitter point.
+inline Connection connectNextEvent(const Scene& scene, Rng& rng, Subpath& camera, int t, MisHeuristic heuristic,
+                                   StrategySet strategies) {
+    Vertex y0 = sampleEmitterVertex(scene, rng);
+    return connect(scene, std::span<Vertex>(&y0, 1), 1, camera, t, heuristic, strategies);
+}
+
 // Calls sink(s, t, connection) for each enabled (s, t) with 1 ≤ k = s + t − 1 ≤ maxDepth and a
 // non-zero contribution.
 template <class Sink>
@@ -23,13 +30,9 @@ void evaluateStrategies(const Scene& scene, Subpath& light, Subpath& camera, Rng
         const int sMax = std::min(std::max(nl, 1), maxDepth + 1 - t);
         for (int s = 0; s <= sMax; ++s) {
             if (s + t < 2 || !strategies.enabled(s, t)) continue;
-            Connection c;
-            if (s == 1) {
-                Vertex y0 = sampleEmitterVertex(scene, rng);
-                c = connect(scene, std::span<Vertex>(&y0, 1), 1, camera, t, heuristic, strategies);
-            } else {
-                c = connect(scene, light, s, camera, t, heuristic, strategies);
-            }
+            // Initialised from the call, never assigned: copying a returned Connection stalls.
+            const Connection c = s == 1 ? connectNextEvent(scene, rng, camera, t, heuristic, strategies)
+                                        : connect(scene, light, s, camera, t, heuristic, strategies);
             if (!isBlack(c.unweighted)) sink(s, t, c);
         }
     }

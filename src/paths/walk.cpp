@@ -24,26 +24,45 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     return v;
 }
 
+// The area pdfs of the segment just traced from `from` (the path's second-to-last vertex) to v
+// (its last): v's pdfFwd, and the pdfRev of the vertex before `from`, which `from` would
+// generate having been reached from v. A camera walk goes against the light's flow, so v lies on
+// `from`'s light side; a light walk goes with it.
+void recordPdfs(const Scene& scene, Subpath& path, TransportMode mode) {
+    Vertex& v = path.back();
+    const Vertex& from = path[path.size() - 2];
+    Vertex* beforeFrom = path.size() > 2 ? &path[path.size() - 3] : nullptr;
+    const std::optional<Vec3> ahead = directionTo(from, &v), behind = directionTo(from, beforeFrom);
+    if (mode == TransportMode::Radiance) {
+        const LocalScattering at(scene, from, ahead, behind);
+        v.pdfFwd = toAreaPdf(at.pdfTowardLight(), from, v);
+        if (beforeFrom) beforeFrom->pdfRev = toAreaPdf(at.pdfTowardCamera(), from, *beforeFrom);
+    } else {
+        const LocalScattering at(scene, from, behind, ahead);
+        v.pdfFwd = toAreaPdf(at.pdfTowardCamera(), from, v);
+        if (beforeFrom) beforeFrom->pdfRev = toAreaPdf(at.pdfTowardLight(), from, *beforeFrom);
+    }
+}
+
 // Extends `path` from its last vertex along `dir`, sampled there with solid-angle pdf
 // `pdfOmega`; `beta` is the throughput the next vertex receives. Each step multiplies beta by
 //     scatter(x_i) · G(x_i, x_{i+1}) / p_A(x_{i+1}) = f · correction · |cos θ_i| / p_ω,
 // the r² and the far cosine cancelling between G and the area pdf. The vertices' pdfs for MIS
-// are recomputed from the points (generationPdf) rather than taken from the sampler: the ray
+// are recomputed from the points (LocalScattering) rather than taken from the sampler: the ray
 // leaves from an offset origin, and on short segments the direction between the vertices is
-// not quite the sampled one; connections see only the points, so the walks must too.
+// not quite the sampled one; connections see only the points, so the walks must too. Only the
+// pdfs `pdfs` asks for are computed.
 void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, TransportMode mode,
-                const WalkSettings& settings, size_t maxVertices, Subpath& path) {
+                const WalkSettings& settings, WalkPdfs pdfs, size_t maxVertices, Subpath& path) {
     while (path.size() < maxVertices) {
         const Vertex& from = path.back();
         const Vec3 origin = from.onSurface() ? offsetRayOrigin(from.p, from.ng, dir) : from.p;
         const auto hit = scene.intersect(origin, dir);
         if (!hit) return;
-        Vertex v = surfaceVertex(scene, *hit);
-        v.beta = beta;
-        const Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
-        v.pdfFwd = generationPdf(scene, from, beforeFrom, v);
-        if (beforeFrom) path[path.size() - 2].pdfRev = generationPdf(scene, from, &v, *beforeFrom);
-        path.push_back(v);
+        path.push_back(surfaceVertex(scene, *hit));
+        path.back().beta = beta;
+        if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && path.back().emitter >= 0))
+            recordPdfs(scene, path, mode);
         if (path.size() == maxVertices) return;
 
         const Vertex& cur = path.back();
@@ -95,17 +114,18 @@ Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
     return y0;
 }
 
-void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings& settings, Subpath& path) {
+void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
+                   Subpath& path) {
     path.clear();
     path.push_back(sensorVertex(scene));
     const Camera& cam = scene.camera();
     const Vec3 dir = cam.direction(raster);
     // beta = W_j cos θ / p_pixel = 1 exactly (camera.h); MIS sees the whole-image pdf.
-    randomWalk(scene, rng, Spectrum(1.0f), dir, TransportMode::Radiance, settings,
+    randomWalk(scene, rng, Spectrum(1.0f), dir, TransportMode::Radiance, settings, pdfs,
                static_cast<size_t>(settings.maxDepth) + 1, path);
 }
 
-void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Subpath& path) {
+void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {
     path.clear();
     if (settings.maxDepth < 1) return;
     path.push_back(sampleEmitterVertex(scene, rng));
@@ -116,7 +136,7 @@ void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Su
     if (!(pdfDir > 0)) return;
     const Spectrum beta = y0.beta * scene.emitters().Le(y0.emitter, y0.ng, dir) * (cosine(y0, dir) / pdfDir);
     if (isBlack(beta)) return;
-    randomWalk(scene, rng, beta, dir, TransportMode::Importance, settings,
+    randomWalk(scene, rng, beta, dir, TransportMode::Importance, settings, pdfs,
                static_cast<size_t>(settings.maxDepth), path);
 }
 

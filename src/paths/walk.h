@@ -1,7 +1,9 @@
 // Subpath generation: random walks from the sensor (camera subpaths) and from an emitter (light
-// subpaths). Each vertex gets its forward and reverse area pdfs and its throughput beta.
+// subpaths). Each vertex gets its throughput beta, and the forward and reverse area pdfs that
+// the integrator's MIS weights read (StrategySet::cameraWalkPdfs / lightWalkPdfs).
 #pragma once
 #include "geometry/rng.h"
+#include "paths/mis.h"
 #include "paths/vertex.h"
 
 namespace tripath {
@@ -18,8 +20,9 @@ Vertex sensorVertex(const Scene& scene);
 Vertex sampleEmitterVertex(const Scene& scene, Rng& rng);
 
 // Fills `path` with a camera subpath whose first segment passes through raster position `raster`.
-void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings& settings, Subpath& path);
+void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
+                   Subpath& path);
 // Fills `path` with a light subpath starting from a power-sampled emitter point.
-void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Subpath& path);
+void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path);
 
 }  // namespace tripath
