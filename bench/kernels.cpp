@@ -187,7 +187,8 @@ void registerPathKernels() {
     reg("kernel/localScattering", [](benchmark::State& st, const Scene& scene, const VertexPools& p) {
         cycle(st, kPool, [&](size_t i) {
             const auto& [light, v, camera] = p.triples[i];
-            const LocalScattering at(scene, v, directionTo(v, &light), directionTo(v, &camera));
+            const Vec3 l = normalize(light.p - v.p), c = normalize(camera.p - v.p);
+            const LocalScattering at(scene, v, &l, &c);
             Spectrum f = at.value();
             float pdfs = at.pdfTowardCamera() + at.pdfTowardLight();
             benchmark::DoNotOptimize(f);

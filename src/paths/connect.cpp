@@ -40,7 +40,8 @@ Connection emitterHit(const Scene& scene, std::span<Vertex> light, std::span<Ver
     Vertex& ptMinus = camera[t - 2];
     if (pt.emitter < 0) return c;
     const Segment toCamera(pt, ptMinus);
-    const LocalScattering at(scene, pt, std::nullopt, toCamera.direction());
+    const Vec3 w = toCamera.direction();
+    const LocalScattering at(scene, pt, nullptr, &w);
     c.unweighted = pt.beta * at.value();  // Le(pt → ptMinus)
     if (isBlack(c.unweighted)) return c;
     SavedPdfs pdfs;
@@ -69,8 +70,10 @@ Connection join(const Scene& scene, std::span<Vertex> light, int s, std::span<Ve
         c.raster = scene.camera().raster(-segment.direction());
         if (!c.raster) return c;
     }
-    const LocalScattering atQ(scene, qs, directionTo(qs, qsMinus), segment.direction());
-    const LocalScattering atP(scene, pt, -segment.direction(), directionTo(pt, ptMinus));
+    const Vec3 towardP = segment.direction(), towardQ = -towardP;
+    const Vec3 qsBack = qsMinus ? normalize(qsMinus->p - qs.p) : Vec3(), ptBack = ptMinus ? normalize(ptMinus->p - pt.p) : Vec3();
+    const LocalScattering atQ(scene, qs, qsMinus ? &qsBack : nullptr, &towardP);
+    const LocalScattering atP(scene, pt, &towardQ, ptMinus ? &ptBack : nullptr);
     c.unweighted = qs.beta * atQ.value() * segment.G() * atP.value() * pt.beta;
     if (isBlack(c.unweighted)) return c;
     if (!visible(scene, qs, pt)) {
@@ -79,9 +82,11 @@ Connection join(const Scene& scene, std::span<Vertex> light, int s, std::span<Ve
     }
     SavedPdfs pdfs;
     if (strategies.readsCameraPdfs(t - 1, s, t)) pdfs.set(pt.pdfRev, segment.toArea(atQ.pdfTowardCamera(), pt));
-    if (strategies.readsCameraPdfs(t - 2, s, t)) pdfs.set(ptMinus->pdfRev, toAreaPdf(atP.pdfTowardCamera(), pt, *ptMinus));
+    if (strategies.readsCameraPdfs(t - 2, s, t))
+        pdfs.set(ptMinus->pdfRev, Segment(pt, *ptMinus).toArea(atP.pdfTowardCamera(), *ptMinus));
     if (strategies.readsLightPdfs(s - 1, s, t)) pdfs.set(qs.pdfRev, segment.toArea(atP.pdfTowardLight(), qs));
-    if (strategies.readsLightPdfs(s - 2, s, t)) pdfs.set(qsMinus->pdfRev, toAreaPdf(atQ.pdfTowardLight(), qs, *qsMinus));
+    if (strategies.readsLightPdfs(s - 2, s, t))
+        pdfs.set(qsMinus->pdfRev, Segment(qs, *qsMinus).toArea(atQ.pdfTowardLight(), *qsMinus));
     c.weight = misWeight(light, s, camera, t, heuristic, strategies);
     return c;
 }

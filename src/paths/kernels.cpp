@@ -56,29 +56,30 @@ float shadingCorrection(const Vertex& v, Vec3 towardLight) {
 }
 
 bool LocalScattering::emits() const {
-    return v_.kind == Vertex::Kind::Emitter || (v_.kind == Vertex::Kind::Surface && !light_);
+    return v_.kind == Vertex::Kind::Emitter || (v_.kind == Vertex::Kind::Surface && !hasLight_);
 }
 
 Spectrum LocalScattering::value() const {
-    if (v_.kind == Vertex::Kind::Sensor) return Spectrum(scene_.camera().importance(*light_));
-    if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, *camera_);
-    return evalBsdf(*v_.material, cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, *light_);
+    if (v_.kind == Vertex::Kind::Sensor) return Spectrum(scene_.camera().importance(light_));
+    if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, camera_);
+    return evalBsdf(*v_.material, cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, light_);
 }
 
 float LocalScattering::pdfTowardCamera() const {
     if (v_.kind == Vertex::Kind::Sensor) return 0.0f;  // the path's end: nothing lies beyond it
-    if (emits()) return scene_.emitters().directionPdf(v_.emitter, v_.ng, *camera_);
+    if (emits()) return scene_.emitters().directionPdf(v_.emitter, v_.ng, camera_);
     return pdfBsdf(*v_.material, lightLocal_, cameraLocal_);
 }
 
 float LocalScattering::pdfTowardLight() const {
-    if (v_.kind == Vertex::Kind::Sensor) return scene_.camera().imagePdf(*light_);
+    if (v_.kind == Vertex::Kind::Sensor) return scene_.camera().imagePdf(light_);
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
     return pdfBsdf(*v_.material, cameraLocal_, lightLocal_);
 }
 
 Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera) {
-    return LocalScattering(scene, v, directionTo(v, towardLight), directionTo(v, towardCamera)).value();
+    const Vec3 l = towardLight ? unitDirection(v, *towardLight) : Vec3(), c = towardCamera ? unitDirection(v, *towardCamera) : Vec3();
+    return LocalScattering(scene, v, towardLight ? &l : nullptr, towardCamera ? &c : nullptr).value();
 }
 
 float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to) { return Segment(from, to).toArea(pdfOmega, to); }

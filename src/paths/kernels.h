@@ -21,7 +21,6 @@
 // automatically, so light tracing and path tracing agree on smooth-normal meshes.
 #pragma once
 #include <cmath>
-#include <optional>
 
 #include "paths/vertex.h"
 
@@ -77,20 +76,21 @@ float shadingCorrection(const Vertex& v, Vec3 towardLight);
 // sampled direction, which an offset ray origin bends on short segments), so that every
 // strategy's pdf of a path is computed the same way: the MIS weights depend on it.
 //
-// The neighbours are given as unit directions from v. An endpoint lacks one: the sensor its
-// camera side, an emitter point its light side -- as does a surface a camera walk hit, taken as
-// the start of the light's path (strategy s = 0).
+// The neighbours are given as unit directions from v, null where there is none. An endpoint
+// lacks one: the sensor its camera side, an emitter point its light side -- as does a surface a
+// camera walk hit, taken as the start of the light's path (strategy s = 0). (Pointers, and an
+// inline constructor: this runs several times per connection, and optional<Vec3> arguments
+// passed through memory stall store forwarding.)
 class LocalScattering {
 public:
-    // (Inline, as is directionTo: the optional directions must not cross a call boundary on
-    // this hot path, where passing them through memory stalls store forwarding.)
-    LocalScattering(const Scene& scene, const Vertex& v, std::optional<Vec3> towardLight,
-                    std::optional<Vec3> towardCamera)
-        : scene_(scene), v_(v), light_(towardLight), camera_(towardCamera) {
-        if (v.kind == Vertex::Kind::Surface && light_ && camera_) {
+    LocalScattering(const Scene& scene, const Vertex& v, const Vec3* towardLight, const Vec3* towardCamera)
+        : scene_(scene), v_(v), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr) {
+        if (hasLight_) light_ = *towardLight;
+        if (hasCamera_) camera_ = *towardCamera;
+        if (v.kind == Vertex::Kind::Surface && hasLight_ && hasCamera_) {
             const Frame frame(v.ns);
-            lightLocal_ = frame.toLocal(*light_);
-            cameraLocal_ = frame.toLocal(*camera_);
+            lightLocal_ = frame.toLocal(light_);
+            cameraLocal_ = frame.toLocal(camera_);
         }
     }
     // scatter(v): Le toward the camera side at an emitter end, f_r × shading correction at a
@@ -107,18 +107,13 @@ private:
     bool emits() const;  // an emitter end: no light side
     const Scene& scene_;
     const Vertex& v_;
-    std::optional<Vec3> light_, camera_;
+    bool hasLight_, hasCamera_;
+    Vec3 light_, camera_;
     Vec3 lightLocal_, cameraLocal_;  // in v's shading frame (surfaces between two neighbours)
 };
 
-// The unit direction from v to `other`, if there is another vertex.
-inline std::optional<Vec3> directionTo(const Vertex& v, const Vertex* other) {
-    if (!other) return std::nullopt;
-    return normalize(other->p - v.p);
-}
-
 // The per-vertex factor of the regrouped product, from the neighbours' positions:
-// LocalScattering(v, directions to the two).value(). An endpoint ignores the one it lacks.
+// LocalScattering(v, directions to the two).value(). An endpoint has no neighbour on one side.
 Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera);
 
 // Solid-angle pdf at `from` → area pdf at `to`: p_A = p_ω |cos θ_to| / r².

@@ -32,19 +32,21 @@ enum class WalkPdfs { All, AtEmitters, None };
 struct StrategySet {
     enum class Kind { PathTracing, LightTracing, Bidirectional };
     Kind kind = Kind::Bidirectional;
-    // PT: s = 0 (hit an emitter) and s = 1 (next-event estimation). LT: t = 1 (connect to the
-    // sensor). BDPT: every (s, t). t = 0 is impossible with a pinhole and never enabled.
-    // Each set is a box s ≤ maxS, 1 ≤ t ≤ maxT.
+    // PT: s = 0 (the walk hits an emitter) and s = 1 (next-event estimation at a camera vertex
+    // on a surface, t ≥ 2; joining an emitter point straight to the sensor would be light
+    // tracing's splat). LT: t = 1 (connect to the sensor). BDPT: every (s, t). t = 0 is impossible
+    // with a pinhole and never enabled. Each set is a box s ≤ maxS, minT ≤ t ≤ maxT.
     int maxS() const { return kind == Kind::PathTracing ? 1 : kUnbounded; }
+    int minT() const { return kind == Kind::PathTracing ? 2 : 1; }
     int maxT() const { return kind == Kind::LightTracing ? 1 : kUnbounded; }
-    bool enabled(int s, int t) const { return t >= 1 && s <= maxS() && t <= maxT(); }
+    bool enabled(int s, int t) const { return s <= maxS() && t >= minT() && t <= maxT(); }
 
     // The weight of (s, t) walks outward from the connection through strategies (s+t−i, i) on the
     // camera side and (i, s+t−i) on the light side, multiplying one pdf ratio per vertex, and needs
-    // to go only as far as the last enabled one. So it reads the pdfs of camera vertex i ≥ 1 only
-    // when s + t − i ≤ maxS, and of light vertex i only when s + t − i ≤ maxT. `connect` sets no
-    // other pdf, and the walks record no other.
-    bool readsCameraPdfs(int i, int s, int t) const { return i >= 1 && i < t && s + t - i <= maxS(); }
+    // to go only as far as the last enabled one. So it reads the pdfs of camera vertex i only when
+    // i ≥ minT and s + t − i ≤ maxS, and of light vertex i only when s + t − i ≤ maxT (the
+    // light side's t only grows). `connect` sets no other pdf, and the walks record no other.
+    bool readsCameraPdfs(int i, int s, int t) const { return i >= minT() && i < t && s + t - i <= maxS(); }
     bool readsLightPdfs(int i, int s, int t) const { return i >= 0 && i < s && s + t - i <= maxT(); }
     // What that leaves the walks to record. Camera vertex i's pdfs are read by (s, t) = (0, i+1)
     // when maxS ≥ 1 -- a non-zero contribution only if the vertex lies on an emitter -- and by

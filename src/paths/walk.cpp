@@ -24,23 +24,21 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     return v;
 }
 
-// The area pdfs of the segment just traced from `from` (the path's second-to-last vertex) to v
-// (its last): v's pdfFwd, and the pdfRev of the vertex before `from`, which `from` would
-// generate having been reached from v. A camera walk goes against the light's flow, so v lies on
-// `from`'s light side; a light walk goes with it.
-void recordPdfs(const Scene& scene, Subpath& path, TransportMode mode) {
-    Vertex& v = path.back();
-    const Vertex& from = path[path.size() - 2];
-    Vertex* beforeFrom = path.size() > 2 ? &path[path.size() - 3] : nullptr;
-    const std::optional<Vec3> ahead = directionTo(from, &v), behind = directionTo(from, beforeFrom);
-    if (mode == TransportMode::Radiance) {
-        const LocalScattering at(scene, from, ahead, behind);
-        v.pdfFwd = toAreaPdf(at.pdfTowardLight(), from, v);
-        if (beforeFrom) beforeFrom->pdfRev = toAreaPdf(at.pdfTowardCamera(), from, *beforeFrom);
-    } else {
-        const LocalScattering at(scene, from, behind, ahead);
-        v.pdfFwd = toAreaPdf(at.pdfTowardCamera(), from, v);
-        if (beforeFrom) beforeFrom->pdfRev = toAreaPdf(at.pdfTowardLight(), from, *beforeFrom);
+// The area pdfs of the segment just traced from `from` (the path's last vertex) to v, the
+// vertex about to be appended: v's pdfFwd, and the pdfRev of the vertex before `from`, which
+// `from` would generate having been reached from v. A camera walk goes against the light's
+// flow, so v lies on `from`'s light side; a light walk goes with it.
+void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode) {
+    const Vertex& from = path.back();
+    Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
+    const Vec3 ahead = normalize(v.p - from.p), back = beforeFrom ? normalize(beforeFrom->p - from.p) : Vec3();
+    const Vec3* behind = beforeFrom ? &back : nullptr;
+    const bool cameraWalk = mode == TransportMode::Radiance;
+    const LocalScattering at(scene, from, cameraWalk ? &ahead : behind, cameraWalk ? behind : &ahead);
+    v.pdfFwd = Segment(v, from).toArea(cameraWalk ? at.pdfTowardLight() : at.pdfTowardCamera(), v);
+    if (beforeFrom) {
+        const float pdfBack = cameraWalk ? at.pdfTowardCamera() : at.pdfTowardLight();
+        beforeFrom->pdfRev = Segment(from, *beforeFrom).toArea(pdfBack, *beforeFrom);
     }
 }
 
@@ -59,22 +57,22 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
         const Vec3 origin = from.onSurface() ? offsetRayOrigin(from.p, from.ng, dir) : from.p;
         const auto hit = scene.intersect(origin, dir);
         if (!hit) return;
-        path.push_back(surfaceVertex(scene, *hit));
-        path.back().beta = beta;
-        if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && path.back().emitter >= 0))
-            recordPdfs(scene, path, mode);
+        // Built in a local and appended when complete: reading back fields just written through
+        // the vector would stall store forwarding on this hot path.
+        Vertex v = surfaceVertex(scene, *hit);
+        v.beta = beta;
+        if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0)) recordPdfs(scene, path, v, mode);
+        path.push_back(v);
         if (path.size() == maxVertices) return;
 
-        const Vertex& cur = path.back();
-        const Vertex& prev = path[path.size() - 2];
-        const Frame frame(cur.ns);
-        const Vec3 wo = normalize(prev.p - cur.p);
-        const auto bs = sampleBsdf(*cur.material, frame.toLocal(wo), uniform2(rng), rng.uniform(), mode);
+        const Frame frame(v.ns);
+        const Vec3 wo = normalize(path[path.size() - 2].p - v.p);
+        const auto bs = sampleBsdf(*v.material, frame.toLocal(wo), uniform2(rng), rng.uniform(), mode);
         if (!bs || !(bs->pdf > 0) || isBlack(bs->f)) return;
         const Vec3 wi = frame.toWorld(bs->wi);
         // Radiance flows against a camera walk (light arrives along wi) and with a light walk.
         const Vec3 towardLight = mode == TransportMode::Radiance ? wi : wo;
-        const Spectrum weight = bs->f * (shadingCorrection(cur, towardLight) * absDot(cur.ng, wi) / bs->pdf);
+        const Spectrum weight = bs->f * (shadingCorrection(v, towardLight) * absDot(v.ng, wi) / bs->pdf);
         beta *= weight;
         if (static_cast<int>(path.size()) >= settings.rrDepth) {
             // Survive with the probability of this bounce's weight, capped below 1 so that even
