@@ -71,7 +71,8 @@ Connection join(const Scene& scene, std::span<Vertex> light, int s, std::span<Ve
         if (!c.raster) return c;
     }
     const Vec3 towardP = segment.direction(), towardQ = -towardP;
-    const Vec3 qsBack = qsMinus ? normalize(qsMinus->p - qs.p) : Vec3(), ptBack = ptMinus ? normalize(ptMinus->p - pt.p) : Vec3();
+    const Vec3 qsBack = qsMinus ? normalize(qsMinus->p - qs.p) : Vec3();
+    const Vec3 ptBack = ptMinus ? normalize(ptMinus->p - pt.p) : Vec3();
     const LocalScattering atQ(scene, qs, qsMinus ? &qsBack : nullptr, &towardP);
     const LocalScattering atP(scene, pt, &towardQ, ptMinus ? &ptBack : nullptr);
     c.unweighted = qs.beta * atQ.value() * segment.G() * atP.value() * pt.beta;
@@ -83,10 +84,10 @@ Connection join(const Scene& scene, std::span<Vertex> light, int s, std::span<Ve
     SavedPdfs pdfs;
     if (strategies.readsCameraPdfs(t - 1, s, t)) pdfs.set(pt.pdfRev, segment.toArea(atQ.pdfTowardCamera(), pt));
     if (strategies.readsCameraPdfs(t - 2, s, t))
-        pdfs.set(ptMinus->pdfRev, Segment(pt, *ptMinus).toArea(atP.pdfTowardCamera(), *ptMinus));
+        pdfs.set(ptMinus->pdfRev, toAreaPdf(atP.pdfTowardCamera(), pt, *ptMinus));
     if (strategies.readsLightPdfs(s - 1, s, t)) pdfs.set(qs.pdfRev, segment.toArea(atP.pdfTowardLight(), qs));
     if (strategies.readsLightPdfs(s - 2, s, t))
-        pdfs.set(qsMinus->pdfRev, Segment(qs, *qsMinus).toArea(atQ.pdfTowardLight(), *qsMinus));
+        pdfs.set(qsMinus->pdfRev, toAreaPdf(atQ.pdfTowardLight(), qs, *qsMinus));
     c.weight = misWeight(light, s, camera, t, heuristic, strategies);
     return c;
 }

@@ -78,7 +78,8 @@ float LocalScattering::pdfTowardLight() const {
 }
 
 Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera) {
-    const Vec3 l = towardLight ? unitDirection(v, *towardLight) : Vec3(), c = towardCamera ? unitDirection(v, *towardCamera) : Vec3();
+    const Vec3 l = towardLight ? unitDirection(v, *towardLight) : Vec3();
+    const Vec3 c = towardCamera ? unitDirection(v, *towardCamera) : Vec3();
     return LocalScattering(scene, v, towardLight ? &l : nullptr, towardCamera ? &c : nullptr).value();
 }
 

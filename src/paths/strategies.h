@@ -30,7 +30,7 @@ void evaluateStrategies(const Scene& scene, Subpath& light, Subpath& camera, Rng
         const int sMax = std::min(std::max(nl, 1), maxDepth + 1 - t);
         for (int s = 0; s <= sMax; ++s) {
             if (s + t < 2 || !strategies.enabled(s, t)) continue;
-            // Initialised from the call, never assigned: copying a returned Connection stalls.
+            // Initialised from the call rather than assigned: no copy of the Connection.
             const Connection c = s == 1 ? connectNextEvent(scene, rng, camera, t, heuristic, strategies)
                                         : connect(scene, light, s, camera, t, heuristic, strategies);
             if (!isBlack(c.unweighted)) sink(s, t, c);

@@ -31,7 +31,8 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
 void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode) {
     const Vertex& from = path.back();
     Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
-    const Vec3 ahead = normalize(v.p - from.p), back = beforeFrom ? normalize(beforeFrom->p - from.p) : Vec3();
+    const Vec3 ahead = normalize(v.p - from.p);
+    const Vec3 back = beforeFrom ? normalize(beforeFrom->p - from.p) : Vec3();
     const Vec3* behind = beforeFrom ? &back : nullptr;
     const bool cameraWalk = mode == TransportMode::Radiance;
     const LocalScattering at(scene, from, cameraWalk ? &ahead : behind, cameraWalk ? behind : &ahead);
@@ -57,11 +58,10 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
         const Vec3 origin = from.onSurface() ? offsetRayOrigin(from.p, from.ng, dir) : from.p;
         const auto hit = scene.intersect(origin, dir);
         if (!hit) return;
-        // Built in a local and appended when complete: reading back fields just written through
-        // the vector would stall store forwarding on this hot path.
         Vertex v = surfaceVertex(scene, *hit);
         v.beta = beta;
-        if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0)) recordPdfs(scene, path, v, mode);
+        if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0))
+            recordPdfs(scene, path, v, mode);
         path.push_back(v);
         if (path.size() == maxVertices) return;
 
