@@ -391,6 +391,33 @@ TEST(CausticPoint, PathTracingCannotSampleTheCaustic) {
     EXPECT_LT(e["pt"].mean, 0.1 * e["lt"].mean) << "pt cannot sample a point-light caustic";
 }
 
+// cornell-point: the point light itself, in view. No camera ray can hit a point, and PT's
+// next-event estimation starts at surface vertices (t ≥ 2), so under PT the light's pixel shows
+// only the ceiling behind it. LT and BDPT join light points to the sensor (strategy (1, 1)): the
+// pixel receives the light's finite W · I / r², far above the ceiling around it.
+TEST(CornellPoint, PathTracingDoesNotSeeThePointLightDirectly) {
+    constexpr int kSize = 32;
+    const Scene scene(builtinScene("cornell-point"), kSize, kSize, silent);
+    ASSERT_EQ(scene.emitters().all().size(), 1u);
+    const Vec3 light = scene.emitters().all()[0].position;
+    const Block pixel = around(scene, light, 0), ring = around(scene, light, 2);
+    for (const std::string& integrator : kIntegrators) {
+        Job job;
+        job.integrator = integrator;
+        job.size = kSize;
+        job.spp = 16;
+        const Image img = renderJob(scene, job).image();
+        const double atLight = regionMean(img, pixel);
+        // The 5×5 block's mean without the light's own pixel: the ceiling around it.
+        const double around = (25 * regionMean(img, ring) - atLight) / 24;
+        std::cout << "cornell-point, light pixel / ceiling around it, " << integrator << ": " << atLight / around << "\n";
+        if (integrator == "pt")
+            EXPECT_LT(atLight, 3 * around) << "pt cannot see a point light";
+        else
+            EXPECT_GT(atLight, 10 * around) << integrator << " sees the point light by strategy (1, 1)";
+    }
+}
+
 // sds, sds-point: nothing reaches the camera through the pane under LT, since its only strategy
 // (t = 1) connects a non-delta vertex straight to the pinhole and the pane is in the way. Exactly
 // zero, not just small. The same region under the caustic scene without the pane is bright.
