@@ -33,6 +33,10 @@ public:
 
     // Per-pixel importance W_j(ω) for the pixel that d passes through (zero outside the image).
     float importance(Vec3 d) const;
+    // W_j(ω) and imagePdf for a direction already known to cross the image (raster(d) has a
+    // value): the same values without projecting d again.
+    float importanceInImage(Vec3 d) const;
+    float imagePdfInImage(Vec3 d) const;
     // Solid-angle density of directions when sampling uniformly over pixel j: N / (A cos³θ).
     // Camera sampling then gives β = W_j cos θ / p = 1 for every camera ray.
     float pixelPdf(Vec3 d) const;

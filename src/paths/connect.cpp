@@ -40,8 +40,7 @@ Connection emitterHit(const Scene& scene, std::span<Vertex> light, std::span<Ver
     Vertex& ptMinus = camera[t - 2];
     if (pt.emitter < 0) return c;
     const Segment toCamera(pt, ptMinus);
-    const Vec3 w = toCamera.direction();
-    const LocalScattering at(scene, pt, nullptr, &w);
+    const LocalScattering at(scene, pt, nullptr, toCamera.towardB());
     c.unweighted = pt.beta * at.value();  // Le(pt → ptMinus)
     if (isBlack(c.unweighted)) return c;
     SavedPdfs pdfs;
@@ -70,11 +69,10 @@ Connection join(const Scene& scene, std::span<Vertex> light, int s, std::span<Ve
         c.raster = scene.camera().raster(-segment.direction());
         if (!c.raster) return c;
     }
-    const Vec3 towardP = segment.direction(), towardQ = -towardP;
-    const Vec3 qsBack = qsMinus ? normalize(qsMinus->p - qs.p) : Vec3();
-    const Vec3 ptBack = ptMinus ? normalize(ptMinus->p - pt.p) : Vec3();
-    const LocalScattering atQ(scene, qs, qsMinus ? &qsBack : nullptr, &towardP);
-    const LocalScattering atP(scene, pt, &towardQ, ptMinus ? &ptBack : nullptr);
+    const Vec3 towardQ = -segment.direction();
+    const Segment backQ(qs, qsMinus), backP(pt, ptMinus);  // to each endpoint's own predecessor
+    const LocalScattering atQ(scene, qs, backQ.towardB(), segment.towardB());
+    const LocalScattering atP(scene, pt, &towardQ, backP.towardB());
     c.unweighted = qs.beta * atQ.value() * segment.G() * atP.value() * pt.beta;
     if (isBlack(c.unweighted)) return c;
     if (!visible(scene, qs, pt)) {
@@ -84,10 +82,10 @@ Connection join(const Scene& scene, std::span<Vertex> light, int s, std::span<Ve
     SavedPdfs pdfs;
     if (strategies.readsCameraPdfs(t - 1, s, t)) pdfs.set(pt.pdfRev, segment.toArea(atQ.pdfTowardCamera(), pt));
     if (strategies.readsCameraPdfs(t - 2, s, t))
-        pdfs.set(ptMinus->pdfRev, toAreaPdf(atP.pdfTowardCamera(), pt, *ptMinus));
+        pdfs.set(ptMinus->pdfRev, backP.toArea(atP.pdfTowardCamera(), *ptMinus));
     if (strategies.readsLightPdfs(s - 1, s, t)) pdfs.set(qs.pdfRev, segment.toArea(atP.pdfTowardLight(), qs));
     if (strategies.readsLightPdfs(s - 2, s, t))
-        pdfs.set(qsMinus->pdfRev, toAreaPdf(atQ.pdfTowardLight(), qs, *qsMinus));
+        pdfs.set(qsMinus->pdfRev, backQ.toArea(atQ.pdfTowardLight(), *qsMinus));
     c.weight = misWeight(light, s, camera, t, heuristic, strategies);
     return c;
 }

@@ -17,7 +17,7 @@ float inverseSquaredDistance(const Vertex& a, const Vertex& b) {
 
 float Segment::G() const {
     if (!(d2_ > 0)) return 0.0f;  // coincident points carry no transport
-    return cosine(a_, w_) * cosine(b_, w_) / d2_;
+    return cosine(a_, w_) * cosine(*b_, w_) / d2_;
 }
 
 float Segment::toArea(float pdfOmega, const Vertex& to) const {
@@ -60,7 +60,7 @@ bool LocalScattering::emits() const {
 }
 
 Spectrum LocalScattering::value() const {
-    if (v_.kind == Vertex::Kind::Sensor) return Spectrum(scene_.camera().importance(light_));
+    if (v_.kind == Vertex::Kind::Sensor) return Spectrum(inImage_ ? scene_.camera().importanceInImage(light_) : 0.0f);
     if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, camera_);
     return evalBsdf(*v_.material, cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, light_);
 }
@@ -72,7 +72,7 @@ float LocalScattering::pdfTowardCamera() const {
 }
 
 float LocalScattering::pdfTowardLight() const {
-    if (v_.kind == Vertex::Kind::Sensor) return scene_.camera().imagePdf(light_);
+    if (v_.kind == Vertex::Kind::Sensor) return inImage_ ? scene_.camera().imagePdfInImage(light_) : 0.0f;
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
     return pdfBsdf(*v_.material, cameraLocal_, lightLocal_);
 }

@@ -36,18 +36,25 @@ float inverseSquaredDistance(const Vertex& a, const Vertex& b);
 // that share it (G, and the area pdfs at either end).
 class Segment {
 public:
-    Segment(const Vertex& a, const Vertex& b) : a_(a), b_(b), d2_(lengthSquared(b.p - a.p)) {
-        w_ = (b.p - a.p) / std::sqrt(d2_);
+    Segment(const Vertex& a, const Vertex& b) : Segment(a, &b) {}
+    // The segment from a to its neighbour b, if a has one there (a subpath's endpoint does not).
+    Segment(const Vertex& a, const Vertex* b) : a_(a), b_(b) {
+        if (!b) return;
+        d2_ = lengthSquared(b->p - a.p);
+        w_ = (b->p - a.p) / std::sqrt(d2_);
     }
     Vec3 direction() const { return w_; }  // unit, a → b
+    // The direction as LocalScattering takes a neighbour: null where there is no b.
+    const Vec3* towardB() const { return b_ ? &w_ : nullptr; }
     // G(a,b) = |cos θa| |cos θb| / |a − b|², without visibility; 0 for coincident points.
     float G() const;
     // Solid-angle pdf at one end → area pdf at the other end, `to`: p_A = p_ω |cos θ_to| / r².
     float toArea(float pdfOmega, const Vertex& to) const;
 
 private:
-    const Vertex &a_, &b_;
-    float d2_;
+    const Vertex& a_;
+    const Vertex* b_;
+    float d2_ = 0;
     Vec3 w_;
 };
 
@@ -87,6 +94,8 @@ public:
         : scene_(scene), v_(v), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr) {
         if (hasLight_) light_ = *towardLight;
         if (hasCamera_) camera_ = *towardCamera;
+        // The sensor's W and image pdf share one projection onto the image.
+        if (v.kind == Vertex::Kind::Sensor) inImage_ = hasLight_ && scene.camera().raster(light_).has_value();
         if (v.kind == Vertex::Kind::Surface && hasLight_ && hasCamera_) {
             const Frame frame(v.ns);
             lightLocal_ = frame.toLocal(light_);
@@ -108,6 +117,7 @@ private:
     const Scene& scene_;
     const Vertex& v_;
     bool hasLight_, hasCamera_;
+    bool inImage_ = false;  // sensor: the light-side direction crosses the image
     Vec3 light_, camera_;
     Vec3 lightLocal_, cameraLocal_;  // in v's shading frame (surfaces between two neighbours)
 };

@@ -31,15 +31,14 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
 void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode) {
     const Vertex& from = path.back();
     Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
-    const Vec3 ahead = normalize(v.p - from.p);
-    const Vec3 back = beforeFrom ? normalize(beforeFrom->p - from.p) : Vec3();
-    const Vec3* behind = beforeFrom ? &back : nullptr;
+    const Segment ahead(from, v), behind(from, beforeFrom);
     const bool cameraWalk = mode == TransportMode::Radiance;
-    const LocalScattering at(scene, from, cameraWalk ? &ahead : behind, cameraWalk ? behind : &ahead);
-    v.pdfFwd = Segment(v, from).toArea(cameraWalk ? at.pdfTowardLight() : at.pdfTowardCamera(), v);
+    const LocalScattering at(scene, from, cameraWalk ? ahead.towardB() : behind.towardB(),
+                             cameraWalk ? behind.towardB() : ahead.towardB());
+    v.pdfFwd = ahead.toArea(cameraWalk ? at.pdfTowardLight() : at.pdfTowardCamera(), v);
     if (beforeFrom) {
         const float pdfBack = cameraWalk ? at.pdfTowardCamera() : at.pdfTowardLight();
-        beforeFrom->pdfRev = Segment(from, *beforeFrom).toArea(pdfBack, *beforeFrom);
+        beforeFrom->pdfRev = behind.toArea(pdfBack, *beforeFrom);
     }
 }
 
