@@ -88,6 +88,7 @@ Metadata renderMetadata(const RenderOptions& o, const std::string& integrator, c
             {"tripath:rr-depth", std::to_string(o.rrDepth)},
             {"tripath:mis", o.mis},
             {"tripath:dropped-samples", std::to_string(r.droppedSamples)},
+            {"tripath:guarded-weights", std::to_string(r.guardedWeights)},
             {"tripath:version", TRIPATH_VERSION}};
 }
 
@@ -120,9 +121,10 @@ std::function<void(int, double)> progressReporter(const RenderSettings& s, int w
 
 void printSummary(const std::string& label, const RenderResult& r, int width, int height) {
     if (isatty(STDERR_FILENO)) std::cerr << "\n";
-    std::cerr << fmt::format("{}: {} spp in {:.2f} s ({:.2f} Msamples/s), {} NaN/Inf samples dropped\n", label,
-                             r.passes, r.seconds, r.passes * double(width) * height / r.seconds / 1e6,
-                             r.droppedSamples);
+    std::cerr << fmt::format("{}: {} spp in {:.2f} s ({:.2f} Msamples/s), {} NaN/Inf samples dropped, "
+                             "{} MIS weights guarded to 0\n",
+                             label, r.passes, r.seconds, r.passes * double(width) * height / r.seconds / 1e6,
+                             r.droppedSamples, r.guardedWeights);
 }
 
 }  // namespace tripath::app

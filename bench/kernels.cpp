@@ -13,6 +13,7 @@
 #include "paths/connect.h"
 #include "paths/kernels.h"
 #include "paths/mis.h"
+#include "paths/oracle.h"
 #include "paths/walk.h"
 
 namespace tripath::bench {
@@ -206,9 +207,11 @@ void registerPathKernels() {
 // ---- MIS weight against path length ------------------------------------------------------------
 
 // A path of k segments split into s light and t = k + 1 − s camera vertices with random pdfs:
-// misWeight reads only kinds, delta flags, normals (for a delta light) and the two pdfs.
+// misWeight reads only kinds, delta flags, normals (for a delta light), the two pdfs and the
+// junction's four.
 struct SyntheticPath {
     std::vector<Vertex> light, camera;
+    Junction junction;
 };
 
 SyntheticPath syntheticPath(int s, int t, Rng& rng) {
@@ -230,6 +233,10 @@ SyntheticPath syntheticPath(int s, int t, Rng& rng) {
         v.pdfRev = pdf();
         p.camera.push_back(v);
     }
+    p.junction.cameraEnd = pdf();
+    p.junction.cameraBeforeEnd = pdf();
+    p.junction.lightEnd = pdf();
+    p.junction.lightBeforeEnd = pdf();
     return p;
 }
 
@@ -243,7 +250,7 @@ void runMis(benchmark::State& state, int k, MisHeuristic h, StrategySet::Kind ki
     for (size_t i = 0; i < kPaths; ++i) paths.push_back(syntheticPath(s, t, rng));
     const StrategySet strategies{kind};
     cycle(state, kPaths, [&](size_t i) {
-        float w = misWeight(paths[i].light, s, paths[i].camera, t, h, strategies);
+        MisWeight w = misWeight(paths[i].light, s, paths[i].camera, t, paths[i].junction, h, strategies);
         benchmark::DoNotOptimize(w);
     });
     state.counters["k"] = k;

@@ -5,6 +5,7 @@
 #include "geometry/builtin_scenes.h"
 #include "paths/connect.h"
 #include "paths/kernels.h"
+#include "paths/oracle.h"
 #include "paths/walk.h"
 
 namespace tripath {

@@ -42,6 +42,4 @@ float Camera::imagePdfInImage(Vec3 d) const {
     return 1.0f / (area_ * c * c * c);
 }
 
-float Camera::pixelPdf(Vec3 d) const { return imagePdf(d) * static_cast<float>(width_) * height_; }
-
 }  // namespace tripath

@@ -37,11 +37,8 @@ public:
     // value): the same values without projecting d again.
     float importanceInImage(Vec3 d) const;
     float imagePdfInImage(Vec3 d) const;
-    // Solid-angle density of directions when sampling uniformly over pixel j: N / (A cos³θ).
-    // Camera sampling then gives β = W_j cos θ / p = 1 for every camera ray.
-    float pixelPdf(Vec3 d) const;
-    // Solid-angle density over the whole image, 1 / (A cos³θ). MIS compares this with light
-    // strategies because one light path is traced per camera sample (Veach §10.3.4.3).
+    // Solid-angle density of a direction sampled uniformly over the whole image, 1 / (A cos³θ);
+    // over one pixel it is N times that.
     float imagePdf(Vec3 d) const;
 
 private:

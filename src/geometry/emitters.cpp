@@ -40,7 +40,6 @@ EmitterSample Emitters::sample(float uc, Vec2 u, const std::vector<Triangle>& tr
     if (e.kind == Emitter::Kind::Point) {
         s.p = e.position;
         s.pdfA = choice_.probability(i);
-        s.delta = true;
         return s;
     }
     const Triangle& tri = triangles[e.triangle];

@@ -1,7 +1,7 @@
 // Emitters and how a point on them is sampled: emissive triangles (area lights) chosen in
 // proportion to their power, points uniform by area; and point lights (delta in position).
 // Every pdf is in area measure: picking probability × 1/area (DESIGN.md §1). A point light's
-// "area pdf" is its picking probability alone, with `delta` set.
+// "area pdf" is its picking probability alone: a delta in position (Vertex::isDeltaLight).
 #pragma once
 #include <vector>
 
@@ -28,7 +28,6 @@ struct EmitterSample {
     Vec3 n;                  // surface normal (front face) of a triangle emitter; zero for a point light
     uint32_t emitter = 0;    // index into Emitters::all()
     float pdfA = 0;          // area-measure pdf of p (picking probability for a point light)
-    bool delta = false;
 };
 
 class Emitters {
@@ -47,7 +46,6 @@ public:
     EmitterSample sample(float uc, Vec2 u, const std::vector<Triangle>& triangles) const;
     // The area pdf with which sample() produces a given point on emitter e.
     float pdfA(int e) const;
-    float pickProbability(int e) const { return choice_.probability(static_cast<size_t>(e)); }
 
     // A direction for light to leave a point of emitter e (front normal n): cosine-weighted over
     // the emitting hemisphere(s) of a triangle, uniform over the sphere for a point light.

@@ -39,6 +39,6 @@ private:
 };
 
 // Stream domains: keep camera samples, light paths and anything else from sharing streams.
-enum class StreamDomain : uint64_t { CameraSample = 1, LightPath = 2, Test = 3 };
+enum class StreamDomain : uint64_t { CameraSample = 1, Test = 3 };
 
 }  // namespace tripath

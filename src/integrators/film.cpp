@@ -49,8 +49,4 @@ std::vector<std::pair<int, int>> Film::strategies() const {
     return out;
 }
 
-void Film::seed(const Image& image, int passes) {
-    for (size_t i = 0; i < main_.size(); ++i) main_[i] = double(image.rgb[i]) * passes;
-}
-
 }  // namespace tripath

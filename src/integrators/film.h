@@ -34,9 +34,6 @@ public:
     // The (s,t) pairs that have layers, in order of k then s.
     std::vector<std::pair<int, int>> strategies() const;
 
-    // Sets the main sums from an image that averaged `passes` passes.
-    void seed(const Image& image, int passes);
-
 private:
     using Sums = std::vector<double>;
     static void addTo(Sums& sums, int pixel, Spectrum v);

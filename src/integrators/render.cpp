@@ -6,6 +6,8 @@
 
 #include <chrono>
 
+#include "paths/kernels.h"
+
 namespace tripath {
 
 namespace {
@@ -21,6 +23,7 @@ struct Splat {
 struct TileOutput {
     std::vector<Splat> splats;
     uint64_t dropped = 0;
+    uint64_t guardedWeights = 0;
 };
 
 // Camera contributions go straight to the sample's pixel (owned by this tile for the pass);
@@ -31,15 +34,15 @@ public:
     TileSink(Film& film, const Camera& camera, TileOutput& out) : film_(film), camera_(camera), out_(out) {}
     void setPixel(int pixel) { pixel_ = pixel; }
     void add(int s, int t, const Connection& c) override {
+        if (c.weightGuarded) ++out_.guardedWeights;
         const Spectrum w = c.weighted();
         if (!isFinite(w) || !isFinite(c.unweighted)) {
             ++out_.dropped;
             return;
         }
         if (t == 1) {
-            // A pass traces one light path per pixel: each splat is one of N estimates of every
-            // pixel it lands in, so it counts 1/N (N = pixel count).
-            const float share = 1.0f / (float(camera_.width()) * camera_.height());
+            // Each splat is one of the pass's N_L estimates of every pixel it lands in.
+            const float share = static_cast<float>(1.0 / lightPathsPerPass(camera_));
             const int x = std::min(static_cast<int>(c.raster->x), camera_.width() - 1);
             const int y = std::min(static_cast<int>(c.raster->y), camera_.height() - 1);
             out_.splats.push_back({y * camera_.width() + x, s, t, w * share, c.unweighted * share});
@@ -101,7 +104,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
             for (const Splat& sp : out.splats) result.film.add(sp.pixel, sp.s, sp.t, sp.weighted, sp.unweighted);
             out.splats.clear();
             result.droppedSamples += out.dropped;
-            out.dropped = 0;
+            result.guardedWeights += out.guardedWeights;
+            out.dropped = out.guardedWeights = 0;
         }
         ++result.passes;
         result.seconds = elapsed();

@@ -32,6 +32,7 @@ struct RenderResult {
     int passes = 0;
     double seconds = 0;
     uint64_t droppedSamples = 0;  // NaN or infinite contributions kept off the film
+    uint64_t guardedWeights = 0;  // MIS weights set to 0 because a pdf ratio was not finite (mis.h)
     Image image() const { return film.image(passes); }
 };
 

@@ -6,48 +6,24 @@ namespace tripath {
 
 namespace {
 
-// Reverse pdfs set for one MIS weight, put back (newest first) when it goes out of scope: the
-// subpaths are shared by every connection of the sample.
-class SavedPdfs {
-public:
-    SavedPdfs() = default;
-    SavedPdfs(const SavedPdfs&) = delete;
-    SavedPdfs& operator=(const SavedPdfs&) = delete;
-    ~SavedPdfs() {
-        for (int i = count_ - 1; i >= 0; --i) *saved_[i].where = saved_[i].value;
-    }
-    void set(float& where, float value) {
-        saved_[count_++] = {&where, where};
-        where = value;
-    }
-
-private:
-    struct Saved {
-        float* where;
-        float value;
-    };
-    Saved saved_[4];
-    int count_ = 0;
-};
-
 // s = 0: the camera subpath's last vertex pt lies on an emitter, which is the light's start.
 // Its reverse pdf is the emitter sampler's, and the vertex before it would have been generated
-// by an emission direction from pt.
-Connection emitterHit(const Scene& scene, std::span<Vertex> light, std::span<Vertex> camera, int t,
+// by an emission direction from pt. Whatever pt's material, it emits here: it is x0, not a
+// scatterer (mis.h).
+Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::span<const Vertex> camera, int t,
                       MisHeuristic heuristic, StrategySet strategies) {
     Connection c;
-    Vertex& pt = camera[t - 1];
-    Vertex& ptMinus = camera[t - 2];
+    const Vertex& pt = camera[t - 1];
+    const Vertex& ptMinus = camera[t - 2];
     if (pt.emitter < 0) return c;
     const Segment toCamera(pt, ptMinus);
     const LocalScattering at(scene, pt, nullptr, toCamera.towardB());
     c.unweighted = pt.beta * at.value();  // Le(pt → ptMinus)
     if (isBlack(c.unweighted)) return c;
-    SavedPdfs pdfs;
-    if (strategies.readsCameraPdfs(t - 1, 0, t)) pdfs.set(pt.pdfRev, scene.emitters().pdfA(pt.emitter));
-    if (strategies.readsCameraPdfs(t - 2, 0, t))
-        pdfs.set(ptMinus.pdfRev, toCamera.toArea(at.pdfTowardCamera(), ptMinus));
-    c.weight = misWeight(light, 0, camera, t, heuristic, strategies);
+    Junction junction;
+    if (strategies.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter);
+    if (strategies.readsCameraPdfs(t - 2, 0, t)) junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), ptMinus);
+    c.setWeight(misWeight(light, 0, camera, t, junction, heuristic, strategies));
     return c;
 }
 
@@ -55,14 +31,14 @@ Connection emitterHit(const Scene& scene, std::span<Vertex> light, std::span<Ver
 // joined path is the two prefixes' throughputs times the factors the connecting segment brings:
 // the endpoints' scattering and G between them. The segment and each endpoint's local geometry
 // are computed once, and of the four reverse pdfs the connection defines only those the
-// strategy set's weight reads are set.
-Connection join(const Scene& scene, std::span<Vertex> light, int s, std::span<Vertex> camera, int t,
+// strategy set's weight reads are computed.
+Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                 MisHeuristic heuristic, StrategySet strategies) {
     Connection c;
-    Vertex& qs = light[s - 1];
-    Vertex* qsMinus = s > 1 ? &light[s - 2] : nullptr;
-    Vertex& pt = camera[t - 1];
-    Vertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
+    const Vertex& qs = light[s - 1];
+    const Vertex* qsMinus = s > 1 ? &light[s - 2] : nullptr;
+    const Vertex& pt = camera[t - 1];
+    const Vertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
     if (qs.delta || pt.delta) return c;
     const Segment segment(qs, pt);
     if (t == 1) {
@@ -79,20 +55,18 @@ Connection join(const Scene& scene, std::span<Vertex> light, int s, std::span<Ve
         c.unweighted = Spectrum(0.0f);
         return c;
     }
-    SavedPdfs pdfs;
-    if (strategies.readsCameraPdfs(t - 1, s, t)) pdfs.set(pt.pdfRev, segment.toArea(atQ.pdfTowardCamera(), pt));
-    if (strategies.readsCameraPdfs(t - 2, s, t))
-        pdfs.set(ptMinus->pdfRev, backP.toArea(atP.pdfTowardCamera(), *ptMinus));
-    if (strategies.readsLightPdfs(s - 1, s, t)) pdfs.set(qs.pdfRev, segment.toArea(atP.pdfTowardLight(), qs));
-    if (strategies.readsLightPdfs(s - 2, s, t))
-        pdfs.set(qsMinus->pdfRev, backQ.toArea(atQ.pdfTowardLight(), *qsMinus));
-    c.weight = misWeight(light, s, camera, t, heuristic, strategies);
+    Junction junction;
+    if (strategies.readsCameraPdfs(t - 1, s, t)) junction.cameraEnd = segment.toArea(atQ.pdfTowardCamera(), pt);
+    if (strategies.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);
+    if (strategies.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(), qs);
+    if (strategies.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(), *qsMinus);
+    c.setWeight(misWeight(light, s, camera, t, junction, heuristic, strategies));
     return c;
 }
 
 }  // namespace
 
-Connection connect(const Scene& scene, std::span<Vertex> light, int s, std::span<Vertex> camera, int t,
+Connection connect(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                    MisHeuristic heuristic, StrategySet strategies) {
     return s == 0 ? emitterHit(scene, light, camera, t, heuristic, strategies)
                   : join(scene, light, s, camera, t, heuristic, strategies);

@@ -12,8 +12,13 @@ namespace tripath {
 struct Connection {
     Spectrum unweighted{0.0f};      // f(x̄) / p_{s,t}(x̄)
     float weight = 0;               // MIS weight of (s, t) among the enabled strategies
+    bool weightGuarded = false;     // the weight's pdf ratios were not finite, so it is 0 (mis.h)
     std::optional<Vec2> raster;     // t = 1: the pixel the path lands in (splat there)
     Spectrum weighted() const { return unweighted * weight; }
+    void setWeight(MisWeight w) {
+        weight = w.value;
+        weightGuarded = w.guarded;
+    }
 };
 
 // Strategy (s, t), t ≥ 1, s + t ≥ 2:
@@ -21,8 +26,8 @@ struct Connection {
 //   s = 1  light[0] is an emitter point sampled on its own (next-event estimation);
 //   t = 1  the light subpath's last vertex is connected to the sensor (the result is a splat);
 //   else   the two endpoints are joined by a shadow ray.
-// The subpaths' endpoint pdfs are updated in place for the MIS weight and restored afterwards.
-Connection connect(const Scene& scene, std::span<Vertex> light, int s, std::span<Vertex> camera, int t,
+// The subpaths are only read: what the strategy defines at the junction goes to misWeight apart.
+Connection connect(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                    MisHeuristic heuristic, StrategySet strategies);
 
 }  // namespace tripath

@@ -1,18 +1,13 @@
-// The kernels of the three-point form (DESIGN.md §1, seeds/000 §2–4), as functions of points.
+// The factors of the three-point form (DESIGN.md §1, seeds/000 §2–4) as the walks and
+// connections evaluate them.
 //
-//   g(x, x')            = V(x, x') / |x − x'|²                              [1/m²]
-//   ε(x0 → x1)          = Le(x0 → x1) |cos θ0| |cos θ1|                     [W/m²]
-//   ρ(x″ → x′ → x)      = f_r(x″ → x′ → x) |cos θ′| |cos θ|                 [1]
-//   W(x_{k−1} → x_k)    = sensor importance of the last segment
-//   f(x̄) = ε(x0→x1) g(x0,x1) · Π_{i=1}^{k−1} ρ(x_{i−1}→x_i→x_{i+1}) g(x_i,x_{i+1}) · W(x_{k−1}→x_k)
-//
-// The cosines of a segment are those at its two ends; ρ carries the cosines of its OUTGOING
-// segment (toward the sensor). Regrouping the same product by segment gives
+// The kernels g, ε, ρ and W multiply to f(x̄) (paths/oracle.h evaluates them literally). The
+// cosines of a segment are those at its two ends; ρ carries the cosines of its OUTGOING segment
+// (toward the sensor). Regrouping the same product by segment gives
 //   f(x̄) = Π_vertices scatter(x_i) · Π_segments G(x_i, x_{i+1}) V(x_i, x_{i+1}),
 // with G = |cos||cos| / r² and scatter = Le at x0, f_r at interior vertices, W at xk. That is
 // the form the subpath walks accumulate (beta) and `connect` joins: each factor is known as soon
-// as the vertices it touches are. `pathContribution` evaluates the first form directly; the
-// tests check the two agree.
+// as the vertices it touches are. The tests check the two forms agree.
 //
 // Shading normals: f_r is evaluated in the shading frame, and the cosine at the receiving end of
 // the incoming (light-side) segment becomes the SHADING cosine, as radiance scattering demands.
@@ -29,8 +24,6 @@ namespace tripath {
 // |cos θ| at vertex v for the unit direction w: geometric normal, or the sensor's axis;
 // 1 at a point light (it has no surface to foreshorten).
 float cosine(const Vertex& v, Vec3 w);
-// Squared distance, guarded: coincident vertices give +inf for 1/r², never NaN.
-float inverseSquaredDistance(const Vertex& a, const Vertex& b);
 
 // The segment between two vertices, its direction and length computed once for the kernels
 // that share it (G, and the area pdfs at either end).
@@ -58,22 +51,26 @@ private:
     Vec3 w_;
 };
 
-// G(a,b) = |cos θa| |cos θb| / |a − b|², without visibility.
-float geometricFactor(const Vertex& a, const Vertex& b);
 // Visibility V(a, b): a shadow ray between the two, offset off their surfaces.
 bool visible(const Scene& scene, const Vertex& a, const Vertex& b);
 
-// g(x, x') = V / r².
-float g(const Scene& scene, const Vertex& x, const Vertex& xp);
-// ε(x0 → x1) = Le(x0 → x1) |cos θ0| |cos θ1|.
-Spectrum emittance(const Scene& scene, const Vertex& x0, const Vertex& x1);
-// ρ(x″ → x′ → x) = f_r · |cos θ′| |cos θ| (outgoing segment x′–x), with the shading correction.
-Spectrum rho(const Scene& scene, const Vertex& xpp, const Vertex& xp, const Vertex& x);
-// W(x_{k−1} → x_k): the sensor importance of the pixel the segment passes through.
-float W(const Scene& scene, const Vertex& xkm1, const Vertex& xk);
-
 // Shading-normal factor |ns·ℓ| / |ng·ℓ| for a surface vertex, ℓ toward the light side (1 elsewhere).
 float shadingCorrection(const Vertex& v, Vec3 towardLight);
+
+// Leak mask: whether unit w lies on the same side of a surface vertex under its shading normal
+// as under its geometric one. Near the silhouettes of coarse smooth meshes the two disagree, and a
+// BSDF evaluated in the shading frame alone would let light through the surface (or reflect it
+// off the back). A surface vertex scatters only between directions that both pass this test, in
+// either transport mode: the mask is symmetric in the two directions, so the adjoint BSDF of
+// light subpaths stays exactly the radiance BSDF's adjoint (Veach §5.3) and pt, lt and bdpt keep
+// agreeing on smooth meshes.
+inline bool sidesAgree(const Vertex& v, Vec3 w) { return dot(v.ng, w) * dot(v.ns, w) > 0; }
+
+// Light paths traced per pass, N_L: one per pixel, each paired with that pixel's camera sample.
+// Every light path may land in any pixel, so a splat counts 1/N_L there, and MIS compares the
+// camera's per-pixel pdf divided by N_L with the light strategies' pdfs (Veach §10.3.4.3). The one
+// place that number is decided: vertex merging changes it.
+double lightPathsPerPass(const Camera& camera);
 
 // Vertex v between its light-side and camera-side neighbours: the factor it contributes to the
 // regrouped product, and the pdfs with which it generates either neighbour. The directions to
@@ -94,7 +91,7 @@ public:
         : scene_(scene), v_(v), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr) {
         if (hasLight_) light_ = *towardLight;
         if (hasCamera_) camera_ = *towardCamera;
-        // The sensor's W and image pdf share one projection onto the image.
+        // The sensor's W and pdf share one projection onto the image.
         if (v.kind == Vertex::Kind::Sensor) inImage_ = hasLight_ && scene.camera().raster(light_).has_value();
         if (v.kind == Vertex::Kind::Surface && hasLight_ && hasCamera_) {
             const Frame frame(v.ns);
@@ -109,7 +106,8 @@ public:
     // direction: its BSDF's, or an emitter's emission distribution.
     float pdfTowardCamera() const;
     // Solid-angle pdf with which v, reached from its camera side, generates the light-side
-    // direction: its BSDF's, or the sensor's over the image. Zero through a delta lobe.
+    // direction: its BSDF's, or the sensor's per-pixel pdf over N_L (lightPathsPerPass). Zero
+    // through a delta lobe, which MIS knows by the vertex's flag, not by the zero.
     float pdfTowardLight() const;
 
 private:
@@ -121,15 +119,5 @@ private:
     Vec3 light_, camera_;
     Vec3 lightLocal_, cameraLocal_;  // in v's shading frame (surfaces between two neighbours)
 };
-
-// The per-vertex factor of the regrouped product, from the neighbours' positions:
-// LocalScattering(v, directions to the two).value(). An endpoint has no neighbour on one side.
-Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera);
-
-// Solid-angle pdf at `from` → area pdf at `to`: p_A = p_ω |cos θ_to| / r².
-float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to);
-
-// f(x̄) for a whole path x0 … xk (x0 emitter, xk sensor), the product of the kernels above.
-Spectrum pathContribution(const Scene& scene, const std::vector<Vertex>& path);
 
 }  // namespace tripath

@@ -14,16 +14,16 @@
 namespace tripath {
 
 // Strategy (1, t): next-event estimation from a fresh emitter point.
-inline Connection connectNextEvent(const Scene& scene, Rng& rng, Subpath& camera, int t, MisHeuristic heuristic,
+inline Connection connectNextEvent(const Scene& scene, Rng& rng, const Subpath& camera, int t, MisHeuristic heuristic,
                                    StrategySet strategies) {
-    Vertex y0 = sampleEmitterVertex(scene, rng);
-    return connect(scene, std::span<Vertex>(&y0, 1), 1, camera, t, heuristic, strategies);
+    const Vertex y0 = sampleEmitterVertex(scene, rng);
+    return connect(scene, std::span<const Vertex>(&y0, 1), 1, camera, t, heuristic, strategies);
 }
 
 // Calls sink(s, t, connection) for each enabled (s, t) with 1 ≤ k = s + t − 1 ≤ maxDepth and a
 // non-zero contribution.
 template <class Sink>
-void evaluateStrategies(const Scene& scene, Subpath& light, Subpath& camera, Rng& rng, int maxDepth,
+void evaluateStrategies(const Scene& scene, const Subpath& light, const Subpath& camera, Rng& rng, int maxDepth,
                         MisHeuristic heuristic, StrategySet strategies, Sink&& sink) {
     const int nl = static_cast<int>(light.size()), nc = static_cast<int>(camera.size());
     for (int t = 1; t <= nc; ++t) {

@@ -64,19 +64,22 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
         path.push_back(v);
         if (path.size() == maxVertices) return;
 
-        const Frame frame(v.ns);
         const Vec3 wo = normalize(path[path.size() - 2].p - v.p);
-        const auto bs = sampleBsdf(*v.material, frame.toLocal(wo), uniform2(rng), rng.uniform(), mode);
+        if (!sidesAgree(v, wo)) return;  // arrived through the surface's shading hemisphere: leak mask
+        const Frame frame(v.ns);
+        // Every draw in its own statement: the order of a call's arguments is unspecified, and
+        // the image a seed gives must not depend on the compiler.
+        const Vec2 u = uniform2(rng);
+        const float uc = rng.uniform();
+        const auto bs = sampleBsdf(*v.material, frame.toLocal(wo), u, uc, mode);
         if (!bs || !(bs->pdf > 0) || isBlack(bs->f)) return;
         const Vec3 wi = frame.toWorld(bs->wi);
+        if (!sidesAgree(v, wi)) return;
         // Radiance flows against a camera walk (light arrives along wi) and with a light walk.
         const Vec3 towardLight = mode == TransportMode::Radiance ? wi : wo;
-        const Spectrum weight = bs->f * (shadingCorrection(v, towardLight) * absDot(v.ng, wi) / bs->pdf);
-        beta *= weight;
+        beta *= bs->f * (shadingCorrection(v, towardLight) * absDot(v.ng, wi) / bs->pdf);
         if (static_cast<int>(path.size()) >= settings.rrDepth) {
-            // Survive with the probability of this bounce's weight, capped below 1 so that even
-            // albedo-1 scenes end their paths (the expected length stays finite).
-            const float q = std::min(0.95f, maxComponent(weight));
+            const float q = continuationProbability(v);
             if (!(rng.uniform() < q)) return;
             beta = beta / q;
         }
@@ -86,6 +89,14 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
 }
 
 }  // namespace
+
+float continuationProbability(const Vertex& v) {
+    const Material& m = *v.material;
+    // Lambertian and mirror reflect at most their albedo; glass loses nothing (its tint applies
+    // to transmission only), and the rough lobes' Fresnel reaches 1 at grazing angles.
+    const bool albedoBounds = m.type == MaterialType::Lambertian || m.type == MaterialType::Mirror;
+    return std::min(kMaxContinuation, albedoBounds ? maxComponent(m.albedo) : 1.0f);
+}
 
 Vertex sensorVertex(const Scene& scene) {
     Vertex z0;

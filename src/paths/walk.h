@@ -13,6 +13,13 @@ struct WalkSettings {
     int rrDepth = 3;    // Russian roulette once a subpath has this many vertices
 };
 
+// Russian roulette: past rrDepth vertices a walk continues from surface vertex v with this
+// probability. It depends on v's material alone -- a bound on how much the BSDF can reflect, capped
+// at kMaxContinuation so that even albedo-1 scenes end their paths -- so it is the same whichever
+// neighbour the walk arrived from, and a pdf of either direction of travel can carry it.
+inline constexpr float kMaxContinuation = 0.95f;
+float continuationProbability(const Vertex& v);
+
 // The sensor endpoint z0 of every camera subpath.
 Vertex sensorVertex(const Scene& scene);
 // A fresh point on an emitter as the endpoint y0 of a light subpath (or of next-event estimation):

@@ -1,0 +1,53 @@
+#include "paths/oracle.h"
+
+#include <limits>
+
+#include "paths/kernels.h"
+
+namespace tripath {
+
+namespace {
+Vec3 unitDirection(const Vertex& from, const Vertex& to) { return normalize(to.p - from.p); }
+}  // namespace
+
+float inverseSquaredDistance(const Vertex& a, const Vertex& b) {
+    const float d2 = lengthSquared(a.p - b.p);
+    return d2 > 0 ? 1.0f / d2 : std::numeric_limits<float>::infinity();
+}
+
+float geometricFactor(const Vertex& a, const Vertex& b) { return Segment(a, b).G(); }
+
+float g(const Scene& scene, const Vertex& x, const Vertex& xp) {
+    return visible(scene, x, xp) ? inverseSquaredDistance(x, xp) : 0.0f;
+}
+
+Spectrum emittance(const Scene& scene, const Vertex& x0, const Vertex& x1) {
+    const Vec3 w = unitDirection(x0, x1);
+    return scatter(scene, x0, nullptr, &x1) * (cosine(x0, w) * cosine(x1, w));
+}
+
+Spectrum rho(const Scene& scene, const Vertex& xpp, const Vertex& xp, const Vertex& x) {
+    const Vec3 w = unitDirection(xp, x);
+    return scatter(scene, xp, &xpp, &x) * (cosine(xp, w) * cosine(x, w));
+}
+
+float W(const Scene& scene, const Vertex& xkm1, const Vertex& xk) {
+    return scene.camera().importance(unitDirection(xk, xkm1));
+}
+
+Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera) {
+    const Vec3 l = towardLight ? unitDirection(v, *towardLight) : Vec3();
+    const Vec3 c = towardCamera ? unitDirection(v, *towardCamera) : Vec3();
+    return LocalScattering(scene, v, towardLight ? &l : nullptr, towardCamera ? &c : nullptr).value();
+}
+
+float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to) { return Segment(from, to).toArea(pdfOmega, to); }
+
+Spectrum pathContribution(const Scene& scene, const std::vector<Vertex>& x) {
+    const size_t k = x.size() - 1;
+    Spectrum f = emittance(scene, x[0], x[1]) * g(scene, x[0], x[1]);
+    for (size_t i = 1; i < k; ++i) f *= rho(scene, x[i - 1], x[i], x[i + 1]) * g(scene, x[i], x[i + 1]);
+    return f * W(scene, x[k - 1], x[k]);
+}
+
+}  // namespace tripath
