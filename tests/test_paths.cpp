@@ -7,6 +7,7 @@
 #include "paths/kernels.h"
 #include "paths/oracle.h"
 #include "paths/walk.h"
+#include "test_scenes.h"
 
 namespace tripath {
 namespace {
@@ -14,7 +15,12 @@ namespace {
 using Path = std::vector<Vertex>;  // x0 (emitter) … xk (sensor)
 
 Vec3 dirTo(const Vertex& from, const Vertex& to) { return normalize(to.p - from.p); }
-bool isDeltaVertex(const Vertex& v) { return v.kind == Vertex::Kind::Surface && isDelta(*v.material); }
+// x_i scatters through a delta lobe: an interior vertex of delta material. x0 emits and xk senses,
+// whatever their material or however the walk that found them saw them.
+bool scattersDelta(const Path& x, int i) {
+    const int k = static_cast<int>(x.size()) - 1;
+    return i > 0 && i < k && x[i].material && isDelta(*x[i].material);
+}
 
 // ---- brute force: every pdf of a full path computed from scratch ------------------------------
 
@@ -27,7 +33,8 @@ float forwardPdf(const Scene& scene, const Path& x, size_t i) {
     return toAreaPdf(pdfBsdf(*v.material, f.toLocal(dirTo(v, x[i - 2])), f.toLocal(dirTo(v, x[i]))), v, x[i]);
 }
 
-// Area pdf of x_i when the camera side generates it (from x_{i+1}, x_{i+2}).
+// Area pdf of x_i when the camera side generates it (from x_{i+1}, x_{i+2}). The camera's pdf of
+// the first direction is its per-pixel pdf N / (A cos³θ) over the pass's N_L = N light paths.
 float reversePdf(const Scene& scene, const Path& x, size_t i) {
     const size_t k = x.size() - 1;
     if (i == k) return 1.0f;
@@ -37,11 +44,12 @@ float reversePdf(const Scene& scene, const Path& x, size_t i) {
     return toAreaPdf(pdfBsdf(*v.material, f.toLocal(dirTo(v, x[i + 2])), f.toLocal(dirTo(v, x[i]))), v, x[i]);
 }
 
+// A point light cannot be hit (s = 0), and no shadow ray joins a delta lobe.
 bool strategyCanSample(const Path& x, int s, StrategySet set) {
     const int k = static_cast<int>(x.size()) - 1, t = k + 1 - s;
     if (t < 1 || !set.enabled(s, t)) return false;
     if (s == 0) return !x[0].isDeltaLight();
-    return !isDeltaVertex(x[s - 1]) && !isDeltaVertex(x[s]);
+    return !scattersDelta(x, s - 1) && !scattersDelta(x, s);
 }
 
 // p_{s,t}(x̄): light-side pdfs for x_0..x_{s-1}, camera-side for x_s..x_k. A delta scattering
@@ -49,8 +57,7 @@ bool strategyCanSample(const Path& x, int s, StrategySet set) {
 double strategyPdf(const Scene& scene, const Path& x, int s) {
     double p = 1;
     for (int i = 0; i < static_cast<int>(x.size()); ++i) {
-        const bool afterDelta = i < s ? (i >= 2 && isDeltaVertex(x[i - 1]))
-                                      : (i + 1 < static_cast<int>(x.size()) && isDeltaVertex(x[i + 1]));
+        const bool afterDelta = i < s ? scattersDelta(x, i - 1) : scattersDelta(x, i + 1);
         if (!afterDelta) p *= i < s ? forwardPdf(scene, x, i) : reversePdf(scene, x, i);
     }
     return p;
@@ -96,14 +103,27 @@ std::vector<SampledPath> samplePaths(const Scene& scene, int samples, MisHeurist
     return out;
 }
 
-const char* kScenes[] = {"cornell", "cornell-spheres", "cornell-small", "cornell-point", "veach-mis", "furnace"};
+// The oracles run on every material and emitter kind the loader accepts: delta, glossy and diffuse
+// surfaces, emitters of each material (an emissive mirror or pane is a scatterer to the walk that
+// hits it and x0 of the path that ends there), two-sided emitters, point lights, smooth normals.
+std::vector<SceneDesc> oracleScenes() {
+    std::vector<SceneDesc> v;
+    for (const char* name : {"cornell", "cornell-spheres", "cornell-small", "cornell-point", "veach-mis", "furnace"})
+        v.push_back(builtinScene(name));
+    v.push_back(cornellTessellated(100));
+    for (MaterialType type : {MaterialType::Mirror, MaterialType::Dielectric, MaterialType::Conductor})
+        v.push_back(test::cornellEmissive(type));
+    v.push_back(test::everyEmitterKind());
+    return v;
+}
 const StrategySet kSets[] = {{StrategySet::Kind::PathTracing}, {StrategySet::Kind::LightTracing},
                              {StrategySet::Kind::Bidirectional}};
 const MisHeuristic kHeuristics[] = {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform};
 
 TEST(Mis, ConnectionWeightsMatchBruteForce) {
-    for (const char* name : kScenes) {
-        const Scene scene(builtinScene(name), 24, 24);
+    for (const SceneDesc& desc : oracleScenes()) {
+        const Scene scene(desc, 24, 24);
+        const std::string& name = desc.name;
         for (StrategySet set : kSets)
             for (MisHeuristic h : kHeuristics) {
                 const auto paths = samplePaths(scene, 150, h, set);
@@ -117,6 +137,78 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
     }
 }
 
+// ---- MIS on hand-made pdfs: deltas are flags, zeros are zeros ---------------------------------
+
+// A path x0 (light[0], an area emitter) … xk (camera[0], the sensor) with the given camera
+// vertices' forward pdfs; every other pdf the weight reads comes from the junction.
+struct HandPath {
+    Subpath light, camera;
+    Junction junction;
+};
+
+HandPath handPath(std::vector<float> cameraFwd) {
+    HandPath h;
+    Vertex y0;
+    y0.kind = Vertex::Kind::Emitter;
+    y0.ng = Vec3(0, -1, 0);
+    y0.pdfFwd = 2.0f;  // e: the emitter sampler's area pdf
+    h.light.push_back(y0);
+    Vertex z0;
+    z0.kind = Vertex::Kind::Sensor;
+    z0.pdfFwd = 1.0f;
+    h.camera.push_back(z0);
+    for (float a : cameraFwd) {
+        Vertex z;
+        z.kind = Vertex::Kind::Surface;
+        z.pdfFwd = a;
+        h.camera.push_back(z);
+    }
+    return h;
+}
+
+// (s, t) = (1, 2): x0 joined to x1 by NEE. Its rivals are (0, 3), which moves x0 to the camera side
+// (ratio lightEnd / e), and (2, 1), which moves x1 to the light side (ratio cameraEnd / a).
+TEST(Mis, AZeroPdfThatIsNoDeltaRulesOutOnlyTheStrategiesThatNeedIt) {
+    HandPath h = handPath({4.0f});  // a = 4
+    h.junction.cameraEnd = 2.0f;    // b: x1 from x0's emission
+    h.junction.lightEnd = 0.0f;     // x1's BSDF cannot send the camera walk to x0: (0, 3) is impossible
+    const StrategySet bdpt{StrategySet::Kind::Bidirectional};
+    const MisWeight w = misWeight(h.light, 1, h.camera, 2, h.junction, MisHeuristic::Power, bdpt);
+    // Only (2, 1) competes: 1 / (1 + (b/a)²) = 1 / (1 + 1/4). Reading the zero as a delta (a pdf of
+    // 1) would add (1/e)² = 1/4 and give 2/3.
+    EXPECT_FLOAT_EQ(w.value, 0.8f);
+    EXPECT_FALSE(w.guarded);
+}
+
+TEST(Mis, ADeltaScattererCountsAsOneAndRulesOutTheConnectionsAtIt) {
+    // x0 = light[0], x1 = camera[2] (reached through the mirror x2 = camera[1]), x3 = the sensor.
+    HandPath h = handPath({4.0f, 0.0f});  // x1's pdf from the mirror: a delta, recorded as 0
+    h.camera[1].delta = true;
+    h.junction.cameraEnd = 3.0f;
+    h.junction.cameraBeforeEnd = 5.0f;  // x2 from x1: (3, 1) still joins the sensor to the mirror
+    h.junction.lightEnd = 1.0f;         // c: x0 from x1's BSDF
+    const StrategySet bdpt{StrategySet::Kind::Bidirectional};
+    const MisWeight w = misWeight(h.light, 1, h.camera, 3, h.junction, MisHeuristic::Power, bdpt);
+    // (2, 2) and (3, 1) would join at the mirror: impossible. (0, 4) competes with (c/e)² = 1/4.
+    EXPECT_FLOAT_EQ(w.value, 0.8f);
+    EXPECT_FALSE(w.guarded);
+}
+
+TEST(Mis, ANonFiniteRatioGivesWeightZeroAndIsReported) {
+    // x1's pdf from the sensor rounds to 0 though the camera generated it, and nothing there is a
+    // delta: the ratio toward (2, 1) is b/0. Read as a delta it would be b/1 and a wrong weight.
+    HandPath h = handPath({0.0f});
+    h.junction.cameraEnd = 2.0f;
+    h.junction.lightEnd = 1.0f;
+    const StrategySet bdpt{StrategySet::Kind::Bidirectional};
+    for (MisHeuristic heuristic : {MisHeuristic::Balance, MisHeuristic::Power}) {
+        const MisWeight w = misWeight(h.light, 1, h.camera, 2, h.junction, heuristic, bdpt);
+        EXPECT_EQ(w.value, 0.0f);
+        EXPECT_TRUE(w.guarded);
+    }
+}
+
+
 // Re-splits one full path into every strategy (s', t') and runs the production `connect` on each:
 // the weights of the strategies that can sample the path add up to 1.
 Subpath lightPrefix(const Scene& scene, const Path& x, int s) {
@@ -126,7 +218,10 @@ Subpath lightPrefix(const Scene& scene, const Path& x, int s) {
         y[i].pdfRev = reversePdf(scene, x, i);
         y[i].beta = Spectrum(1.0f);
     }
-    if (s > 0) y[0].kind = Vertex::Kind::Emitter;
+    if (s > 0) {  // x0 as next-event estimation and light subpaths produce it: a point on an emitter
+        y[0].kind = Vertex::Kind::Emitter;
+        y[0].delta = false;
+    }
     return y;
 }
 
@@ -148,8 +243,9 @@ Subpath cameraPrefix(const Scene& scene, const Path& x, int s) {
 }
 
 TEST(Mis, EnabledStrategyWeightsSumToOne) {
-    for (const char* name : kScenes) {
-        const Scene scene(builtinScene(name), 24, 24);
+    for (const SceneDesc& desc : oracleScenes()) {
+        const Scene scene(desc, 24, 24);
+        const std::string& name = desc.name;
         for (StrategySet set : kSets)
             for (MisHeuristic h : kHeuristics) {
                 const auto paths = samplePaths(scene, 60, h, set);
@@ -175,48 +271,30 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
 }
 
 // The unweighted estimate of a strategy is f(x̄) / p_{s,t}(x̄), with f the product of the kernels.
-// (Diffuse scenes: no delta factors. The camera's pdf per pixel is N times the image pdf.)
+// Paths through a delta scatterer are left out (f and p share a delta factor the oracle cannot
+// evaluate); the rest still cross emissive metal and mirror x0s, glossy plastic, two-sided and
+// point emitters, and the coarse smooth-normal spheres, where light subpaths carry the adjoint
+// shading correction and the leak mask cuts paths. The camera's pdf per pixel is N times the
+// image pdf.
 TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
-    // The coarse smooth-normal sphere makes light subpaths carry the adjoint shading correction.
-    for (const char* name : {"cornell", "cornell-small", "furnace", "smooth sphere"}) {
-        const Scene scene(std::string(name) == "smooth sphere" ? cornellTessellated(100) : builtinScene(name), 24, 24);
+    for (const SceneDesc& desc : oracleScenes()) {
+        const Scene scene(desc, 24, 24);
         const auto paths = samplePaths(scene, 200, MisHeuristic::Balance, {StrategySet::Kind::Bidirectional});
+        int checked = 0;
         for (const SampledPath& p : paths) {
             const int k = static_cast<int>(p.x.size()) - 1, t = k + 1 - p.s;
+            bool delta = false;
+            for (int i = 0; i <= k; ++i) delta = delta || scattersDelta(p.x, i);
+            if (delta) continue;
             const Spectrum f = pathContribution(scene, p.x);
             const double pdf = strategyPdf(scene, p.x, p.s) * (t >= 2 ? 24.0 * 24.0 : 1.0);
             for (int c = 0; c < 3; ++c)
                 ASSERT_NEAR(p.c.unweighted[c], f[c] / pdf, 2e-3 * std::abs(f[c] / pdf) + 1e-9)
-                    << name << " s=" << p.s << " t=" << t;
-        }
-    }
-}
-
-TEST(Kernels, GeometryTermIsSymmetricAndEmittanceIsLeCosCos) {
-    const Scene scene(builtinScene("cornell"), 8, 8);
-    const auto paths = samplePaths(scene, 100, MisHeuristic::Balance, {StrategySet::Kind::Bidirectional});
-    int checked = 0;
-    for (const SampledPath& p : paths) {
-        const Path& x = p.x;
-        for (size_t i = 0; i + 1 < x.size(); ++i) {
-            EXPECT_FLOAT_EQ(g(scene, x[i], x[i + 1]), g(scene, x[i + 1], x[i]));
-            EXPECT_FLOAT_EQ(geometricFactor(x[i], x[i + 1]), geometricFactor(x[i + 1], x[i]));
-        }
-        const Vec3 w = dirTo(x[0], x[1]);
-        const Spectrum expected = scene.emitters().Le(x[0].emitter, x[0].ng, w) * (absDot(x[0].ng, w) * cosine(x[1], w));
-        const Spectrum eps = emittance(scene, x[0], x[1]);
-        for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(eps[c], expected[c]);
-        // ρ ≥ 0, and f_r reciprocal where there are no shading normals (all flat in the Cornell box).
-        for (size_t i = 1; i + 1 < x.size(); ++i) {
-            const Spectrum r = rho(scene, x[i - 1], x[i], x[i + 1]);
-            EXPECT_TRUE(r.x >= 0 && r.y >= 0 && r.z >= 0);
-            if (x[i].kind != Vertex::Kind::Surface) continue;
-            const Spectrum a = scatter(scene, x[i], &x[i - 1], &x[i + 1]), b = scatter(scene, x[i], &x[i + 1], &x[i - 1]);
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], 1e-5f * std::abs(a[c]));
+                    << desc.name << " s=" << p.s << " t=" << t;
             ++checked;
         }
+        EXPECT_GT(checked, 50) << desc.name;
     }
-    EXPECT_GT(checked, 50);
 }
 
 }  // namespace

@@ -39,7 +39,8 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     const Vertex* qsMinus = s > 1 ? &light[s - 2] : nullptr;
     const Vertex& pt = camera[t - 1];
     const Vertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
-    if (qs.delta || pt.delta) return c;
+    const int k = s + t - 1;
+    if (scattersDelta(qs, s - 1, k) || scattersDelta(pt, s, k)) return c;  // no shadow ray joins a delta lobe
     const Segment segment(qs, pt);
     if (t == 1) {
         c.raster = scene.camera().raster(-segment.direction());

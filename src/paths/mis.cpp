@@ -36,11 +36,11 @@ float sideRatio(float other, bool otherDelta, float own, bool ownDelta) {
 
 MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                     const Junction& junction, MisHeuristic heuristic, StrategySet strategies) {
-    // Whether a vertex scatters through a delta lobe in THIS path: only interior vertices scatter.
-    // Light vertex i is x_i (x0 emits); camera vertex i is x_{k−i}, and z_{t−1} is x0 when s = 0.
-    // (The endpoints a shadow ray joins are interior too, and never delta: connect refuses them.)
-    auto lightDelta = [&](int i) { return i > 0 && light[i].delta; };
-    auto cameraDelta = [&](int i) { return i > 0 && (s > 0 || i < t - 1) && camera[i].delta; };
+    // Each vertex judged as the point it is in THIS path (z_{t−1} is x0 when s = 0). The endpoints
+    // a shadow ray joins are interior, and never delta: connect refuses them.
+    const int k = s + t - 1;
+    auto lightDelta = [&](int i) { return scattersDelta(light[i], i, k); };
+    auto cameraDelta = [&](int i) { return scattersDelta(camera[i], k - i, k); };
     const bool pointLight = s > 0 && light[0].isDeltaLight();
 
     float sum = 0;

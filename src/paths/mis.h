@@ -85,6 +85,11 @@ struct Junction {
     float lightBeforeEnd = 0;   // pdfRev of y_{s-2}: from y_{s-1}, reached from the camera side
 };
 
+// The one test of "x_j scatters through a delta lobe" for vertex v at index j of a path of k
+// segments: only interior vertices scatter, so x0 (which emits) and xk (the sensor) never do,
+// whatever their material. Light vertex i is x_i; camera vertex i is x_{k−i}.
+inline bool scattersDelta(const Vertex& v, int j, int k) { return j > 0 && j < k && v.delta; }
+
 struct MisWeight {
     float value = 0;
     bool guarded = false;  // a pdf ratio was not finite: the weight was set to 0

@@ -1,0 +1,60 @@
+// Scenes made for the tests, beside the built-in ones: the emitters and materials the glTF loader
+// accepts that no built-in scene combines. Any material may emit (glTF puts emissiveFactor on
+// every material), so an emitter can be a mirror, a pane of glass or a rough metal: a camera walk
+// scatters off such a point, yet the same point is x0 of the path that ends there (mis.h).
+#pragma once
+#include "geometry/builtin_scenes.h"
+#include "geometry/scene_builder.h"
+
+namespace tripath::test {
+
+// The Cornell box whose ceiling light is made of `type` (mirror or glass: smooth; conductor:
+// roughness 0.3), grey, still emitting the same radiance. The camera looks down at the floor and
+// the boxes, so the emitter itself is never seen directly: light tracing can then estimate every
+// pixel, and all three integrators must agree.
+inline SceneDesc cornellEmissive(MaterialType type) {
+    SceneDesc s = builtinScene("cornell");
+    for (Material& m : s.materials) {
+        if (m.name != "light") continue;
+        m.type = type;
+        m.albedo = Spectrum(type == MaterialType::Dielectric ? 1.0f : 0.5f);
+        m.roughness = type == MaterialType::Conductor ? 0.3f : 0.0f;
+    }
+    s.camera = build::lookAt({0, 1.2f, 3.9f}, {0, 0.35f, 0}, 0.45f);
+    s.name = std::string("cornell with an emissive ") + materialTypeName(type) + " light";
+    return s;
+}
+
+// Every material type and every emitter kind in one box, for the oracles (brute-force MIS, f/p):
+// Lambertian walls; the ceiling light an emissive mirror; an emissive glass box; a two-sided
+// emissive rough-metal panel; a coarse smooth-shaded plastic sphere (shading normals far from the
+// geometric ones at its silhouette); a one-sided Lambertian emitter on the back wall; a point light.
+inline SceneDesc everyEmitterKind() {
+    using namespace build;
+    SceneDesc s = cornellEmissive(MaterialType::Mirror);
+    Material glassLight = glass("emissive glass");
+    glassLight.emission = Spectrum(2.0f, 3.0f, 4.0f);
+    addBox(s, "glass box", addMaterial(s, glassLight), {0.2f, 0.0f, 0.1f}, {0.6f, 0.5f, 0.5f}, 0.4f, {0.4f, 0, 0.3f});
+    Material metal;
+    metal.name = "emissive metal";
+    metal.type = MaterialType::Conductor;
+    metal.albedo = Spectrum(0.9f, 0.6f, 0.3f);
+    metal.roughness = 0.3f;
+    metal.emission = Spectrum(3.0f);
+    metal.twoSidedEmission = true;
+    addSquare(s, "metal panel", addMaterial(s, metal), {0.95f, 1.2f, -0.4f}, normalize(Vec3(-1, 0, 0.3f)), 0.2f);
+    Material plastic;
+    plastic.name = "plastic";
+    plastic.type = MaterialType::Plastic;
+    plastic.albedo = Spectrum(0.2f, 0.5f, 0.8f);
+    plastic.roughness = 0.4f;
+    addSphere(s, "smooth sphere", addMaterial(s, plastic), {-0.45f, 0.35f, 0.1f}, 0.35f, 6);
+    addSquare(s, "back light", addMaterial(s, emitter("back light", Spectrum(4.0f))), {-0.5f, 1.5f, -0.99f},
+              {0, 0, 1}, 0.1f);
+    s.pointLights.push_back({{0.3f, 1.6f, 0.4f}, Spectrum(0.5f)});
+    s.camera = CameraDesc{true, {0, 1, 3.9f}, {0, 0, -1}, {0, 1, 0}, 0.6911f};
+    s.name = "every emitter kind";
+    return s;
+}
+
+}  // namespace tripath::test
