@@ -5,6 +5,7 @@
 #include "geometry/builtin_scenes.h"
 #include "geometry/vec.h"
 #include "support.h"
+#include "test_scenes.h"
 
 namespace tripath {
 namespace {
@@ -93,6 +94,29 @@ TEST(Agreement, VeachMis) { expectAgreement(builtinScene("veach-mis"), "veach-mi
 // Shading normals: light subpaths use the adjoint BSDF (Veach §5.3), so all three agree on a
 // smooth-normal Lambertian sphere (the tessellated Cornell variant) as on flat geometry.
 TEST(Agreement, SmoothShadingNormals) { expectAgreement(cornellTessellated(100), "smooth sphere", 8); }
+
+// Emitters of delta material (glTF allows emission on any material). The camera walk scatters off
+// the emissive mirror or pane, while the point it hits is x0 of the path that ends there; its
+// weight and next-event estimation's must both count the other (the light was counted twice).
+// The emitter is out of view, so light tracing sees every pixel too.
+TEST(Agreement, EmissiveMirrorLight) {
+    expectAgreement(test::cornellEmissive(MaterialType::Mirror), "emissive mirror", 8);
+}
+TEST(Agreement, EmissiveGlassLight) {
+    expectAgreement(test::cornellEmissive(MaterialType::Dielectric), "emissive glass", 8);
+}
+
+// Leak mask: with the only emitter behind a wall whose shading normals lean far from its geometric
+// normal, the front of the wall is exactly black under every integrator.
+TEST(ShadingNormals, NoLightLeaksThroughASmoothShadedWall) {
+    for (const char* integrator : kIntegrators) {
+        RenderRequest r;
+        r.integrator = integrator;
+        r.spp = 16;
+        const Image img = test::renderDesc(test::lightBehindASmoothShadedWall(), r).image();
+        EXPECT_EQ(test::blockMean(img, 0, 0, img.width, img.height), 0.0) << integrator;
+    }
+}
 
 // Each BDPT strategy alone, unweighted, estimates every path of its length (in the Cornell box
 // all strategies can sample all paths), so it agrees with the MIS-combined image of that length.

@@ -57,4 +57,23 @@ inline SceneDesc everyEmitterKind() {
     return s;
 }
 
+// A wall whose shading normals lean 45° off its geometric normal (as at the silhouette of a
+// coarse smooth mesh), seen from the front, with the only emitter behind it: the wall's front
+// receives no light, so every pixel is exactly 0. Without a leak mask, directions toward the
+// emitter lie above the shading plane though they pass through the wall, and light leaks.
+inline SceneDesc lightBehindASmoothShadedWall() {
+    using namespace build;
+    SceneDesc s;
+    const int white = addMaterial(s, lambertian("wall", Spectrum(0.8f)));
+    const Vec3 ns = normalize(Vec3(1, 0, 1));
+    s.meshes.push_back(MeshDesc{"wall", {{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}, {ns, ns, ns, ns},
+                                {0, 1, 2, 0, 2, 3}, white});
+    Material light = emitter("light behind", Spectrum(50.0f));
+    light.twoSidedEmission = true;
+    addSquare(s, "light behind", addMaterial(s, light), {1.5f, 0, -1.0f}, normalize(Vec3(-1, 0, 0.2f)), 0.5f);
+    s.camera = lookAt({0, 0, 3}, {0, 0, 0}, 0.6f);
+    s.name = "light behind a smooth-shaded wall";
+    return s;
+}
+
 }  // namespace tripath::test
