@@ -39,6 +39,9 @@ private:
 };
 
 // Stream domains: keep camera samples, light paths and anything else from sharing streams.
-enum class StreamDomain : uint64_t { CameraSample = 1, LightPath = 2, Test = 3 };
+// Reference: the per-pixel sample streams of `tripath reference` (and of the reference `tripath
+// compare` renders for itself), so that a reference is independent of every render made with the
+// same seed. New domains go at the end: the values are part of every stored image's identity.
+enum class StreamDomain : uint64_t { CameraSample = 1, LightPath = 2, Test = 3, Reference = 4 };
 
 }  // namespace tripath
