@@ -157,8 +157,10 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_option("--integrators", c->integrators, "Comma-separated integrators to compare (pt, lt, bdpt)")
         ->capture_default_str();
     cmd->add_option("--reference", c->options.referencePath,
-                    "Reference EXR of the same scene and size (see `tripath reference`); without it, bdpt renders "
-                    "one for 10x --time into <out>/reference.exr");
+                    "Reference EXR of the same scene and size (see `tripath reference`, whose random streams are "
+                    "independent of every run's, whatever the seeds); without it, bdpt renders one for 10x --time "
+                    "into <out>/reference.exr. An image from `tripath render` whose seed one of the runs would "
+                    "reuse is refused: it would share their samples");
     cmd->add_option("--runs", c->options.runs,
                     "Independent runs per integrator (seeds seed, seed+1, ...); the chart shows their mean and "
                     "min-max band")

@@ -33,11 +33,16 @@ Reference readGivenReference(const CompareOptions& o) {
     // A reference of another scene or depth limit converges to another image; an external file
     // without metadata is taken on trust.
     requireSettings(file, {{"tripath:scene", r.scene}, {"tripath:max-depth", std::to_string(r.maxDepth)}}, true);
-    if (const auto seed = file.value("tripath:seed")) {
+    // A run shares samples with the reference only if both drew from the same streams: the same
+    // domain and the same seed. References from `tripath reference` use their own domain, so only
+    // an image from `tripath render` (or an older reference) with one of the runs' seeds is refused.
+    const auto seed = file.value("tripath:seed");
+    if (seed && streamDomain(file) == r.domain) {
         const uint64_t s = std::strtoull(seed->c_str(), nullptr, 10);
         if (s >= r.seed && s < r.seed + uint64_t(o.runs))
-            throw InputError(fmt::format("reference '{}' was rendered with seed {}, which run {} would reuse "
-                                         "(shared samples hide error): pass e.g. --seed {}",
+            throw InputError(fmt::format("reference '{}' was rendered with seed {} in the render streams, which run {} "
+                                         "would reuse (shared samples hide error): pass e.g. --seed {}, or make the "
+                                         "reference with `tripath reference`",
                                          o.referencePath, s, s - r.seed, s + 1));
     }
     return {std::move(file.image), file.description(), o.referencePath};
@@ -47,11 +52,11 @@ Reference renderReference(const CompareOptions& o, const Scene& scene) {
     RenderOptions r = o.render;
     r.integrator = "bdpt";
     r.seconds = kReferenceBudget * o.render.seconds;
-    r.seed = o.render.seed + o.runs;  // the seed after the runs' seeds: independent samples
+    r.domain = StreamDomain::Reference;  // the reference streams: independent of every run
     const std::string file = (std::filesystem::path(o.outDir) / "reference.exr").string();
     std::cerr << fmt::format(
-        "no --reference: rendering one with bdpt for {:g} x {} = {} (seed {}) into {}; its own noise adds about "
-        "1/{:g} of bdpt's error to each measurement. For a cleaner one, see `tripath reference`.\n",
+        "no --reference: rendering one with bdpt for {:g} x {} = {} (seed {}, reference streams) into {}; its own "
+        "noise adds about 1/{:g} of bdpt's error to each measurement. For a cleaner one, see `tripath reference`.\n",
         kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds), r.seed, file, kReferenceBudget);
     const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
     RenderSettings rs = renderSettings(r);

@@ -1,6 +1,11 @@
 // `tripath reference`: a long render to measure other renders against. Run again on its own
 // output with the same settings, it adds fresh samples instead of starting over, so a reference
 // can be refined over several sessions.
+//
+// A reference draws its samples from its own stream domain (StreamDomain::Reference, recorded as
+// tripath:streams=reference), not from the one renders use: `tripath reference` and `tripath
+// render`/`compare` with the same --seed (by default both 1) share no random numbers, so the
+// defaults work together and compare need not refuse them.
 #include <fmt/format.h>
 
 #include <cstdlib>
@@ -63,10 +68,13 @@ void validate(const ReferenceCommand& c) {
 }
 
 void run(const ReferenceCommand& c) {
-    const RenderOptions& o = c.options;
     validate(c);
+    RenderOptions o = c.options;
     const auto integrator = makeIntegrator(o.integrator, integratorSettings(o));
     const std::optional<ReferenceFile> old = previous(c, integrator->name());
+    // New files use the reference streams; added samples continue in the streams of the file
+    // (a reference written before tripath:streams existed drew from the render streams).
+    o.domain = old ? streamDomain(*old) : StreamDomain::Reference;
     const auto scene = loadScene(o);
 
     RenderSettings rs = renderSettings(o);
@@ -105,6 +113,9 @@ void addReferenceCommand(CLI::App& app) {
         "Render a reference image for `tripath compare`; run again on an existing reference with the same settings "
         "to add samples to it");
     addRenderOptions(*cmd, c->options);
+    cmd->get_option("--seed")->description(
+        "Seed of the reference's own random streams: a reference never shares samples with a render or compare "
+        "run, whatever their --seed (the EXR records tripath:streams=reference)");
     cmd->add_option("--out", c->out,
                     "Reference EXR. If it exists (same scene, integrator, size, max depth, RR depth, MIS and seed), "
                     "the new samples are added to it and its spp and seconds become the totals")

@@ -50,6 +50,13 @@ std::string ReferenceFile::description() const {
     return fmt::format("{}, {} spp, {:.0f} s", *integrator, spp(), seconds());
 }
 
+StreamDomain streamDomain(const ReferenceFile& ref) {
+    const auto v = ref.value("tripath:streams");
+    if (!v || *v == "render") return StreamDomain::CameraSample;
+    if (*v == "reference") return StreamDomain::Reference;
+    throw InputError(fmt::format("'{}': tripath:streams is '{}', neither 'render' nor 'reference'", ref.path, *v));
+}
+
 ReferenceFile readReference(const std::string& path) {
     ReferenceFile ref;
     ref.path = path;

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/rng.h"
 #include "image/image.h"
 
 namespace tripath::app {
@@ -23,6 +24,11 @@ struct ReferenceFile {
     // "bdpt, 4096 spp, 300 s" or "external reference" when there is no metadata to tell.
     std::string description() const;
 };
+
+// The random streams its samples came from (tripath:streams): Reference for "reference",
+// CameraSample for "render" and for files without the key (`tripath render` output, references
+// written before the key existed, other renderers' EXRs). Throws InputError for any other value.
+StreamDomain streamDomain(const ReferenceFile& ref);
 
 // Throws InputError (one line naming the file) if it is missing or not an EXR.
 ReferenceFile readReference(const std::string& path);

@@ -69,11 +69,14 @@ std::unique_ptr<Scene> loadScene(const RenderOptions& o) {
     return std::make_unique<Scene>(loadSceneDesc(o.scene), o.width, o.height);
 }
 
+const char* streamsName(StreamDomain d) { return d == StreamDomain::Reference ? "reference" : "render"; }
+
 RenderSettings renderSettings(const RenderOptions& o) {
     RenderSettings s;
     s.seconds = o.seconds;
     s.spp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : 16);
     s.seed = o.seed;
+    s.domain = o.domain;
     s.threads = o.threads;
     return s;
 }
@@ -84,6 +87,7 @@ Metadata renderMetadata(const RenderOptions& o, const std::string& integrator, c
             {"tripath:spp", std::to_string(r.passes)},
             {"tripath:seconds", fmt::format("{:.3f}", r.seconds)},
             {"tripath:seed", std::to_string(o.seed)},
+            {"tripath:streams", streamsName(o.domain)},
             {"tripath:max-depth", std::to_string(o.maxDepth)},
             {"tripath:rr-depth", std::to_string(o.rrDepth)},
             {"tripath:mis", o.mis},

@@ -24,7 +24,14 @@ struct RenderOptions {
     std::string mis = "power";
     uint64_t seed = 1;
     int threads = 0;
+    // Not a flag: the random streams the samples draw from. Renders use CameraSample; references
+    // use Reference, so that a reference and a render with the same --seed are independent.
+    // Recorded in the EXR as tripath:streams ("render" or "reference").
+    StreamDomain domain = StreamDomain::CameraSample;
 };
+
+// "render" or "reference", as tripath:streams records a domain.
+const char* streamsName(StreamDomain d);
 
 // Registers the flags on a subcommand, with help text that states defaults and meanings.
 void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator = true);

@@ -71,15 +71,7 @@ bool relativelyEqual(float a, float b, float rel) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Names and classification
-
-TEST(Bsdf, MaterialTypeNames) {
-    EXPECT_STREQ(materialTypeName(MaterialType::Lambertian), "lambertian");
-    EXPECT_STREQ(materialTypeName(MaterialType::Mirror), "mirror");
-    EXPECT_STREQ(materialTypeName(MaterialType::Dielectric), "dielectric");
-    EXPECT_STREQ(materialTypeName(MaterialType::Conductor), "conductor");
-    EXPECT_STREQ(materialTypeName(MaterialType::Plastic), "plastic");
-}
+// Classification
 
 TEST(Bsdf, DeltaMaterialsHaveNoEvaluableLobe) {
     for (MaterialType t : {MaterialType::Mirror, MaterialType::Dielectric}) {
@@ -118,17 +110,6 @@ TEST(Bsdf, NonNegativeAndReciprocal) {
                 ASSERT_TRUE(relativelyEqual(a[c], b[c], 1e-4f))
                     << m.name << " channel " << c << ": " << a[c] << " vs " << b[c];
             }
-        }
-    }
-}
-
-TEST(Bsdf, NonDeltaValuesDoNotDependOnTransportMode) {
-    for (const Material& m : nonDeltaMaterials()) {
-        Rng rng = testRng(2);
-        for (int i = 0; i < 2000; ++i) {
-            const auto [wo, wi] = randomPair(rng, i);
-            EXPECT_EQ(evalBsdf(m, wo, wi, TransportMode::Radiance),
-                      evalBsdf(m, wo, wi, TransportMode::Importance));
         }
     }
 }

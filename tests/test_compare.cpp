@@ -200,9 +200,10 @@ TEST(ReferenceCommand, AddingSamplesEqualsRenderingThemAtOnce) {
     const Image added = readExr(ref, &meta);
     EXPECT_EQ(metaValue(meta, "tripath:spp"), "16");
     EXPECT_GE(std::stod(metaValue(meta, "tripath:seconds")), std::stod(metaValue(first, "tripath:seconds")));
-    for (const char* key : {"tripath:scene", "tripath:integrator", "tripath:seed", "tripath:max-depth",
-                            "tripath:rr-depth", "tripath:mis"})
+    for (const char* key : {"tripath:scene", "tripath:integrator", "tripath:seed", "tripath:streams",
+                            "tripath:max-depth", "tripath:rr-depth", "tripath:mis"})
         EXPECT_EQ(metaValue(meta, key), metaValue(first, key)) << key;
+    EXPECT_EQ(metaValue(meta, "tripath:streams"), "reference");
 
     // Passes 8..15 were fresh sample indices: the result is the 16-pass render, up to rounding.
     ASSERT_EQ(tripathCli(dir, "reference " + kSmall + " --spp 16 --seed 7 --out " + once).exitCode, 0);
@@ -243,11 +244,47 @@ TEST(CompareCommand, BadInputGivesOneLineError) {
     expectOneLineError(
         tripathCli(dir, "compare --scene cornell --width 16 --height 16 --time 0.1 --out " + out + " --reference " + ref),
         "32x32");
-    expectOneLineError(tripathCli(dir, base + " --seed 50 --reference " + ref), "seed 50");
     expectOneLineError(
         tripathCli(dir, "compare --scene furnace --width 32 --height 32 --time 0.1 --out " + out + " --reference " + ref),
         "scene");
     EXPECT_FALSE(fs::exists(out + "/error.csv"));
+}
+
+// `tripath reference` and `tripath compare` with their default flags (both seed 1) work together,
+// because a reference draws from its own random streams. Catches: the defaults colliding again
+// (compare refusing, as it did), and a reference that only claims its own streams -- with the
+// render streams, its 1-spp image would be bit-identical to `tripath render`'s with the same seed.
+TEST(CompareCommand, ReferenceThenCompareWithDefaultFlagsWorks) {
+    TempDir dir;
+    const std::string ref = dir / "r.exr", rendered = dir / "render.exr", out = dir / "out";
+    ASSERT_EQ(tripathCli(dir, "reference " + kSmall + " --spp 1 --out " + ref).exitCode, 0);
+    ASSERT_EQ(tripathCli(dir, "render " + kSmall + " --spp 1 --out " + rendered).exitCode, 0);
+    Metadata meta;
+    const Image reference = readExr(ref, &meta);
+    EXPECT_EQ(metaValue(meta, "tripath:seed"), "1");
+    EXPECT_EQ(metaValue(meta, "tripath:streams"), "reference");
+    EXPECT_NE(reference.rgb, readExr(rendered).rgb) << "the reference reused the render's random numbers";
+
+    const Outcome o = tripathCli(dir, "compare " + kSmall + " --integrators pt --time 0.1 --reference " + ref +
+                                          " --out " + out);
+    EXPECT_EQ(o.exitCode, 0) << o.err;
+    EXPECT_TRUE(fs::is_regular_file(out + "/error.csv"));
+}
+
+// A reference that does share a run's random numbers is still refused: an image from `tripath
+// render` (the render streams) with a seed that one of the runs would use. Catches a check that
+// was dropped along with the collision of the defaults, or one that ignores --runs.
+TEST(CompareCommand, RefusesAReferenceThatSharesARunsSeed) {
+    TempDir dir;
+    const std::string rendered = dir / "render.exr", out = dir / "out";
+    ASSERT_EQ(tripathCli(dir, "render " + kSmall + " --spp 1 --seed 50 --out " + rendered).exitCode, 0);
+    const std::string base = "compare " + kSmall + " --integrators pt --time 0.1 --out " + out + " --reference " + rendered;
+    expectOneLineError(tripathCli(dir, base + " --seed 50"), "seed 50");
+    expectOneLineError(tripathCli(dir, base + " --seed 49 --runs 2"), "seed 50");
+    EXPECT_FALSE(fs::exists(out + "/error.csv"));
+    // Seeds 51 and 52 share nothing with it.
+    const Outcome fine = tripathCli(dir, base + " --seed 51 --runs 2");
+    EXPECT_EQ(fine.exitCode, 0) << fine.err;
 }
 
 // The full report from one comparison: every file, a CSV that parses, and errors that fall with
@@ -319,7 +356,8 @@ TEST(CompareCommand, IndexHtmlLoadsInHeadlessChromium) {
     EXPECT_NE(o.err.find("no --reference"), std::string::npos) << o.err;
     Metadata refMeta;
     readExr(out + "/reference.exr", &refMeta);
-    EXPECT_EQ(metaValue(refMeta, "tripath:seed"), "2");  // the seed after the one run's
+    EXPECT_EQ(metaValue(refMeta, "tripath:seed"), "1");  // the runs' seed, in the reference's own streams
+    EXPECT_EQ(metaValue(refMeta, "tripath:streams"), "reference");
 
     const int found = std::system("command -v chromium > /dev/null 2>&1");
     ASSERT_EQ(found, 0) << "chromium not found: run scripts/install-test-deps.sh";

@@ -1,6 +1,11 @@
 // Ray queries, robust ray origins, emitter sampling and the sensor's importance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
 #include "geometry/builtin_scenes.h"
 #include "geometry/rng.h"
 #include "geometry/scene.h"
@@ -68,14 +73,133 @@ void expectNoSelfHits(float offset, float size) {
 TEST(SceneQueries, NoSelfHitsAtGrazingAnglesNearTheOrigin) { expectNoSelfHits(0.0f, 1.0f); }
 TEST(SceneQueries, NoSelfHitsAtGrazingAnglesAtCoordinatesOf1e4) { expectNoSelfHits(1e4f, 100.0f); }
 
-TEST(Emitters, AreaPdfIntegratesToOne) {
-    for (const char* name : {"cornell", "veach-mis", "furnace"}) {
-        const Scene scene(builtinScene(name), 4, 4);
-        double integral = 0;
-        const auto& all = scene.emitters().all();
-        for (size_t e = 0; e < all.size(); ++e) integral += double(scene.emitters().pdfA(int(e))) * all[e].area;
-        EXPECT_NEAR(integral, 1.0, 1e-4) << name;
+// Pearson's χ² upper tail by the Wilson-Hilferty cube-root normal approximation (a few percent
+// in p for k ≳ 30: ample for a 1e-5 rejection threshold).
+double chiSquarePValue(double x, int k) {
+    const double v = 2.0 / (9.0 * k);
+    const double z = (std::cbrt(x / k) - (1.0 - v)) / std::sqrt(v);
+    return 0.5 * std::erfc(z / std::sqrt(2.0));
+}
+
+// Three triangle emitters and a point light with hand-picked powers (grey, so the power does not
+// depend on how a colour is weighed), and one non-emitting triangle that must never be chosen:
+//   A: area 1/2, Le 2,   one-sided  Φ = π·A·Le      = π
+//   B: area 2,   Le 1/2, two-sided  Φ = 2·π·A·Le    = 2π
+//   C: area 3/2, Le 1,   one-sided  Φ = π·A·Le      = 3π/2
+//   P: point light, I 1/4           Φ = 4π·I        = π        total 11π/2
+// so the choice probabilities are 2/11, 4/11, 3/11, 2/11 and the area densities (share / area)
+// 4/11 on A, 2/11 on B, 2/11 on C; P's "area pdf" is its choice probability 2/11.
+struct EmitterCase {
+    const char* name;
+    Vec3 p0, p1, p2;
+    double share, density;
+};
+const EmitterCase kEmitterCases[] = {
+    {"A", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 2.0 / 11, 4.0 / 11},
+    {"B", {0, 0, 1}, {0, 2, 1}, {2, 0, 1}, 4.0 / 11, 2.0 / 11},
+    {"C", {3, 0, 0}, {4, 0, 0}, {3, 3, 0}, 3.0 / 11, 2.0 / 11},
+};
+constexpr double kPointShare = 2.0 / 11;
+
+SceneDesc emitterTestScene() {
+    SceneDesc d;
+    d.name = "emitter-test";
+    auto material = [&](float le, bool twoSided) {
+        Material m;
+        m.name = "m" + std::to_string(d.materials.size());
+        m.albedo = Spectrum(0.5f);
+        m.emission = Spectrum(le);
+        m.twoSidedEmission = twoSided;
+        d.materials.push_back(m);
+        return static_cast<int>(d.materials.size()) - 1;
+    };
+    const int dark = material(0.0f, false);
+    d.meshes.push_back({"dark", {{-5, -1, -5}, {5, -1, -5}, {0, -1, 5}}, {}, {0, 1, 2}, dark});
+    const int mats[3] = {material(2.0f, false), material(0.5f, true), material(1.0f, false)};
+    for (int i = 0; i < 3; ++i) {
+        const EmitterCase& c = kEmitterCases[i];
+        d.meshes.push_back({c.name, {c.p0, c.p1, c.p2}, {}, {0, 1, 2}, mats[i]});
     }
+    d.pointLights.push_back({{1, 1, 3}, Spectrum(0.25f)});
+    return d;
+}
+
+// Which of the 16 congruent sub-triangles (each edge cut in 4) barycentrics (b1, b2) fall in.
+int subTriangle(double b1, double b2) {
+    constexpr int n = 4;
+    const int i = std::clamp(static_cast<int>(std::floor(n * b1)), 0, n - 1);
+    const int j = std::clamp(static_cast<int>(std::floor(n * b2)), 0, n - 1);
+    const bool down = (n * b1 - i) + (n * b2 - j) > 1;
+    return (i * n + j) * 2 + (down ? 1 : 0);  // sparse index in [0, 32): 16 of them occur
+}
+
+// Points from Emitters::sample, histogrammed per emitter and per sixteenth of each triangle,
+// against area × power share (χ², p > 1e-5), and the pdf each sample reports against the
+// density computed by hand above. Catches: choosing emitters by area or by radiance instead of
+// power, forgetting the factor 2 of a two-sided emitter or the 4π of a point light, choosing the
+// non-emitting triangle, sampling a triangle non-uniformly (e.g. barycentrics u, v without the
+// square root or fold, which crowd a corner or leave the triangle), and a pdfA that is not
+// share / area (not divided by the area, or divided by another triangle's).
+TEST(Emitters, SampledPointsFollowPowerShareTimesAreaAndReportTheirDensity) {
+    const Scene scene(emitterTestScene(), 4, 4, [](const std::string&) {});
+    const Emitters& emitters = scene.emitters();
+    ASSERT_EQ(emitters.all().size(), 4u);
+    const int n = 200000;
+    std::vector<double> observed(3 * 32 + 1, 0.0), expected(3 * 32 + 1, 0.0);
+    for (int k = 0; k < 3; ++k)
+        for (int b = 0; b < 32; ++b)
+            if (b / 2 / 4 + b / 2 % 4 <= (b % 2 == 0 ? 3 : 2))  // the 10 upward and 6 downward cells
+                expected[k * 32 + b] = n * kEmitterCases[k].share / 16;
+    expected.back() = n * kPointShare;
+    int misplaced = 0, wrongDensity = 0, wrongNormal = 0;
+    for (int i = 0; i < n; ++i) {
+        Rng rng = testRng(1000000 + i);
+        const float uc = rng.uniform();
+        const Vec2 u{rng.uniform(), rng.uniform()};
+        const EmitterSample s = emitters.sample(uc, u, scene.triangles());
+        if (emitters.all()[s.emitter].kind == Emitter::Kind::Point) {
+            observed.back() += 1;
+            if (!(s.p == Vec3(1, 1, 3)) || std::abs(s.pdfA - kPointShare) > 1e-6 * kPointShare) ++wrongDensity;
+            continue;
+        }
+        // Which hand-made triangle holds the point, and where in it.
+        int which = -1;
+        double b1 = 0, b2 = 0;
+        for (int k = 0; k < 3 && which < 0; ++k) {
+            const EmitterCase& c = kEmitterCases[k];
+            const Vec3 e1 = c.p1 - c.p0, e2 = c.p2 - c.p0, q = s.p - c.p0, nrm = cross(e1, e2);
+            const double area2 = length(nrm);
+            if (std::abs(dot(q, nrm)) > 1e-5 * area2) continue;  // not in this triangle's plane
+            const double x1 = dot(cross(q, e2), nrm) / (area2 * area2), x2 = dot(cross(e1, q), nrm) / (area2 * area2);
+            if (x1 < -1e-6 || x2 < -1e-6 || x1 + x2 > 1 + 1e-6) continue;
+            which = k, b1 = x1, b2 = x2;
+            if (length(s.n - nrm / static_cast<float>(area2)) > 1e-5f) ++wrongNormal;
+        }
+        if (which < 0) {
+            ++misplaced;
+            continue;
+        }
+        observed[which * 32 + subTriangle(b1, b2)] += 1;
+        const double density = kEmitterCases[which].density;
+        if (std::abs(s.pdfA - density) > 1e-5 * density ||
+            std::abs(emitters.pdfA(static_cast<int>(s.emitter)) - density) > 1e-5 * density)
+            ++wrongDensity;
+    }
+    EXPECT_EQ(misplaced, 0);
+    EXPECT_EQ(wrongDensity, 0);
+    EXPECT_EQ(wrongNormal, 0);
+    double chi2 = 0;
+    int cells = 0;
+    for (size_t b = 0; b < observed.size(); ++b) {
+        if (expected[b] == 0) {
+            EXPECT_EQ(observed[b], 0) << "cell " << b;
+            continue;
+        }
+        chi2 += (observed[b] - expected[b]) * (observed[b] - expected[b]) / expected[b];
+        ++cells;
+    }
+    ASSERT_EQ(cells, 3 * 16 + 1);
+    EXPECT_GT(chiSquarePValue(chi2, cells - 1), 1e-5) << "χ² = " << chi2 << " over " << cells << " cells";
 }
 
 TEST(Emitters, ChoiceFollowsPower) {

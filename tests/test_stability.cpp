@@ -127,36 +127,34 @@ TEST(FailureScenes, AreBuiltinsAndBuildValidScenes) {
     }
 }
 
-// ---- no NaN/Inf, bounded work ------------------------------------------------------------------
+// ---- no NaN/Inf ----------------------------------------------------------------------------------
 
 // Checks every contribution of a sample as the integrator hands it over, before the render loop
-// could drop a bad one: finite, an MIS weight in [0, 1], a path length within max-depth.
+// could drop a bad one: finite, an MIS weight in [0, 1], a light-tracing splat inside the image.
 class CheckingSink final : public ContributionSink {
 public:
-    CheckingSink(int maxDepth, const Camera& camera) : maxDepth_(maxDepth), camera_(camera) {}
-    void add(int s, int t, const Connection& c) override {
-        ++calls;
+    explicit CheckingSink(const Camera& camera) : camera_(camera) {}
+    void add(int, int t, const Connection& c) override {
         if (!isFinite(c.unweighted) || !std::isfinite(c.weight)) ++nonFinite;
         if (!(c.weight >= 0.0f && c.weight <= 1.0f + 1e-4f)) ++badWeight;
-        if (s < 0 || t < 1 || s + t - 1 > maxDepth_) ++badLength;
         if (t == 1 && (!c.raster || !(c.raster->x >= 0 && c.raster->x < camera_.width() && c.raster->y >= 0 &&
                                       c.raster->y < camera_.height())))
             ++badRaster;
     }
-    int calls = 0, nonFinite = 0, badWeight = 0, badLength = 0, badRaster = 0;
+    int nonFinite = 0, badWeight = 0, badRaster = 0;
 
 private:
-    int maxDepth_;
     const Camera& camera_;
 };
 
-// Work per sample is counted, not timed: a camera subpath has at most max-depth + 1 vertices, a
-// light subpath at most max-depth, and the strategies number at most (D + 1)(D + 2) / 2 — one
-// connection (one shadow ray) each. A walk that loops (albedo 1, a ray stuck between coincident
-// faces) would break the first two.
-TEST(FailureScenes, EverySampleIsFiniteAndItsWorkBounded) {
+// Every contribution of every sample on the failure scenes (grazing angles, coincident faces,
+// needle and zero-area triangles, coordinates near 1e6) is finite, before the render loop's
+// NaN/Inf filter could hide it. Catches a 0/0 or ∞·0 in a kernel or pdf (a cosine or a distance
+// of 0, a pdf that underflows) that the render loop would silently drop. (Path length and the
+// number of strategies are not checked here: they are the walks' and the strategy loop's own
+// bounds, and Film.DepthImagesAreTheDifferencesOfMaxDepthRenders checks max-depth by its effect.)
+TEST(FailureScenes, EverySampleIsFinite) {
     constexpr int kMaxDepth = 6, kSize = 12, kSamples = 4;
-    constexpr int kMaxStrategies = (kMaxDepth + 1) * (kMaxDepth + 2) / 2;
     for (const std::string& name : kFailureScenes) {
         const Scene scene(builtinScene(name), kSize, kSize, silent);
         for (const std::string& integratorName : kIntegrators) {
@@ -164,28 +162,19 @@ TEST(FailureScenes, EverySampleIsFiniteAndItsWorkBounded) {
             is.walk.maxDepth = kMaxDepth;
             const auto integrator = makeIntegrator(integratorName, is);
             PathBuffers paths;
-            CheckingSink sink(kMaxDepth, scene.camera());
-            size_t vertices = 0, longestCamera = 0, longestLight = 0;
-            int mostCalls = 0;
+            CheckingSink sink(scene.camera());
+            size_t vertices = 0;
             for (int i = 0; i < kSize * kSize * kSamples; ++i) {
                 Rng rng(7, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(i));
                 const int pixel = i % (kSize * kSize);
                 const Vec2 raster{(pixel % kSize) + rng.uniform(), (pixel / kSize) + rng.uniform()};
-                const int before = sink.calls;
                 integrator->sample(scene, raster, rng, paths, sink);
-                mostCalls = std::max(mostCalls, sink.calls - before);
-                longestCamera = std::max(longestCamera, paths.camera.size());
-                longestLight = std::max(longestLight, paths.light.size());
                 vertices += paths.camera.size() + paths.light.size();
             }
             const std::string what = name + " " + integratorName;
             EXPECT_EQ(sink.nonFinite, 0) << what;
             EXPECT_EQ(sink.badWeight, 0) << what;
-            EXPECT_EQ(sink.badLength, 0) << what;
             EXPECT_EQ(sink.badRaster, 0) << what;
-            EXPECT_LE(longestCamera, size_t(kMaxDepth + 1)) << what;
-            EXPECT_LE(longestLight, size_t(kMaxDepth)) << what;
-            EXPECT_LE(mostCalls, kMaxStrategies) << what;
             RecordProperty(what + " mean vertices per sample",
                            std::to_string(double(vertices) / (kSize * kSize * kSamples)));
         }

@@ -39,6 +39,10 @@ private:
 };
 
 // Stream domains: keep camera samples, light paths and anything else from sharing streams.
-enum class StreamDomain : uint64_t { CameraSample = 1, Test = 3 };
+// Reference: the per-pixel sample streams of `tripath reference` (and of the reference `tripath
+// compare` renders for itself), so that a reference is independent of every render made with the
+// same seed. The values are part of every stored image's identity: a retired one (2, once meant
+// for light paths and never used) is not reused, and new domains go at the end.
+enum class StreamDomain : uint64_t { CameraSample = 1, Test = 3, Reference = 4 };
 
 }  // namespace tripath

@@ -59,7 +59,7 @@ private:
 };
 
 void renderTile(const Scene& scene, const Integrator& integrator, Film& film, int tile, uint64_t passIndex,
-                uint64_t seed, TileOutput& out) {
+                uint64_t seed, StreamDomain domain, TileOutput& out) {
     const Camera& cam = scene.camera();
     const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
     const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
@@ -69,7 +69,7 @@ void renderTile(const Scene& scene, const Integrator& integrator, Film& film, in
     for (int y = y0; y < std::min(y0 + kTileSize, cam.height()); ++y)
         for (int x = x0; x < std::min(x0 + kTileSize, cam.width()); ++x) {
             const int pixel = y * cam.width() + x;
-            Rng rng(seed, static_cast<uint64_t>(StreamDomain::CameraSample), passIndex * pixels + pixel);
+            Rng rng(seed, static_cast<uint64_t>(domain), passIndex * pixels + pixel);
             const float jx = rng.uniform(), jy = rng.uniform();
             sink.setPixel(pixel);
             integrator.sample(scene, {x + jx, y + jy}, rng, paths, sink);
@@ -97,7 +97,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
                 for (int tile = r.begin(); tile < r.end(); ++tile)
-                    renderTile(scene, integrator, result.film, tile, passIndex, settings.seed, outputs[tile]);
+                    renderTile(scene, integrator, result.film, tile, passIndex, settings.seed, settings.domain,
+                               outputs[tile]);
             });
         });
         for (TileOutput& out : outputs) {

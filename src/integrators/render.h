@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "geometry/rng.h"
 #include "integrators/film.h"
 #include "integrators/integrator.h"
 
@@ -14,6 +15,9 @@ struct RenderSettings {
     int spp = 16;                 // passes to render; with `seconds` > 0, an upper bound (0: none)
     double seconds = 0;           // > 0: stop at the first pass boundary after this much time
     uint64_t seed = 1;
+    // The streams the per-pixel samples draw from: CameraSample for renders, Reference for
+    // references, so that a reference and a render with the same seed share no random numbers.
+    StreamDomain domain = StreamDomain::CameraSample;
     uint64_t firstPass = 0;       // sample index of the first pass: lets a reference add fresh samples
     int threads = 0;              // 0: all cores
     FilmLayers layers;
