@@ -50,7 +50,8 @@ void expectNoSelfHits(float offset, float size) {
     int selfHits = 0, trials = 0;
     for (int i = 0; i < 4000; ++i) {
         Rng rng = testRng(i);
-        const Vec3 target = o + Vec3((rng.uniform() - 0.5f) * size, 0, (rng.uniform() - 0.5f) * size);
+        const float ux = rng.uniform(), uz = rng.uniform();  // sequenced: not two arguments of one call
+        const Vec3 target = o + Vec3((ux - 0.5f) * size, 0, (uz - 0.5f) * size);
         // Find the floor point along a vertical ray, as a path vertex would.
         const auto hit = scene.intersect(target + Vec3(0, 1, 0), {0, -1, 0});
         if (!hit || hit->triangle > 1) continue;

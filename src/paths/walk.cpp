@@ -66,7 +66,9 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
 
         const Frame frame(v.ns);
         const Vec3 wo = normalize(path[path.size() - 2].p - v.p);
-        const auto bs = sampleBsdf(*v.material, frame.toLocal(wo), uniform2(rng), rng.uniform(), mode);
+        const Vec2 u = uniform2(rng);  // drawn in sequence: the order of a call's arguments is unspecified
+        const float uc = rng.uniform();
+        const auto bs = sampleBsdf(*v.material, frame.toLocal(wo), u, uc, mode);
         if (!bs || !(bs->pdf > 0) || isBlack(bs->f)) return;
         const Vec3 wi = frame.toWorld(bs->wi);
         // Radiance flows against a camera walk (light arrives along wi) and with a light walk.
