@@ -8,6 +8,10 @@
 # error (by default it prints and carries on, and the test would pass), and LeakSanitizer runs at
 # exit. Expect the suite to take 3-5x as long as in Release; the build is RelWithDebInfo so
 # reports carry file and line.
+#
+# Beside it, scripts/check-compilers.sh (not run by CI) builds the portable configuration with
+# GCC and with Clang (the compiler of the fuzz build) and checks that both render bit-identical
+# images of every built-in scene with pt, lt and bdpt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRIPATH_SANITIZE=ON -DTRIPATH_BENCH=OFF >/dev/null

@@ -1,6 +1,10 @@
-// Helpers shared by the physics tests: rendering at low resolution and simple statistics.
+// Helpers shared by the physics tests: rendering at low resolution, scene variants, simple
+// statistics.
 #pragma once
+#include <tbb/task_arena.h>
+
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -23,8 +27,8 @@ struct RenderRequest {
     FilmLayers layers;
 };
 
-inline RenderResult renderDesc(const SceneDesc& desc, const RenderRequest& r) {
-    const Scene scene(desc, r.width, r.height);
+// Renders a scene built by the caller (at r.width x r.height).
+inline RenderResult renderScene(const Scene& scene, const RenderRequest& r) {
     IntegratorSettings is;
     is.walk.maxDepth = r.maxDepth;
     is.walk.rrDepth = r.rrDepth;
@@ -36,6 +40,47 @@ inline RenderResult renderDesc(const SceneDesc& desc, const RenderRequest& r) {
     rs.threads = r.threads;
     rs.layers = r.layers;
     return render(scene, *integrator, rs);
+}
+
+inline RenderResult renderDesc(const SceneDesc& desc, const RenderRequest& r) {
+    const Scene scene(desc, r.width, r.height);
+    return renderScene(scene, r);
+}
+
+// `desc` with every triangle cut into n² coplanar pieces (corners a + (b−a)·i/n + (c−a)·j/n, so
+// a face in an axis-aligned plane stays exactly in it). Embree builds a BVH of fewer than 1024
+// primitives on one thread, and partitions sets of fewer than 3072 sequentially, whatever the
+// threads it is given: `contact` (48 triangles) needs this to reach its parallel code.
+inline SceneDesc tessellated(SceneDesc desc, int n) {
+    for (MeshDesc& m : desc.meshes) {
+        MeshDesc cut;
+        cut.name = m.name;
+        cut.material = m.material;
+        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+            const Vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
+                       c = m.positions[m.indices[t + 2]];
+            const auto corner = [&](int i, int j) {
+                cut.positions.push_back(a + (b - a) * (float(i) / n) + (c - a) * (float(j) / n));
+                return static_cast<uint32_t>(cut.positions.size() - 1);
+            };
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; i + j < n; ++j) {
+                    const uint32_t p = corner(i, j), q = corner(i + 1, j), r = corner(i, j + 1);
+                    cut.indices.insert(cut.indices.end(), {p, q, r});
+                    if (i + j + 1 < n) cut.indices.insert(cut.indices.end(), {q, corner(i + 1, j + 1), r});
+                }
+        }
+        m = std::move(cut);
+    }
+    return desc;
+}
+
+// Builds the scene (and so its Embree BVH) inside an arena of `threads` threads: Embree builds
+// with the threads of the arena it is called from.
+inline std::unique_ptr<Scene> buildWithThreads(const SceneDesc& desc, int width, int height, int threads) {
+    std::unique_ptr<Scene> scene;
+    tbb::task_arena(threads).execute([&] { scene = std::make_unique<Scene>(desc, width, height); });
+    return scene;
 }
 
 // Mean of one channel (or of all three, c = -1) over a block of pixels.

@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,16 @@ Material makeMaterial(MaterialType type, Spectrum albedo, float roughness = 0.5f
 
 Rng testRng(uint64_t k) { return Rng(1234, static_cast<uint64_t>(StreamDomain::Test), k); }
 Vec2 uniform2(Rng& rng) { return {rng.uniform(), rng.uniform()}; }
+
+// sampleBsdf with u drawn first (x, then y) and uc after it, as the walks draw them. The
+// arguments of one call are evaluated in an order C++ leaves unspecified (GCC and Clang differ),
+// so `sampleBsdf(m, wo, uniform2(rng), rng.uniform(), mode)` would test different samples
+// depending on the compiler: every draw is a statement of its own.
+std::optional<BsdfSample> drawBsdfSample(const Material& m, Vec3 wo, Rng& rng, TransportMode mode) {
+    const Vec2 u = uniform2(rng);
+    const float uc = rng.uniform();
+    return sampleBsdf(m, wo, u, uc, mode);
+}
 
 // Direction at polar angle θ (degrees) and azimuth φ; negative z for θ > 90°.
 Vec3 directionAtAngle(float thetaDegrees, float phi = 0.3f) {
@@ -93,7 +104,8 @@ TEST(Bsdf, DeltaMaterialsHaveNoEvaluableLobe) {
 std::pair<Vec3, Vec3> randomPair(Rng& rng, int i) {
     const Vec3 wo = sampleUniformSphere(uniform2(rng));
     if (i % 2 == 0) return {wo, sampleUniformSphere(uniform2(rng))};
-    const Vec3 jitter = sampleUniformSphere(uniform2(rng)) * (0.05f * rng.uniform());
+    const Vec3 offset = sampleUniformSphere(uniform2(rng));  // drawn before the scale: sequenced
+    const Vec3 jitter = offset * (0.05f * rng.uniform());
     return {wo, normalize(Vec3(-wo.x, -wo.y, wo.z) + jitter)};
 }
 
@@ -141,7 +153,7 @@ TEST(Bsdf, SampledValuesMatchEvalAndPdf) {
         Rng rng = testRng(4);
         for (int i = 0; i < 20000; ++i) {
             const Vec3 wo = sampleUniformSphere(uniform2(rng));
-            const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance);
+            const auto s = drawBsdfSample(m, wo, rng, TransportMode::Radiance);
             if (!s) continue;
             ASSERT_FALSE(s->delta) << m.name;
             ASSERT_NEAR(length(s->wi), 1.0f, 1e-4f) << m.name;
@@ -241,7 +253,7 @@ ChiSquareResult chiSquare(const std::vector<double>& observed, const std::vector
 std::vector<double> sampledHistogram(const Material& m, Vec3 wo, const SphereBins& bins, int n, Rng& rng) {
     std::vector<double> h(bins.count() + 1, 0.0);
     for (int i = 0; i < n; ++i) {
-        const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance);
+        const auto s = drawBsdfSample(m, wo, rng, TransportMode::Radiance);
         h[s ? bins.index(s->wi) : bins.count()] += 1;
     }
     return h;
@@ -302,7 +314,7 @@ TEST(Bsdf, PdfIntegratesToSamplingProbability) {
         int produced = 0;
         for (int i = 0; i < n; ++i)
             produced +=
-                sampleBsdf(c.m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance).has_value();
+                drawBsdfSample(c.m, wo, rng, TransportMode::Radiance).has_value();
         const double rate = static_cast<double>(produced) / n;
         const double sigma = std::sqrt(std::max(rate * (1 - rate), 1.0 / n) / n);
         EXPECT_NEAR(integral, rate, 4 * sigma + 1e-3) << c.m.name << " θo=" << c.thetaDegrees;
@@ -325,7 +337,7 @@ struct Estimate {
 Estimate directionalAlbedo(const Material& m, Vec3 wo, TransportMode mode, int n, Rng& rng) {
     Spectrum sum(0.0f), sum2(0.0f);
     for (int i = 0; i < n; ++i) {
-        const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), mode);
+        const auto s = drawBsdfSample(m, wo, rng, mode);
         if (!s) continue;
         const Spectrum w = s->f * (std::abs(s->wi.z) / s->pdf);
         sum += w;
@@ -367,7 +379,7 @@ TEST(Bsdf, LambertianAlbedoIsExact) {
         const Vec3 wo = directionAtAngle(theta);
         for (int i = 0; i < 2000; ++i) {
             // Cosine-weighted sampling is perfect importance sampling: every weight equals a.
-            const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance);
+            const auto s = drawBsdfSample(m, wo, rng, TransportMode::Radiance);
             ASSERT_TRUE(s.has_value());
             const Spectrum w = s->f * (std::abs(s->wi.z) / s->pdf);
             for (int c = 0; c < 3; ++c) ASSERT_NEAR(w[c], a[c], 1e-5f);
@@ -416,7 +428,7 @@ TEST(Bsdf, DielectricFollowsFresnelAndSnell) {
             Rng rng = testRng(500);
             int reflected = 0;
             for (int i = 0; i < n; ++i) {
-                const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), mode);
+                const auto s = drawBsdfSample(m, wo, rng, mode);
                 ASSERT_TRUE(s.has_value());
                 ASSERT_TRUE(s->delta);
                 const Spectrum w = s->f * (std::abs(s->wi.z) / s->pdf);
@@ -470,7 +482,7 @@ TEST(Bsdf, DielectricTotalInternalReflection) {
     for (float beyond : {0.5f, 10.0f, 40.0f}) {
         const Vec3 wo = directionAtAngle(180.0f - (critical + beyond));  // inside the glass
         for (int i = 0; i < 1000; ++i) {
-            const auto s = sampleBsdf(m, wo, uniform2(rng), rng.uniform(), TransportMode::Radiance);
+            const auto s = drawBsdfSample(m, wo, rng, TransportMode::Radiance);
             ASSERT_TRUE(s.has_value());
             EXPECT_EQ(s->wi, Vec3(-wo.x, -wo.y, wo.z));
             EXPECT_FLOAT_EQ(s->pdf, 1.0f);
