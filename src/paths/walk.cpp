@@ -128,7 +128,7 @@ void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings
     path.push_back(sensorVertex(scene));
     const Camera& cam = scene.camera();
     const Vec3 dir = cam.direction(raster);
-    // beta = W_j cos θ / p_pixel = 1 exactly (camera.h); MIS sees the whole-image pdf.
+    // beta = W_j cos θ / p_pixel = 1 exactly (camera.h); MIS sees p_pixel / N_L (kernels.h).
     randomWalk(scene, rng, Spectrum(1.0f), dir, TransportMode::Radiance, settings, pdfs,
                static_cast<size_t>(settings.maxDepth) + 1, path);
 }
