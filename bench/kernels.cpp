@@ -207,8 +207,14 @@ void registerPathKernels() {
 // ---- MIS weight against path length ------------------------------------------------------------
 
 // A path of k segments split into s light and t = k + 1 − s camera vertices with random pdfs:
-// misWeight reads only kinds, delta flags, normals (for a delta light), the two pdfs and the
-// junction's four.
+// misWeight reads only kinds, delta flags, normals (for a delta light), the two pdfs, the
+// junction's four and, for the roulette factors, the material of surface vertices.
+const Material kSyntheticMaterial = [] {
+    Material m;
+    m.albedo = Spectrum(0.7f);
+    return m;
+}();
+
 struct SyntheticPath {
     std::vector<Vertex> light, camera;
     Junction junction;
@@ -221,6 +227,7 @@ SyntheticPath syntheticPath(int s, int t, Rng& rng) {
         Vertex v;
         v.kind = i == 0 ? Vertex::Kind::Emitter : Vertex::Kind::Surface;
         v.ng = Vec3(0, 1, 0);  // an area emitter, not a point light
+        v.material = &kSyntheticMaterial;
         v.pdfFwd = pdf();
         v.pdfRev = pdf();
         p.light.push_back(v);
@@ -229,6 +236,7 @@ SyntheticPath syntheticPath(int s, int t, Rng& rng) {
         Vertex v;
         v.kind = i == 0 ? Vertex::Kind::Sensor : Vertex::Kind::Surface;
         v.ng = Vec3(0, 0, -1);
+        v.material = &kSyntheticMaterial;
         v.pdfFwd = pdf();
         v.pdfRev = pdf();
         p.camera.push_back(v);
@@ -248,9 +256,9 @@ void runMis(benchmark::State& state, int k, MisHeuristic h, StrategySet::Kind ki
     std::vector<SyntheticPath> paths;
     Rng rng = testRng(static_cast<uint64_t>(k));
     for (size_t i = 0; i < kPaths; ++i) paths.push_back(syntheticPath(s, t, rng));
-    const StrategySet strategies{kind};
+    const MisContext mis{h, {kind}, Roulette{}};  // roulette from the 3rd vertex, as rendered
     cycle(state, kPaths, [&](size_t i) {
-        MisWeight w = misWeight(paths[i].light, s, paths[i].camera, t, paths[i].junction, h, strategies);
+        MisWeight w = misWeight(paths[i].light, s, paths[i].camera, t, paths[i].junction, mis);
         benchmark::DoNotOptimize(w);
     });
     state.counters["k"] = k;
@@ -285,11 +293,11 @@ void runConnect(benchmark::State& state, int s, int t) {
         state.SkipWithError("could not find subpaths for this (s, t)");
         return;
     }
-    const StrategySet strategies{StrategySet::Kind::Bidirectional};
+    const MisContext mis{MisHeuristic::Power, {StrategySet::Kind::Bidirectional}, Roulette{}};
     uint64_t nonzero = 0;
     const RayCounts before = threadRayCounts();
     cycle(state, kPairs, [&](size_t i) {
-        Connection c = connect(scene, pairs[i].light, s, pairs[i].camera, t, MisHeuristic::Power, strategies);
+        Connection c = connect(scene, pairs[i].light, s, pairs[i].camera, t, mis);
         nonzero += !isBlack(c.unweighted);
         benchmark::DoNotOptimize(c);
     });

@@ -52,23 +52,34 @@ bool strategyCanSample(const Path& x, int s, StrategySet set) {
     return !scattersDelta(x, s - 1) && !scattersDelta(x, s);
 }
 
-// p_{s,t}(x̄): light-side pdfs for x_0..x_{s-1}, camera-side for x_s..x_k. A delta scattering
+// The probability that a walk goes on from x_g, the walk's vertex number j, toward the next
+// vertex: q(x_g) once the walk holds rrDepth vertices (j + 1 ≥ rrDepth), never from its start.
+double continuation(const Path& x, int g, int j, int rrDepth) {
+    return j >= 1 && j + 1 >= rrDepth ? continuationProbability(*x[g].material) : 1.0;
+}
+
+// p_{s,t}(x̄): light-side pdfs for x_0..x_{s-1}, camera-side for x_s..x_k, each times the
+// continuation probability of the vertex that generated it: the light walk reaches x_{i−1} as its
+// (i−1)-th vertex, the camera walk reaches x_{i+1} as its (k−i−1)-th. A delta scattering
 // contributes the same factor to every strategy that can sample the path, so it counts as 1.
-double strategyPdf(const Scene& scene, const Path& x, int s) {
+double strategyPdf(const Scene& scene, const Path& x, int s, int rrDepth) {
+    const int k = static_cast<int>(x.size()) - 1;
     double p = 1;
-    for (int i = 0; i < static_cast<int>(x.size()); ++i) {
+    for (int i = 0; i <= k; ++i) {
         const bool afterDelta = i < s ? scattersDelta(x, i - 1) : scattersDelta(x, i + 1);
         if (!afterDelta) p *= i < s ? forwardPdf(scene, x, i) : reversePdf(scene, x, i);
+        p *= i < s ? continuation(x, i - 1, i - 1, rrDepth) : continuation(x, i + 1, k - i - 1, rrDepth);
     }
     return p;
 }
 
-double bruteForceWeight(const Scene& scene, const Path& x, int s, MisHeuristic h, StrategySet set) {
+double bruteForceWeight(const Scene& scene, const Path& x, int s, const MisContext& mis) {
+    const MisHeuristic h = mis.heuristic;
     auto term = [&](double p) { return h == MisHeuristic::Balance ? p : h == MisHeuristic::Power ? p * p : (p > 0 ? 1.0 : 0.0); };
     double sum = 0;
     for (int i = 0; i < static_cast<int>(x.size()); ++i)
-        if (strategyCanSample(x, i, set)) sum += term(strategyPdf(scene, x, i));
-    return term(strategyPdf(scene, x, s)) / sum;
+        if (strategyCanSample(x, i, mis.strategies)) sum += term(strategyPdf(scene, x, i, mis.roulette.depth));
+    return term(strategyPdf(scene, x, s, mis.roulette.depth)) / sum;
 }
 
 // ---- sampling full paths with the production walks ------------------------------------------
@@ -79,10 +90,11 @@ struct SampledPath {
     Connection c;
 };
 
-// Full paths from connecting real subpaths; no Russian roulette, so `unweighted` is exactly f/p.
-std::vector<SampledPath> samplePaths(const Scene& scene, int samples, MisHeuristic h, StrategySet set, int maxDepth = 5) {
+// Full paths from connecting real subpaths, with the walks' Russian roulette.
+std::vector<SampledPath> samplePaths(const Scene& scene, int samples, const MisContext& mis, int maxDepth = 5) {
+    const StrategySet set = mis.strategies;
     std::vector<SampledPath> out;
-    const WalkSettings ws{maxDepth, 1000};
+    const WalkSettings ws{maxDepth, mis.roulette.depth};
     Subpath light, camera;
     for (int i = 0; i < samples; ++i) {
         Rng rng(11, static_cast<uint64_t>(StreamDomain::Test), i);
@@ -92,7 +104,7 @@ std::vector<SampledPath> samplePaths(const Scene& scene, int samples, MisHeurist
         for (int t = 1; t <= static_cast<int>(camera.size()); ++t)
             for (int s = 0; s <= static_cast<int>(light.size()); ++s) {
                 if (s + t < 2 || s + t - 1 > maxDepth || !set.enabled(s, t)) continue;
-                const Connection c = connect(scene, light, s, camera, t, h, set);
+                const Connection c = connect(scene, light, s, camera, t, mis);
                 if (isBlack(c.unweighted)) continue;
                 SampledPath sp{{}, s, c};
                 for (int i2 = 0; i2 < s; ++i2) sp.x.push_back(light[i2]);
@@ -126,10 +138,12 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
         const std::string& name = desc.name;
         for (StrategySet set : kSets)
             for (MisHeuristic h : kHeuristics) {
-                const auto paths = samplePaths(scene, 150, h, set);
+                // Roulette from the 3rd vertex: within max depth 5, some generators play and some not.
+                const MisContext mis{h, set, Roulette{3}};
+                const auto paths = samplePaths(scene, 150, mis);
                 ASSERT_GT(paths.size(), 20u) << name;
                 for (const SampledPath& p : paths) {
-                    const double expected = bruteForceWeight(scene, p.x, p.s, h, set);
+                    const double expected = bruteForceWeight(scene, p.x, p.s, mis);
                     ASSERT_NEAR(p.c.weight, expected, 2e-3 * std::max(1.0, expected))
                         << name << " s=" << p.s << " k=" << p.x.size() - 1 << " set=" << int(set.kind) << " h=" << int(h);
                 }
@@ -138,6 +152,8 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
 }
 
 // ---- MIS on hand-made pdfs: deltas are flags, zeros are zeros ---------------------------------
+
+const Roulette kNoRoulette{1000};
 
 // A path x0 (light[0], an area emitter) … xk (camera[0], the sensor) with the given camera
 // vertices' forward pdfs; every other pdf the weight reads comes from the junction.
@@ -173,7 +189,7 @@ TEST(Mis, AZeroPdfThatIsNoDeltaRulesOutOnlyTheStrategiesThatNeedIt) {
     h.junction.cameraEnd = 2.0f;    // b: x1 from x0's emission
     h.junction.lightEnd = 0.0f;     // x1's BSDF cannot send the camera walk to x0: (0, 3) is impossible
     const StrategySet bdpt{StrategySet::Kind::Bidirectional};
-    const MisWeight w = misWeight(h.light, 1, h.camera, 2, h.junction, MisHeuristic::Power, bdpt);
+    const MisWeight w = misWeight(h.light, 1, h.camera, 2, h.junction, {MisHeuristic::Power, bdpt, kNoRoulette});
     // Only (2, 1) competes: 1 / (1 + (b/a)²) = 1 / (1 + 1/4). Reading the zero as a delta (a pdf of
     // 1) would add (1/e)² = 1/4 and give 2/3.
     EXPECT_FLOAT_EQ(w.value, 0.8f);
@@ -188,7 +204,7 @@ TEST(Mis, ADeltaScattererCountsAsOneAndRulesOutTheConnectionsAtIt) {
     h.junction.cameraBeforeEnd = 5.0f;  // x2 from x1: (3, 1) still joins the sensor to the mirror
     h.junction.lightEnd = 1.0f;         // c: x0 from x1's BSDF
     const StrategySet bdpt{StrategySet::Kind::Bidirectional};
-    const MisWeight w = misWeight(h.light, 1, h.camera, 3, h.junction, MisHeuristic::Power, bdpt);
+    const MisWeight w = misWeight(h.light, 1, h.camera, 3, h.junction, {MisHeuristic::Power, bdpt, kNoRoulette});
     // (2, 2) and (3, 1) would join at the mirror: impossible. (0, 4) competes with (c/e)² = 1/4.
     EXPECT_FLOAT_EQ(w.value, 0.8f);
     EXPECT_FALSE(w.guarded);
@@ -202,7 +218,7 @@ TEST(Mis, ANonFiniteRatioGivesWeightZeroAndIsReported) {
     h.junction.lightEnd = 1.0f;
     const StrategySet bdpt{StrategySet::Kind::Bidirectional};
     for (MisHeuristic heuristic : {MisHeuristic::Balance, MisHeuristic::Power}) {
-        const MisWeight w = misWeight(h.light, 1, h.camera, 2, h.junction, heuristic, bdpt);
+        const MisWeight w = misWeight(h.light, 1, h.camera, 2, h.junction, {heuristic, bdpt, kNoRoulette});
         EXPECT_EQ(w.value, 0.0f);
         EXPECT_TRUE(w.guarded);
     }
@@ -248,7 +264,8 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
         const std::string& name = desc.name;
         for (StrategySet set : kSets)
             for (MisHeuristic h : kHeuristics) {
-                const auto paths = samplePaths(scene, 60, h, set);
+                const MisContext mis{h, set, Roulette{2}};
+                const auto paths = samplePaths(scene, 60, mis);
                 for (const SampledPath& p : paths) {
                     const int k = static_cast<int>(p.x.size()) - 1;
                     double sum = 0;
@@ -256,7 +273,7 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
                         const int t = k + 1 - s;
                         if (!set.enabled(s, t) || (s == 0 && p.x[0].isDeltaLight())) continue;
                         Subpath y = lightPrefix(scene, p.x, s), z = cameraPrefix(scene, p.x, s);
-                        const Connection c = connect(scene, y, s, z, t, h, set);
+                        const Connection c = connect(scene, y, s, z, t, mis);
                         const bool possible = strategyCanSample(p.x, s, set);
                         if (!possible) {
                             EXPECT_TRUE(isBlack(c.unweighted) || c.weight == 0) << name << " delta strategy s=" << s;
@@ -270,7 +287,9 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
     }
 }
 
-// The unweighted estimate of a strategy is f(x̄) / p_{s,t}(x̄), with f the product of the kernels.
+// The unweighted estimate of a strategy is f(x̄) / p_{s,t}(x̄), with f the product of the kernels
+// and p including the continuation probabilities of the strategy's own walks (roulette from the
+// 2nd vertex, so every vertex past the walks' starts plays).
 // Paths through a delta scatterer are left out (f and p share a delta factor the oracle cannot
 // evaluate); the rest still cross emissive metal and mirror x0s, glossy plastic, two-sided and
 // point emitters, and the coarse smooth-normal spheres, where light subpaths carry the adjoint
@@ -279,7 +298,8 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
 TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
     for (const SceneDesc& desc : oracleScenes()) {
         const Scene scene(desc, 24, 24);
-        const auto paths = samplePaths(scene, 200, MisHeuristic::Balance, {StrategySet::Kind::Bidirectional});
+        const MisContext mis{MisHeuristic::Balance, {StrategySet::Kind::Bidirectional}, Roulette{2}};
+        const auto paths = samplePaths(scene, 200, mis);
         int checked = 0;
         for (const SampledPath& p : paths) {
             const int k = static_cast<int>(p.x.size()) - 1, t = k + 1 - p.s;
@@ -287,7 +307,7 @@ TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
             for (int i = 0; i <= k; ++i) delta = delta || scattersDelta(p.x, i);
             if (delta) continue;
             const Spectrum f = pathContribution(scene, p.x);
-            const double pdf = strategyPdf(scene, p.x, p.s) * (t >= 2 ? 24.0 * 24.0 : 1.0);
+            const double pdf = strategyPdf(scene, p.x, p.s, mis.roulette.depth) * (t >= 2 ? 24.0 * 24.0 : 1.0);
             for (int c = 0; c < 3; ++c)
                 ASSERT_NEAR(p.c.unweighted[c], f[c] / pdf, 2e-3 * std::abs(f[c] / pdf) + 1e-9)
                     << desc.name << " s=" << p.s << " t=" << t;

@@ -39,7 +39,8 @@ public:
 protected:
     // Runs every enabled strategy over the two subpaths into the sink.
     void connectAll(const Scene& scene, PathBuffers& paths, Rng& rng, ContributionSink& sink) const {
-        evaluateStrategies(scene, paths.light, paths.camera, rng, settings_.walk.maxDepth, settings_.mis, strategies(),
+        const MisContext mis{settings_.mis, strategies(), Roulette{settings_.walk.rrDepth}};
+        evaluateStrategies(scene, paths.light, paths.camera, rng, settings_.walk.maxDepth, mis,
                            [&](int s, int t, const Connection& c) { sink.add(s, t, c); });
     }
 

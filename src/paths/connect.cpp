@@ -11,7 +11,7 @@ namespace {
 // by an emission direction from pt. Whatever pt's material, it emits here: it is x0, not a
 // scatterer (mis.h).
 Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::span<const Vertex> camera, int t,
-                      MisHeuristic heuristic, StrategySet strategies) {
+                      const MisContext& mis) {
     Connection c;
     const Vertex& pt = camera[t - 1];
     const Vertex& ptMinus = camera[t - 2];
@@ -21,9 +21,9 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
     c.unweighted = pt.beta * at.value();  // Le(pt → ptMinus)
     if (isBlack(c.unweighted)) return c;
     Junction junction;
-    if (strategies.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter);
-    if (strategies.readsCameraPdfs(t - 2, 0, t)) junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), ptMinus);
-    c.setWeight(misWeight(light, 0, camera, t, junction, heuristic, strategies));
+    if (mis.strategies.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter);
+    if (mis.strategies.readsCameraPdfs(t - 2, 0, t)) junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), ptMinus);
+    c.setWeight(misWeight(light, 0, camera, t, junction, mis));
     return c;
 }
 
@@ -33,7 +33,7 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
 // are computed once, and of the four reverse pdfs the connection defines only those the
 // strategy set's weight reads are computed.
 Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
-                MisHeuristic heuristic, StrategySet strategies) {
+                const MisContext& mis) {
     Connection c;
     const Vertex& qs = light[s - 1];
     const Vertex* qsMinus = s > 1 ? &light[s - 2] : nullptr;
@@ -57,20 +57,19 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
         return c;
     }
     Junction junction;
-    if (strategies.readsCameraPdfs(t - 1, s, t)) junction.cameraEnd = segment.toArea(atQ.pdfTowardCamera(), pt);
-    if (strategies.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);
-    if (strategies.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(), qs);
-    if (strategies.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(), *qsMinus);
-    c.setWeight(misWeight(light, s, camera, t, junction, heuristic, strategies));
+    if (mis.strategies.readsCameraPdfs(t - 1, s, t)) junction.cameraEnd = segment.toArea(atQ.pdfTowardCamera(), pt);
+    if (mis.strategies.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);
+    if (mis.strategies.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(), qs);
+    if (mis.strategies.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(), *qsMinus);
+    c.setWeight(misWeight(light, s, camera, t, junction, mis));
     return c;
 }
 
 }  // namespace
 
 Connection connect(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
-                   MisHeuristic heuristic, StrategySet strategies) {
-    return s == 0 ? emitterHit(scene, light, camera, t, heuristic, strategies)
-                  : join(scene, light, s, camera, t, heuristic, strategies);
+                   const MisContext& mis) {
+    return s == 0 ? emitterHit(scene, light, camera, t, mis) : join(scene, light, s, camera, t, mis);
 }
 
 }  // namespace tripath

@@ -28,6 +28,6 @@ struct Connection {
 //   else   the two endpoints are joined by a shadow ray.
 // The subpaths are only read: what the strategy defines at the junction goes to misWeight apart.
 Connection connect(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
-                   MisHeuristic heuristic, StrategySet strategies);
+                   const MisContext& mis);
 
 }  // namespace tripath

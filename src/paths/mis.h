@@ -8,6 +8,11 @@
 //     p_{s+1} / p_s = pdfFwd-by-light(x_s) / pdfFwd-by-camera(x_s)
 // and so on outward.
 //
+// Each area pdf includes the roulette factor of the vertex that generated it (roulette.h): q of
+// that vertex when its index in the generating walk is past the start depth. The walks record
+// the bare pdfs; the weight applies the factors, because a vertex's index in the walk from the
+// other end depends on the strategy.
+//
 // Deltas are flags, never read from a zero pdf. A vertex scatters through a delta lobe (mirror,
 // glass) only where it scatters: x0 emits and xk senses, so neither is ever a delta scatterer,
 // whatever its material -- an emissive mirror reached by a camera walk is x0 of the s = 0 path, and
@@ -30,6 +35,7 @@
 #include <span>
 #include <string>
 
+#include "paths/roulette.h"
 #include "paths/vertex.h"
 
 namespace tripath {
@@ -95,8 +101,16 @@ struct MisWeight {
     bool guarded = false;  // a pdf ratio was not finite: the weight was set to 0
 };
 
+// What a weight depends on besides the path: the heuristic, the strategies the integrator enables,
+// and the roulette its walks play (each strategy's pdf includes its walks' continuation factors).
+struct MisContext {
+    MisHeuristic heuristic = MisHeuristic::Power;
+    StrategySet strategies;
+    Roulette roulette;
+};
+
 // Weight of strategy (s, t) for the path light[0..s) + camera[0..t) reversed.
 MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
-                    const Junction& junction, MisHeuristic heuristic, StrategySet strategies);
+                    const Junction& junction, const MisContext& mis);
 
 }  // namespace tripath

@@ -14,25 +14,24 @@
 namespace tripath {
 
 // Strategy (1, t): next-event estimation from a fresh emitter point.
-inline Connection connectNextEvent(const Scene& scene, Rng& rng, const Subpath& camera, int t, MisHeuristic heuristic,
-                                   StrategySet strategies) {
+inline Connection connectNextEvent(const Scene& scene, Rng& rng, const Subpath& camera, int t, const MisContext& mis) {
     const Vertex y0 = sampleEmitterVertex(scene, rng);
-    return connect(scene, std::span<const Vertex>(&y0, 1), 1, camera, t, heuristic, strategies);
+    return connect(scene, std::span<const Vertex>(&y0, 1), 1, camera, t, mis);
 }
 
 // Calls sink(s, t, connection) for each enabled (s, t) with 1 ≤ k = s + t − 1 ≤ maxDepth and a
 // non-zero contribution.
 template <class Sink>
 void evaluateStrategies(const Scene& scene, const Subpath& light, const Subpath& camera, Rng& rng, int maxDepth,
-                        MisHeuristic heuristic, StrategySet strategies, Sink&& sink) {
+                        const MisContext& mis, Sink&& sink) {
     const int nl = static_cast<int>(light.size()), nc = static_cast<int>(camera.size());
     for (int t = 1; t <= nc; ++t) {
         const int sMax = std::min(std::max(nl, 1), maxDepth + 1 - t);
         for (int s = 0; s <= sMax; ++s) {
-            if (s + t < 2 || !strategies.enabled(s, t)) continue;
+            if (s + t < 2 || !mis.strategies.enabled(s, t)) continue;
             // Initialised from the call rather than assigned: no copy of the Connection.
-            const Connection c = s == 1 ? connectNextEvent(scene, rng, camera, t, heuristic, strategies)
-                                        : connect(scene, light, s, camera, t, heuristic, strategies);
+            const Connection c = s == 1 ? connectNextEvent(scene, rng, camera, t, mis)
+                                        : connect(scene, light, s, camera, t, mis);
             if (!isBlack(c.unweighted)) sink(s, t, c);
         }
     }

@@ -1,6 +1,7 @@
 #include "paths/walk.h"
 
 #include "paths/kernels.h"
+#include "paths/roulette.h"
 
 namespace tripath {
 
@@ -78,8 +79,8 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
         // Radiance flows against a camera walk (light arrives along wi) and with a light walk.
         const Vec3 towardLight = mode == TransportMode::Radiance ? wi : wo;
         beta *= bs->f * (shadingCorrection(v, towardLight) * absDot(v.ng, wi) / bs->pdf);
-        if (static_cast<int>(path.size()) >= settings.rrDepth) {
-            const float q = continuationProbability(v);
+        const float q = Roulette{settings.rrDepth}.continuation(v, static_cast<int>(path.size()) - 1);
+        if (q < 1.0f) {
             if (!(rng.uniform() < q)) return;
             beta = beta / q;
         }
@@ -89,14 +90,6 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
 }
 
 }  // namespace
-
-float continuationProbability(const Vertex& v) {
-    const Material& m = *v.material;
-    // Lambertian and mirror reflect at most their albedo; glass loses nothing (its tint applies
-    // to transmission only), and the rough lobes' Fresnel reaches 1 at grazing angles.
-    const bool albedoBounds = m.type == MaterialType::Lambertian || m.type == MaterialType::Mirror;
-    return std::min(kMaxContinuation, albedoBounds ? maxComponent(m.albedo) : 1.0f);
-}
 
 Vertex sensorVertex(const Scene& scene) {
     Vertex z0;

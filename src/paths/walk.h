@@ -10,15 +10,8 @@ namespace tripath {
 
 struct WalkSettings {
     int maxDepth = 16;  // longest path in segments: camera subpaths get ≤ maxDepth+1 vertices, light ≤ maxDepth
-    int rrDepth = 3;    // Russian roulette once a subpath has this many vertices
+    int rrDepth = 3;    // Russian roulette once a subpath has this many vertices (roulette.h)
 };
-
-// Russian roulette: past rrDepth vertices a walk continues from surface vertex v with this
-// probability. It depends on v's material alone -- a bound on how much the BSDF can reflect, capped
-// at kMaxContinuation so that even albedo-1 scenes end their paths -- so it is the same whichever
-// neighbour the walk arrived from, and a pdf of either direction of travel can carry it.
-inline constexpr float kMaxContinuation = 0.95f;
-float continuationProbability(const Vertex& v);
 
 // The sensor endpoint z0 of every camera subpath.
 Vertex sensorVertex(const Scene& scene);
