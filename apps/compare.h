@@ -65,6 +65,7 @@ struct MethodSummary {
     double timeToBest = 0;    // time to reach the best method's final relMSE
     bool extrapolated = false;  // never reached: extrapolated assuming relMSE ∝ 1/time
     double efficiency = 0;    // 1 / (relMSE * seconds)
+    double relVariance = 0;   // per-sample relative variance relMSE * spp, mean over runs of each run's product
 };
 
 // compare_run.cpp
@@ -106,6 +107,8 @@ void writeText(const std::string& path, const std::string& text);
 // Text shared by summary.md and index.html.
 std::string settingsLine(const CompareOptions& o);
 std::string formatSeconds(double s);
+// A tail share (ErrorMetrics::tailShare) as a percentage: "12.3 %".
+std::string tailShareText(double share);
 // "12 s", "~40 s (extrapolated)" or "not reached (error levels off)".
 std::string timeToBestText(const MethodSummary& s);
 

@@ -47,6 +47,8 @@ std::string timeToBestText(const MethodSummary& s) {
     return s.extrapolated ? fmt::format("~{} (extrapolated)", formatSeconds(s.timeToBest)) : formatSeconds(s.timeToBest);
 }
 
+std::string tailShareText(double share) { return fmt::format("{:.3g} %", 100 * share); }
+
 std::string formatSeconds(double s) { return s < 10 ? fmt::format("{:.3g} s", s) : fmt::format("{:.0f} s", s); }
 
 std::string settingsLine(const CompareOptions& o) {
@@ -60,11 +62,13 @@ std::string settingsLine(const CompareOptions& o) {
 }
 
 void writeCsv(const Report& r, const std::string& path) {
-    std::string s = "integrator,run,seconds,spp,relmse,mse,mae\n";
+    // New columns go at the end, so that scripts reading columns by position keep working.
+    std::string s = "integrator,run,seconds,spp,relmse,mse,mae,relmse_x_spp,tail_share\n";
     for (const Run& run : r.runs)
         for (const Checkpoint& c : run.checkpoints)
-            s += fmt::format("{},{},{:.6f},{},{:.8g},{:.8g},{:.8g}\n", run.method, run.index, c.seconds, c.spp,
-                             c.error.relMse, c.error.mse, c.error.mae);
+            s += fmt::format("{},{},{:.6f},{},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g}\n", run.method, run.index, c.seconds,
+                             c.spp, c.error.relMse, c.error.mse, c.error.mae, perSampleRelVariance(c.error.relMse, c.spp),
+                             c.error.tailShare);
     writeText(path, s);
 }
 
@@ -105,20 +109,25 @@ void writeSummary(const Report& r, const std::string& path) {
     const bool many = r.options.runs > 1;
     std::string s = fmt::format("# tripath compare: {}\n\n{}.\n\nReference: {} (`{}`).\n\n", r.options.render.scene,
                                 settingsLine(r.options), r.reference.description, r.reference.file);
-    s += fmt::format("| method | relMSE | MSE | MAE | spp | time to reach {}'s relMSE | efficiency 1/(relMSE·s) |\n",
+    s += fmt::format("| method | relMSE | MSE | MAE | spp | time to reach {}'s relMSE | efficiency 1/(relMSE·s) | "
+                     "relMSE·spp | worst 0.1 % of pixels |\n",
                      best.method);
-    s += "|---|---|---|---|---|---|---|\n";
+    s += "|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string& m : r.options.methods) {
         const MethodSummary& x = summaryOf(r, m);
         const std::string rel = many ? fmt::format("{:.4g} ± {:.2g}", x.error.relMse, x.relMseStd)
                                      : fmt::format("{:.4g}", x.error.relMse);
-        s += fmt::format("| {} | {} | {:.4g} | {:.4g} | {:.0f} | {} | {:.4g} |\n", m, rel, x.error.mse, x.error.mae,
-                         x.spp, timeToBestText(x), x.efficiency);
+        s += fmt::format("| {} | {} | {:.4g} | {:.4g} | {:.0f} | {} | {:.4g} | {:.4g} | {} |\n", m, rel, x.error.mse,
+                         x.error.mae, x.spp, timeToBestText(x), x.efficiency, x.relVariance, tailShareText(x.error.tailShare));
     }
     s += fmt::format(
         "\nLowest error at equal time: **{}**. Errors are against the reference{}; relMSE = mean of "
         "(x − r)² / (r² + 0.01) over pixels and channels. Efficiency is higher for better methods; the ratio of two "
-        "methods' efficiencies is how many times longer the worse one needs for the same error. Time spent "
+        "methods' efficiencies is how many times longer the worse one needs for the same error. relMSE·spp is the "
+        "per-sample relative variance of an unbiased method while the reference's own error is negligible (where that "
+        "error or a bias is not, it grows with spp), so efficiency = (spp/s) / (relMSE·spp): speed over per-sample noise. "
+        "\"Worst 0.1 % of pixels\" is the share of the relMSE sum carried by the 0.1 % of pixels (at least one) with the "
+        "largest relative squared error: near 100 %, a few fireflies make the error. Time spent "
         "measuring the error at the checkpoints is not counted in the render time.\n",
         best.method, many ? ", means over runs (± one standard deviation)" : "");
     s += "\nFiles: `error.csv` (every checkpoint), `error-vs-time.svg`/`.png`, `side-by-side.png`, "

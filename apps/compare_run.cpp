@@ -96,8 +96,10 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
         run.checkpoints.push_back({kTargets, r.seconds, r.passes, compareImages(image, reference)});
     run.checkpoints.back().target = kTargets;
     printSummary(label, r, ro.width, ro.height);
-    std::cerr << fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}\n", label, run.final().error.relMse,
-                             run.final().error.mse, run.final().error.mae);
+    const Checkpoint& f = run.final();
+    std::cerr << fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in the worst 0.1% of pixels\n",
+                             label, f.error.relMse, f.error.mse, f.error.mae, perSampleRelVariance(f.error.relMse, f.spp),
+                             tailShareText(f.error.tailShare));
     return {std::move(run), std::move(image), renderMetadata(ro, integrator->name(), r)};
 }
 

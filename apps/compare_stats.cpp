@@ -67,19 +67,23 @@ std::pair<double, bool> timeToReach(const Curve& c, double level) {
 MethodSummary finals(const std::vector<const Run*>& runs) {
     MethodSummary s;
     s.method = runs.front()->method;
-    std::vector<double> rel, mse, mae, spp, sec;
+    std::vector<double> rel, mse, mae, tail, spp, sec, relVar;
     for (const Run* r : runs) {
-        rel.push_back(r->final().error.relMse);
-        mse.push_back(r->final().error.mse);
-        mae.push_back(r->final().error.mae);
-        spp.push_back(r->final().spp);
-        sec.push_back(r->final().seconds);
+        const Checkpoint& f = r->final();
+        rel.push_back(f.error.relMse);
+        mse.push_back(f.error.mse);
+        mae.push_back(f.error.mae);
+        tail.push_back(f.error.tailShare);
+        spp.push_back(f.spp);
+        sec.push_back(f.seconds);
+        relVar.push_back(perSampleRelVariance(f.error.relMse, f.spp));
     }
-    s.error = {mean(rel), mean(mse), mean(mae)};
+    s.error = {mean(rel), mean(mse), mean(mae), mean(tail)};
     s.relMseStd = stddev(rel);
     s.spp = mean(spp);
     s.seconds = mean(sec);
     s.efficiency = 1 / (s.error.relMse * s.seconds);
+    s.relVariance = mean(relVar);
     return s;
 }
 

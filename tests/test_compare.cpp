@@ -87,25 +87,38 @@ std::string metaValue(const Metadata& meta, const std::string& key) {
 struct CsvRow {
     std::string integrator;
     int run, spp;
-    double seconds, relMse, mse, mae;
+    double seconds, relMse, mse, mae, relMseSpp, tailShare;
 };
 
 std::vector<CsvRow> parseCsv(const std::string& text) {
     std::istringstream in(text);
     std::string line;
     std::getline(in, line);
-    EXPECT_EQ(line, "integrator,run,seconds,spp,relmse,mse,mae");
+    EXPECT_EQ(line, "integrator,run,seconds,spp,relmse,mse,mae,relmse_x_spp,tail_share");
     std::vector<CsvRow> rows;
     while (std::getline(in, line)) {
         std::vector<std::string> f;
         std::stringstream ls(line);
         for (std::string cell; std::getline(ls, cell, ',');) f.push_back(cell);
-        EXPECT_EQ(f.size(), 7u) << line;
-        if (f.size() != 7) continue;
+        EXPECT_EQ(f.size(), 9u) << line;
+        if (f.size() != 9) continue;
         rows.push_back({f[0], std::stoi(f[1]), std::stoi(f[3]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]),
-                        std::stod(f[6])});
+                        std::stod(f[6]), std::stod(f[7]), std::stod(f[8])});
     }
     return rows;
+}
+
+// The cells of the Markdown table row of `method` ("| pt | a | b |" -> {"pt", "a", "b"}).
+std::vector<std::string> tableRow(const std::string& markdown, const std::string& method) {
+    const size_t start = markdown.find("| " + method + " |");
+    if (start == std::string::npos) return {};
+    const std::string line = markdown.substr(start, markdown.find('\n', start) - start);
+    std::vector<std::string> cells;
+    for (size_t p = 1, q; (q = line.find('|', p)) != std::string::npos; p = q + 1) {
+        const std::string cell = line.substr(p, q - p);
+        cells.push_back(cell.substr(1, cell.size() - 2));
+    }
+    return cells;
 }
 
 const std::string kSmall = "--scene cornell --width 32 --height 32";
@@ -313,7 +326,7 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
     std::map<std::pair<std::string, int>, std::vector<CsvRow>> byRun;
     for (const CsvRow& r : parseCsv(readFile(out + "/error.csv"))) byRun[{r.integrator, r.run}].push_back(r);
     ASSERT_EQ(byRun.size(), 6u);
-    std::map<std::string, double> first, last, firstSpp, lastSpp;
+    std::map<std::string, double> first, last, firstSpp, lastSpp, finalRelMseSpp, finalTail;
     for (const auto& [key, rows] : byRun) {
         ASSERT_GE(rows.size(), 3u) << key.first;
         for (size_t i = 1; i < rows.size(); ++i) {
@@ -326,7 +339,19 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
         last[key.first] += rows.back().relMse / 2;
         firstSpp[key.first] += rows.front().spp / 2.0;
         lastSpp[key.first] += rows.back().spp / 2.0;
-        for (const CsvRow& r : rows) EXPECT_TRUE(r.relMse > 0 && r.mse > 0 && r.mae > 0);
+        for (const CsvRow& r : rows) {
+            EXPECT_TRUE(r.relMse > 0 && r.mse > 0 && r.mae > 0);
+            // relMSE x spp at each checkpoint uses that checkpoint's spp (catches the final spp on
+            // every row); the two CSV columns are printed to 8 digits.
+            EXPECT_NEAR(r.relMseSpp, r.relMse * r.spp, 1e-7 * r.relMseSpp) << key.first;
+            // The worst k = 2 of 1024 pixels hold at least k/1024 of the error and at most all of
+            // it (catches a share not normalised by the total, or taken over the wrong pixels).
+            ASSERT_EQ(tailPixelCount(32 * 32), 2u);
+            EXPECT_GE(r.tailShare, 2.0 / 1024 * (1 - 1e-7)) << key.first;
+            EXPECT_LE(r.tailShare, 1.0) << key.first;
+        }
+        finalRelMseSpp[key.first] += rows.back().relMseSpp / 2;
+        finalTail[key.first] += rows.back().tailShare / 2;
     }
     // relMSE of an unbiased method falls like 1/spp until the reference's own noise is reached.
     // Asked for: half the drop that law predicts, capped at 3x (the cap is for fast machines,
@@ -338,8 +363,21 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
     }
 
     const std::string summary = readFile(out + "/summary.md");
-    for (const char* m : {"| pt |", "| lt |", "| bdpt |", "relMSE", "efficiency"})
+    for (const char* m : {"| pt |", "| lt |", "| bdpt |", "relMSE", "efficiency", "relMSE·spp", "worst 0.1 % of pixels"})
         EXPECT_NE(summary.find(m), std::string::npos) << m;
+    // The summary's last two columns are the means over the runs of the finished renders'
+    // relMSE x spp and tail share (4 and 3 significant digits). Catches a product of means, a
+    // column of another method, or a share left as a fraction under a "%" sign.
+    for (const char* m : {"pt", "lt", "bdpt"}) {
+        const std::vector<std::string> cells = tableRow(summary, m);
+        ASSERT_EQ(cells.size(), 9u) << m;
+        EXPECT_NEAR(std::stod(cells[7]), finalRelMseSpp[m], 1e-3 * finalRelMseSpp[m]) << m;
+        EXPECT_EQ(cells[8].substr(cells[8].size() - 2), " %") << cells[8];
+        EXPECT_NEAR(std::stod(cells[8]), 100 * finalTail[m], 1e-2 * 100 * finalTail[m]) << m;
+    }
+    const std::string html = readFile(out + "/index.html");
+    for (const char* m : {"relMSE·spp</th>", "worst 0.1 % of pixels</th>"})
+        EXPECT_NE(html.find(m), std::string::npos) << m;
     EXPECT_NE(readFile(out + "/error-vs-time.svg").find("<polyline"), std::string::npos);
 }
 

@@ -276,6 +276,8 @@ TEST(Metrics, IdenticalImagesHaveZeroError) {
     EXPECT_EQ(m.relMse, 0.0);
     EXPECT_EQ(m.mse, 0.0);
     EXPECT_EQ(m.mae, 0.0);
+    // No error at all: no tail either. Catches 0/0 = NaN for a perfect render.
+    EXPECT_EQ(m.tailShare, 0.0);
 }
 
 TEST(Metrics, ConstantOffsetHasKnownErrors) {
@@ -305,6 +307,98 @@ TEST(Metrics, MeanIsOverPixelsAndChannels) {
     EXPECT_DOUBLE_EQ(m.mse, 9.0 / 12);
     EXPECT_DOUBLE_EQ(m.mae, 3.0 / 12);
     EXPECT_DOUBLE_EQ(m.relMse, 9.0 / 12);
+}
+
+// The tail share on a hand-made 1000-pixel image (k = 1 pixel): 998 pixels with a small error,
+// a bright pixel A with the largest absolute (and squared) error but a small relative one, and a
+// dark pixel B with the largest relative error. The tail is B alone, and its share is e_B over
+// the sum of every pixel's relative squared error, the same sum that relMSE is the mean of.
+// Catches: ranking or summing absolute or squared instead of relative errors (A would be the
+// tail), forgetting to divide by the total (100, or 100/3000), dividing by the pixel count.
+TEST(Metrics, TailShareIsTheWorstPixelsShareOfTheRelativeError) {
+    const int w = 40, h = 25;  // 1000 pixels
+    Image ref = filled(w, h, 1, 1, 1), test = filled(w, h, 1.5f, 1, 1);
+    for (int c = 0; c < 3; ++c) ref.at(3, 4)[c] = test.at(3, 4)[c] = 10.0f;
+    test.at(3, 4)[0] = 12.0f;  // A: |x - r| = 2 on r = 10
+    for (int c = 0; c < 3; ++c) ref.at(20, 7)[c] = test.at(20, 7)[c] = 0.0f;
+    test.at(20, 7)[0] = 1.0f;  // B: |x - r| = 1 on r = 0
+    const double eBackground = 0.25 / 1.01, eA = 4 / 100.01, eB = 1 / 0.01;
+    const double total = 998 * eBackground + eA + eB;
+
+    const ErrorMetrics m = compareImages(test, ref);  // epsilon 0.01
+    EXPECT_NEAR(m.tailShare, eB / total, 1e-12);      // 0.288...
+    EXPECT_NEAR(m.relMse, total / 3000, 1e-12);
+    EXPECT_GT(m.tailShare, 0.25);
+    EXPECT_LT(m.tailShare, 0.3);
+}
+
+// How many pixels the worst 0.1 % is: ceil(N / 1000), and at least one. Checked directly and
+// through the metric, with two pixels of equal error (share 1/2 when the tail is one pixel, 1
+// when it is two). Catches: floor(N / 1000) (1001 pixels: one pixel, 0.5), N / 1000 + 1 (1000
+// pixels: two, 1.0), no lower bound of one pixel (a 2x2 image: an empty tail, 0).
+TEST(Metrics, TailIsTheCeilingOfATenthOfAPercentOfThePixels) {
+    EXPECT_EQ(tailPixelCount(1), 1u);
+    EXPECT_EQ(tailPixelCount(4), 1u);
+    EXPECT_EQ(tailPixelCount(1000), 1u);
+    EXPECT_EQ(tailPixelCount(1001), 2u);
+    EXPECT_EQ(tailPixelCount(2000), 2u);
+    EXPECT_EQ(tailPixelCount(2001), 3u);
+    EXPECT_EQ(tailPixelCount(256 * 256), 66u);
+
+    auto twoEqualErrors = [](int w, int h) {
+        Image ref(w, h), test(w, h);
+        test.at(0, 0)[1] = 2.0f;
+        test.at(w - 1, h - 1)[1] = 2.0f;
+        return compareImages(test, ref, 1.0).tailShare;
+    };
+    EXPECT_DOUBLE_EQ(twoEqualErrors(40, 25), 0.5);  // 1000 pixels: the tail is one of the two
+    EXPECT_DOUBLE_EQ(twoEqualErrors(7, 143), 1.0);  // 1001 pixels: both
+    EXPECT_DOUBLE_EQ(twoEqualErrors(2, 2), 0.5);    // 4 pixels: still one pixel
+
+    Image ref(2, 2), test(2, 2);
+    test.at(1, 1)[2] = 3.0f;  // e = 9
+    test.at(0, 1)[0] = 1.0f;  // e = 1
+    EXPECT_DOUBLE_EQ(compareImages(test, ref, 1.0).tailShare, 0.9);
+}
+
+// The tail ranks pixels by the sum of their three channels' terms, not single channel values.
+// P has relative squared error 1 in each channel (e = 3), Q 2.25 in one (e = 2.25): the worst
+// pixel is P, share 3/5.25. Ranking the 3000 channel values would give Q's 2.25/5.25 (one value)
+// or (2.25 + 1 + 1)/5.25 (three values).
+TEST(Metrics, TailRanksPixelsNotChannels) {
+    Image ref(40, 25), test(40, 25);
+    for (int c = 0; c < 3; ++c) test.at(5, 5)[c] = 1.0f;  // P
+    test.at(30, 20)[2] = 1.5f;                             // Q
+    const ErrorMetrics m = compareImages(test, ref, 1.0);
+    EXPECT_DOUBLE_EQ(m.tailShare, 3 / 5.25);
+    EXPECT_DOUBLE_EQ(m.relMse, 5.25 / 3000);
+}
+
+// A NaN anywhere makes the tail share NaN, like relMSE: catches a partial sort that silently
+// ranks the NaN somewhere and reports a plausible share.
+TEST(Metrics, TailShareOfANanImageIsNan) {
+    Image ref = filled(4, 4, 1, 1, 1), test = filled(4, 4, 2, 1, 1);
+    test.at(2, 1)[1] = std::numeric_limits<float>::quiet_NaN();
+    const ErrorMetrics m = compareImages(test, ref);
+    EXPECT_TRUE(std::isnan(m.relMse));
+    EXPECT_TRUE(std::isnan(m.tailShare));
+}
+
+// relMSE x spp on the error an unbiased estimator would have after N samples: every pixel off by
+// sigma / sqrt(N) (alternating sign) against a reference of 1, with per-sample standard deviation
+// sigma = 0.5. relMSE falls like 1/N, relMSE x N stays at sigma^2 / (1 + epsilon) whatever N.
+// Catches dividing by spp, or multiplying by anything but the sample count (such as spp^2).
+TEST(Metrics, RelMseTimesSppIsThePerSampleRelativeVariance) {
+    const double sigma2 = 0.25, expected = sigma2 / 1.01;
+    for (int n : {4, 16, 64}) {
+        Image ref = filled(4, 3, 1, 1, 1), test(4, 3);
+        const float d = float(std::sqrt(sigma2 / n));  // 0.25, 0.125, 0.0625: exact in float
+        for (std::size_t i = 0; i < test.rgb.size(); ++i) test.rgb[i] = 1.0f + (i % 2 ? d : -d);
+        const ErrorMetrics m = compareImages(test, ref);
+        EXPECT_DOUBLE_EQ(m.relMse, expected / n) << n;
+        EXPECT_DOUBLE_EQ(perSampleRelVariance(m.relMse, n), expected) << n;
+    }
+    EXPECT_DOUBLE_EQ(perSampleRelVariance(0.05, 173), 8.65);
 }
 
 TEST(Metrics, SizeMismatchThrows) {

@@ -1,13 +1,21 @@
+// Error metrics of a render against a reference (see metrics.h for the definitions).
 #include "image/metrics.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
 
 #include "geometry/error.h"
 
 namespace tripath {
+
+std::size_t tailPixelCount(std::size_t pixels) { return pixels == 0 ? 0 : (pixels - 1) / 1000 + 1; }
+
+double perSampleRelVariance(double relMse, double spp) { return relMse * spp; }
 
 ErrorMetrics compareImages(const Image& test, const Image& reference, double epsilon) {
     if (test.width != reference.width || test.height != reference.height)
@@ -16,20 +24,40 @@ ErrorMetrics compareImages(const Image& test, const Image& reference, double eps
     const std::size_t n = test.rgb.size();
     if (n != reference.rgb.size() || n != 3 * test.pixelCount())
         throw InputError("cannot compare images: pixel buffer does not match the image size");
-    if (n == 0) return {0.0, 0.0, 0.0};
+    if (n == 0) return {0.0, 0.0, 0.0, 0.0};
 
     // Accumulate in double: a float sum over millions of samples would lose
-    // the small errors of a converged render.
+    // the small errors of a converged render. relMSE is the sum of the
+    // per-pixel terms e_p, so it and the tail share use the very same numbers.
+    std::vector<double> perPixel(n / 3);
     double rel = 0, sq = 0, abs = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const double r = reference.rgb[i];
-        const double d = double(test.rgb[i]) - r;
-        rel += d * d / (r * r + epsilon);
-        sq += d * d;
-        abs += std::fabs(d);
+    for (std::size_t p = 0; p < perPixel.size(); ++p) {
+        double e = 0;
+        for (std::size_t i = 3 * p; i < 3 * p + 3; ++i) {
+            const double r = reference.rgb[i];
+            const double d = double(test.rgb[i]) - r;
+            e += d * d / (r * r + epsilon);
+            sq += d * d;
+            abs += std::fabs(d);
+        }
+        perPixel[p] = e;
+        rel += e;
+    }
+
+    // Every e_p is >= 0, so a finite total means no NaN or infinity among them,
+    // and the partial sort below sees a proper ordering.
+    double tail = 0;
+    if (!std::isfinite(rel)) {
+        tail = std::numeric_limits<double>::quiet_NaN();
+    } else if (rel > 0) {
+        const auto k = std::ptrdiff_t(tailPixelCount(perPixel.size()));
+        std::nth_element(perPixel.begin(), perPixel.begin() + (k - 1), perPixel.end(), std::greater<>());
+        double worst = 0;
+        for (std::ptrdiff_t i = 0; i < k; ++i) worst += perPixel[std::size_t(i)];
+        tail = std::min(1.0, worst / rel);  // the two sums add in different orders
     }
     const double inv = 1.0 / double(n);
-    return {rel * inv, sq * inv, abs * inv};
+    return {rel * inv, sq * inv, abs * inv, tail};
 }
 
 Image crop(const Image& img, int x, int y, int w, int h) {
