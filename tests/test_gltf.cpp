@@ -623,6 +623,14 @@ TEST_F(GltfTest, MissingBufferFileIsNamed) {
                         folder / "missing.bin", "which does not exist");
 }
 
+// The system cuts a path at a NUL character ("%00"), so what it would open is not what was checked.
+TEST_F(GltfTest, BufferUriWithANulCharacterIsRefused) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    const std::string scene = b.writeWithUri(folder / "quad.gltf", "quad.bin%00/../../quad.bin", folder / "quad.bin");
+    expectBufferRefused(scene, "buffer 0", "quad.bin\\x00/../../quad.bin", "which contains a NUL character");
+}
+
 // Textures are ignored, so image files are never opened: not the folder (which tinygltf read as
 // a file of 2^63 bytes), not a file elsewhere on the machine.
 TEST_F(GltfTest, ImageFilesAreNeverOpened) {

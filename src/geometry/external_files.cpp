@@ -44,6 +44,8 @@ std::string decodeUriPath(const std::string& uri) {
 
 ExternalFile resolveExternalFile(const fs::path& folder, const std::string& decoded, bool allowOutside) {
     const fs::path given(decoded);
+    // The system would see the path cut at the NUL, not the one checked here.
+    if (decoded.find('\0') != std::string::npos) return {given, "which contains a NUL character"};
     if (given.is_absolute() && !allowOutside)
         return {given.lexically_normal(), std::string("an absolute path (") + kOnlyInside + ")"};
     std::error_code ec;

@@ -20,8 +20,9 @@ struct ExternalFile {
 };
 
 // Resolves a decoded URI against `folder` (the scene's folder: absolute, symlinks resolved).
-// Refused: anything that is not a regular file once symlinks are followed, and, unless
-// allowOutside, an absolute path or one that ends up outside `folder` (through `..` or a symlink).
+// Refused: a path with a NUL character, anything that is not a regular file once symlinks are
+// followed, and, unless allowOutside, an absolute path or one that ends up outside `folder`
+// (through `..` or a symlink).
 ExternalFile resolveExternalFile(const std::filesystem::path& folder, const std::string& decoded,
                                  bool allowOutside);
 
