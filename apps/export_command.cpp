@@ -11,6 +11,7 @@
 #include "geometry/gltf_writer.h"
 #include "geometry/scene_source.h"
 #include "image/image.h"
+#include "render_options.h"
 
 namespace tripath::app {
 
@@ -18,12 +19,13 @@ namespace {
 
 struct ExportCommand {
     std::string scene, out;
+    GltfOptions gltf;
 };
 
 void run(const ExportCommand& c) {
     if (std::filesystem::path(c.out).extension() != ".gltf") throw InputError("--out must name a .gltf file: " + c.out);
     checkWritable(c.out);
-    const SceneDesc desc = loadSceneDesc(c.scene);
+    const SceneDesc desc = loadSceneDesc(c.scene, c.gltf);
     writeGltf(desc, c.out, printWarning);
     std::cerr << "wrote " << c.out << "\n";
 }
@@ -33,7 +35,7 @@ void run(const ExportCommand& c) {
 void addExportCommand(CLI::App& app) {
     auto c = std::make_shared<ExportCommand>();
     auto* cmd = app.add_subcommand("export", "Write a scene (built-in or file) as glTF 2.0 with an embedded buffer");
-    cmd->add_option("--scene", c->scene, "Built-in scene name (see `tripath scenes`) or a .gltf/.glb file")->required();
+    addSceneOptions(*cmd, c->scene, c->gltf);
     cmd->add_option("--out", c->out, "Output .gltf file (JSON, buffer embedded as base64)")->required();
     cmd->callback([c] { run(*c); });
 }

@@ -11,8 +11,15 @@
 
 namespace tripath::app {
 
+void addSceneOptions(CLI::App& cmd, std::string& scene, GltfOptions& gltf) {
+    cmd.add_option("--scene", scene, "Built-in scene name (see `tripath scenes`) or a .gltf/.glb file")->required();
+    cmd.add_flag("--allow-external-files", gltf.allowExternalFiles,
+                 "Let a glTF file's buffer URIs name files outside its folder (absolute paths, '..', symlinks "
+                 "leading out); by default only regular files in the folder and its subfolders are read");
+}
+
 void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
-    cmd.add_option("--scene", o.scene, "Built-in scene name (see `tripath scenes`) or a .gltf/.glb file")->required();
+    addSceneOptions(cmd, o.scene, o.gltf);
     if (withIntegrator)
         cmd.add_option("--integrator", o.integrator,
                        "pt: path tracing with next-event estimation; lt: light tracing; bdpt: bidirectional "
@@ -66,7 +73,7 @@ IntegratorSettings integratorSettings(const RenderOptions& o) {
 }
 
 std::unique_ptr<Scene> loadScene(const RenderOptions& o) {
-    return std::make_unique<Scene>(loadSceneDesc(o.scene), o.width, o.height);
+    return std::make_unique<Scene>(loadSceneDesc(o.scene, o.gltf), o.width, o.height);
 }
 
 const char* streamsName(StreamDomain d) { return d == StreamDomain::Reference ? "reference" : "render"; }

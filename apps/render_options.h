@@ -1,10 +1,12 @@
-// The flags shared by every command that renders: scene, integrator, budget, sizes, seed.
+// The flags shared by every command that renders: scene, integrator, budget, sizes, seed; the
+// scene flags are also those of `export`.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <memory>
 #include <string>
 
+#include "geometry/gltf_loader.h"
 #include "geometry/scene.h"
 #include "image/image.h"
 #include "integrators/integrator.h"
@@ -14,6 +16,7 @@ namespace tripath::app {
 
 struct RenderOptions {
     std::string scene;
+    GltfOptions gltf;
     std::string integrator = "bdpt";
     int spp = 0;            // 0 unless --spp was given
     double seconds = 0;     // 0 unless --time was given
@@ -33,7 +36,9 @@ struct RenderOptions {
 // "render" or "reference", as tripath:streams records a domain.
 const char* streamsName(StreamDomain d);
 
-// Registers the flags on a subcommand, with help text that states defaults and meanings.
+// Registers --scene and --allow-external-files, for every command that loads a scene.
+void addSceneOptions(CLI::App& cmd, std::string& scene, GltfOptions& gltf);
+// Registers the flags on a subcommand (the scene flags included), with help text that states defaults and meanings.
 void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator = true);
 // Throws InputError for values out of range, before any work is done.
 void validateRenderOptions(const RenderOptions& o);

@@ -173,6 +173,29 @@ TEST_F(Cli, ParseErrorsAreOneLine) {
     expectRefused(render("--spp 1 --time 1 " + out()), "--time");
 }
 
+// A glTF file whose buffer lies outside its folder is refused unless --allow-external-files is
+// given, by every command that loads a scene (they share the flag; render and export are tried).
+TEST_F(Cli, BufferOutsideTheScenesFolderNeedsAllowExternalFiles) {
+    const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::ofstream(path("triangle.bin"), std::ios::binary).write(reinterpret_cast<const char*>(triangle), sizeof triangle);
+    fs::create_directories(path("scene"));
+    std::ofstream(path("scene/triangle.gltf")) << R"({"asset":{"version":"2.0"},
+        "buffers":[{"byteLength":36,"uri":"../triangle.bin"}],"bufferViews":[{"buffer":0,"byteLength":36}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+        "materials":[{"emissiveFactor":[1,1,1],"doubleSided":true}],
+        "nodes":[{"mesh":0}],"scene":0,"scenes":[{"nodes":[0]}]})";
+    const std::string scene = "--scene '" + path("scene/triangle.gltf") + "'";
+    const std::string outside = fs::canonical(path("triangle.bin")).string();
+    expectRefused("render " + scene + " --spp 1 --width 8 --height 8 " + out(),
+                  "buffer 0: uri \"../triangle.bin\" names \"" + outside + "\", outside the scene's folder");
+    expectRefused("export " + scene + " --out '" + path("copy.gltf") + "'", "--allow-external-files");
+    const Outcome rendered = run("render " + scene + " --allow-external-files --spp 1 --width 8 --height 8 " + out());
+    EXPECT_EQ(rendered.exitCode, 0) << rendered.err;
+    const Outcome exported = run("export " + scene + " --allow-external-files --out '" + path("copy.gltf") + "'");
+    EXPECT_EQ(exported.exitCode, 0) << exported.err;
+}
+
 TEST_F(Cli, ExportRefusesBadInput) {
     const Outcome o = run("export --scene contact --out '" + path("contact.gltf") + "'");
     EXPECT_EQ(o.exitCode, 0) << o.err;

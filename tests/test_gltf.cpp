@@ -93,6 +93,7 @@ public:
         if (!bin_.empty()) {
             std::string buffer = R"({"byteLength":)" + std::to_string(bin_.size());
             if (bufferUri) buffer += R"(,"uri":")" + *bufferUri + "\"";
+            if (!bufferName.empty()) buffer += R"(,"name":")" + bufferName + "\"";
             members.push_back(R"("buffers":[)" + buffer + "}]");
         }
         for (const auto& [name, items] : arrays_) members.push_back("\"" + name + "\":[" + join(items) + "]");
@@ -112,6 +113,13 @@ public:
     std::string writeWithBin(const fs::path& file) const {
         const std::string uri = file.stem().string() + ".bin";
         std::ofstream(file.parent_path() / uri, std::ios::binary)
+            .write(reinterpret_cast<const char*>(bin_.data()), std::streamsize(bin_.size()));
+        return writeText(file, json(&uri));
+    }
+    // The binary data in `binFile` (folders created) and a .gltf whose buffer has the given uri.
+    std::string writeWithUri(const fs::path& file, const std::string& uri, const fs::path& binFile) const {
+        fs::create_directories(binFile.parent_path());
+        std::ofstream(binFile, std::ios::binary)
             .write(reinterpret_cast<const char*>(bin_.data()), std::streamsize(bin_.size()));
         return writeText(file, json(&uri));
     }
@@ -145,6 +153,7 @@ public:
 
     std::vector<int> roots;
     std::string topLevel;  // extra top-level members, e.g. "extensionsRequired":[...]
+    std::string bufferName;  // buffer 0's name, none when empty
 
 private:
     std::vector<unsigned char> bin_;
@@ -185,6 +194,7 @@ protected:
     }
 
     fs::path file(const std::string& name) const { return dir_ / name; }
+    const fs::path& testDir() const { return dir_; }
     SceneDesc load(const std::string& path) {
         return loadGltf(path, [this](const std::string& w) { warnings.push_back(w); });
     }
@@ -502,6 +512,137 @@ TEST_F(GltfTest, GltfWithBinFileBesideIt) {
     const SceneDesc separate = load(b.writeWithBin(file("quad.gltf")));
     EXPECT_EQ(triangles(separate).size(), 2u);
     expectSameTriangles(separate, load(b.writeGlb(file("quad.glb"))));
+}
+
+// --- which files a buffer URI may name --------------------------------------------------------
+
+// Expects the load to be refused with one line naming the scene, buffer 0 (with its name when
+// the builder gave one), the resolved path and the reason.
+void expectBufferRefused(const std::string& scene, const std::string& buffer, const fs::path& resolved,
+                         const std::string& reason, const GltfOptions& options = {}) {
+    try {
+        loadGltf(scene, [](const std::string&) {}, options);
+        ADD_FAILURE() << scene << " loaded (expected the buffer to be refused: " << reason << ")";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind(scene + ": " + buffer + ": uri ", 0), 0u) << message;
+        EXPECT_NE(message.find(" names \"" + resolved.string() + "\", " + reason), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+}
+
+// The scene folder for these tests: a subfolder of the test's folder, so that there is an
+// outside to escape to. Resolved, as the messages give paths.
+fs::path sceneFolder(const fs::path& testFolder) {
+    fs::create_directories(testFolder / "scene");
+    return fs::canonical(testFolder / "scene");
+}
+
+// The fuzzer's find: "%2E" decodes to ".", the scene's own folder, which tinygltf read as a file
+// of 2^63 bytes (std::bad_alloc). The saved input is refused naming the buffer and the folder.
+TEST_F(GltfTest, BufferUriNamingTheScenesFolderIsRefused) {
+    const fs::path fuzzInput =
+        fs::path(TRIPATH_SOURCE_DIR) / "tests" / "data" / "fuzz" / "buffer-uri-names-its-folder.gltf";
+    expectBufferRefused(fuzzInput.string(), "buffer 0", fs::canonical(fuzzInput.parent_path()),
+                        "which is a directory, not a file");
+
+    GltfBuilder b = quadScene();
+    b.bufferName = "geometry";
+    const fs::path folder = sceneFolder(testDir());
+    for (const std::string uri : {"%2E", "%2e/", ".", "%2E%2Fsub%2F%2E%2E"}) {
+        fs::create_directories(folder / "sub");
+        expectBufferRefused(b.writeWithUri(folder / "quad.gltf", uri, testDir() / "unused.bin"),
+                            "buffer 0 \"geometry\"", folder, "which is a directory, not a file");
+    }
+}
+
+TEST_F(GltfTest, AbsoluteBufferUriIsRefused) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    for (const std::string& path :
+         std::vector<std::string>{"/etc/passwd", "/proc/self/environ", (testDir() / "quad.bin").string()}) {
+        expectBufferRefused(b.writeWithUri(folder / "quad.gltf", path, testDir() / "quad.bin"), "buffer 0", path,
+                            "an absolute path");
+    }
+}
+
+TEST_F(GltfTest, BufferUriEscapingTheFolderWithDotDotIsRefused) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    for (const std::string uri : {"../quad.bin", "%2E%2E%2Fquad.bin", "sub/../../quad.bin"}) {
+        expectBufferRefused(b.writeWithUri(folder / "quad.gltf", uri, testDir() / "quad.bin"), "buffer 0",
+                            fs::canonical(testDir()) / "quad.bin", "outside the scene's folder " + folder.string());
+    }
+}
+
+TEST_F(GltfTest, SymlinkLeavingTheFolderIsRefused) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    const std::string scene = b.writeWithUri(folder / "quad.gltf", "link.bin", testDir() / "quad.bin");
+    fs::create_symlink(testDir() / "quad.bin", folder / "link.bin");
+    expectBufferRefused(scene, "buffer 0", fs::canonical(testDir()) / "quad.bin",
+                        "outside the scene's folder " + folder.string());
+}
+
+TEST_F(GltfTest, BufferInASubfolderLoads) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    const SceneDesc embedded = load(b.writeEmbedded(file("quad.gltf")));
+    expectSameTriangles(load(b.writeWithUri(folder / "quad.gltf", "data/quad%20file.bin", folder / "data" / "quad file.bin")),
+                        embedded);
+    expectSameTriangles(load(b.writeWithUri(folder / "quad.gltf", "data/../data/quad+file.bin", folder / "data" / "quad file.bin")),
+                        embedded);
+    // A symlink that stays inside the folder is fine too.
+    fs::create_symlink(folder / "data" / "quad file.bin", folder / "link.bin");
+    expectSameTriangles(load(b.writeWithUri(folder / "quad.gltf", "link.bin", folder / "data" / "quad file.bin")),
+                        embedded);
+}
+
+TEST_F(GltfTest, OutsideFilesLoadWhenAllowed) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    const SceneDesc embedded = load(b.writeEmbedded(file("quad.gltf")));
+    const GltfOptions allow{.allowExternalFiles = true};
+    const auto silent = [](const std::string&) {};
+    const fs::path outside = fs::canonical(testDir()) / "quad.bin";
+    expectSameTriangles(loadGltf(b.writeWithUri(folder / "quad.gltf", "../quad.bin", outside), silent, allow), embedded);
+    expectSameTriangles(loadGltf(b.writeWithUri(folder / "quad.gltf", outside.string(), outside), silent, allow), embedded);
+    fs::create_symlink(outside, folder / "link.bin");
+    expectSameTriangles(loadGltf(b.writeWithUri(folder / "quad.gltf", "link.bin", outside), silent, allow), embedded);
+    // Still only regular files: not a directory, not a device.
+    expectBufferRefused(b.writeWithUri(folder / "quad.gltf", "..", outside), "buffer 0", fs::canonical(testDir()),
+                        "which is a directory, not a file", allow);
+    expectBufferRefused(b.writeWithUri(folder / "quad.gltf", "/dev/zero", outside), "buffer 0", "/dev/zero",
+                        "which is not a regular file", allow);
+}
+
+TEST_F(GltfTest, MissingBufferFileIsNamed) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    expectBufferRefused(b.writeWithUri(folder / "quad.gltf", "missing.bin", testDir() / "quad.bin"), "buffer 0",
+                        folder / "missing.bin", "which does not exist");
+}
+
+// The system cuts a path at a NUL character ("%00"), so what it would open is not what was checked.
+TEST_F(GltfTest, BufferUriWithANulCharacterIsRefused) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    const std::string scene = b.writeWithUri(folder / "quad.gltf", "quad.bin%00/../../quad.bin", folder / "quad.bin");
+    expectBufferRefused(scene, "buffer 0", "quad.bin\\x00/../../quad.bin", "which contains a NUL character");
+}
+
+// Textures are ignored, so image files are never opened: not the folder (which tinygltf read as
+// a file of 2^63 bytes), not a file elsewhere on the machine.
+TEST_F(GltfTest, ImageFilesAreNeverOpened) {
+    for (const std::string uri : {"%2E", "/proc/self/environ", "/dev/zero"}) {
+        GltfBuilder b;
+        b.addTriangleMesh(b.addVec3(kTriangle));
+        b.add("images", R"({"uri":")" + uri + "\"}");
+        b.add("textures", R"({"source":0})");
+        b.add("materials", R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}})");
+        b.addRoot(R"({"mesh":0})");
+        EXPECT_EQ(triangles(load(b.writeEmbedded(file("image.gltf")))).size(), 1u) << uri;
+    }
 }
 
 // --- warnings -------------------------------------------------------------------------------

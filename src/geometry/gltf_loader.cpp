@@ -18,13 +18,19 @@
 // inverse transpose. Mirroring transforms (negative determinant) reverse the winding so the front
 // face stays where the file put it. Triangles that are degenerate in world space are dropped.
 // Lights: KHR_lights_punctual point lights; camera: the first perspective camera in depth-first order.
+//
+// Files: tinygltf opens only the buffer files that approveBufferFiles let through (external_files.h
+// says which), through the file-system callbacks below; image files are never opened.
 #include "geometry/gltf_loader.h"
 
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -33,8 +39,10 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "geometry/error.h"
+#include "geometry/external_files.h"
 
 namespace tripath {
 
@@ -213,6 +221,75 @@ bool hasTexture(const tinygltf::Material& g) {
            g.emissiveTexture.index >= 0;
 }
 
+// Quoted for a one-line message: quotes, backslashes and control characters are escaped.
+std::string quoted(const std::string& text) {
+    std::string out = "\"";
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (byte < 0x20 || byte == 0x7f) {
+            static const char* const kHex = "0123456789abcdef";
+            out += "\\x";
+            out += kHex[byte >> 4];
+            out += kHex[byte & 15];
+        } else {
+            out += c;
+        }
+    }
+    return out + "\"";
+}
+
+// The JSON chunk of a GLB file; empty when the header is malformed (tinygltf then says how).
+std::string_view glbJsonChunk(const std::vector<char>& bytes) {
+    constexpr uint32_t kJsonChunk = 0x4E4F534A;  // "JSON", little-endian
+    if (bytes.size() < 20) return {};
+    uint32_t length = 0, type = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    std::memcpy(&type, bytes.data() + 16, 4);
+    if (type != kJsonChunk || length > bytes.size() - 20) return {};
+    return {bytes.data() + 20, length};
+}
+
+// The files tinygltf may open: the resolved paths of the buffer files approveBufferFiles let
+// through. The callbacks get each URI decoded (the model is loaded with an empty base folder)
+// and resolve it against the scene's folder again; everything else, image files included, is
+// reported missing.
+struct ApprovedFiles {
+    std::filesystem::path folder;
+    bool allowOutside = false;
+    std::set<std::filesystem::path> files;
+
+    // The file `decodedUri` names, or an empty path when it was not approved.
+    std::filesystem::path find(const std::string& decodedUri) const {
+        const ExternalFile file = resolveExternalFile(folder, decodedUri, allowOutside);
+        return file.problem.empty() && files.count(file.path) ? file.path : std::filesystem::path();
+    }
+};
+
+bool approvedFileExists(const std::string& decodedUri, void* approved) {
+    return !static_cast<const ApprovedFiles*>(approved)->find(decodedUri).empty();
+}
+
+std::string keepPath(const std::string& path, void*) { return path; }
+
+bool readApprovedFile(std::vector<unsigned char>* out, std::string* err, const std::string& decodedUri,
+                      void* approved) {
+    const std::filesystem::path path = static_cast<const ApprovedFiles*>(approved)->find(decodedUri);
+    if (!path.empty()) {
+        std::error_code ec;
+        const uintmax_t size = std::filesystem::file_size(path, ec);
+        std::ifstream in(path, std::ios::binary);
+        if (!ec && in) {
+            out->resize(size_t(size));
+            if (in.read(reinterpret_cast<char*>(out->data()), std::streamsize(out->size()))) return true;
+        }
+    }
+    *err += "cannot read " + quoted(decodedUri);
+    return false;
+}
+
 // Textures are not supported: accept every image without decoding it.
 bool skipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
                        const unsigned char*, int, void*) {
@@ -228,7 +305,10 @@ struct AccessorBytes {
 
 class GltfLoader {
 public:
-    GltfLoader(std::string path, WarningSink warn) : path_(std::move(path)), warn_(std::move(warn)) {}
+    GltfLoader(std::string path, WarningSink warn, const GltfOptions& options)
+        : path_(std::move(path)), warn_(std::move(warn)) {
+        approved_.allowOutside = options.allowExternalFiles;
+    }
     SceneDesc load();
 
 private:
@@ -236,6 +316,8 @@ private:
     void warnOnce(const std::string& what);
 
     void readModel();
+    std::vector<char> readSceneFile() const;
+    void approveBufferFiles(std::string_view json);
     void forwardLibraryWarnings(const std::string& text);
     void checkExtensions();
     void warnIgnoredModelFeatures();
@@ -273,6 +355,7 @@ private:
 
     std::string path_;
     WarningSink warn_;
+    ApprovedFiles approved_;
     tinygltf::Model model_;
     SceneDesc scene_;
     std::set<std::string> warned_;
@@ -301,27 +384,64 @@ void GltfLoader::warnOnce(const std::string& what) {
 // File and extensions
 
 void GltfLoader::readModel() {
-    std::error_code ec;
-    if (!std::filesystem::exists(path_, ec)) fail("file not found");
-    if (!std::filesystem::is_regular_file(path_, ec)) fail("not a regular file");
-    std::ifstream in(path_, std::ios::binary);
-    char magic[4] = {};
-    if (!in || !in.read(magic, 4)) fail("cannot read file (empty or unreadable)");
-    const bool binary = std::memcmp(magic, "glTF", 4) == 0 ||
+    const std::vector<char> bytes = readSceneFile();
+    const bool binary = std::memcmp(bytes.data(), "glTF", 4) == 0 ||
                         std::filesystem::path(path_).extension() == ".glb";
+    std::error_code ec;
+    approved_.folder = std::filesystem::canonical(std::filesystem::absolute(path_).parent_path(), ec);
+    if (ec) fail("cannot resolve the scene's folder (" + ec.message() + ")");
+    approveBufferFiles(binary ? glbJsonChunk(bytes) : std::string_view(bytes.data(), bytes.size()));
 
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(&skipImageDecoding, nullptr);
+    parser.SetFsCallbacks({&approvedFileExists, &keepPath, &readApprovedFile, nullptr, &approved_});
     std::string err, warnings;
     bool ok = false;
     try {
-        ok = binary ? parser.LoadBinaryFromFile(&model_, &err, &warnings, path_)
-                    : parser.LoadASCIIFromFile(&model_, &err, &warnings, path_);
+        const auto size = static_cast<unsigned int>(bytes.size());
+        ok = binary ? parser.LoadBinaryFromMemory(&model_, &err, &warnings,
+                                                  reinterpret_cast<const unsigned char*>(bytes.data()), size, "")
+                    : parser.LoadASCIIFromString(&model_, &err, &warnings, bytes.data(), size, "");
     } catch (const std::exception& e) {
         fail(std::string("cannot parse glTF: ") + e.what());
     }
     forwardLibraryWarnings(warnings);
     if (!ok) fail(err.empty() ? std::string("cannot parse glTF") : oneLine(err));
+}
+
+std::vector<char> GltfLoader::readSceneFile() const {
+    std::error_code ec;
+    if (!std::filesystem::exists(path_, ec)) fail("file not found");
+    if (!std::filesystem::is_regular_file(path_, ec)) fail("not a regular file");
+    const uintmax_t size = std::filesystem::file_size(path_, ec);
+    if (!ec && size > UINT_MAX) fail("file is larger than 4 GiB (not supported)");
+    std::vector<char> bytes(ec ? 0 : size_t(size));
+    std::ifstream in(path_, std::ios::binary);
+    if (bytes.size() < 4 || !in || !in.read(bytes.data(), std::streamsize(bytes.size())))
+        fail("cannot read file (empty or unreadable)");
+    return bytes;
+}
+
+// Checks every external buffer URI before tinygltf opens any file, so that a refusal names the
+// buffer; approves the files that pass. JSON that does not parse is left for tinygltf to report.
+void GltfLoader::approveBufferFiles(std::string_view json) {
+    const auto doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+    if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return;
+    const auto& buffers = doc["buffers"];
+    for (size_t i = 0; i < buffers.size(); ++i) {
+        const auto& buffer = buffers[i];
+        if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
+        const std::string& uri = buffer["uri"].get_ref<const std::string&>();
+        if (uri.empty() || tinygltf::IsDataURI(uri)) continue;
+        const ExternalFile file = resolveExternalFile(approved_.folder, decodeUriPath(uri), approved_.allowOutside);
+        if (!file.problem.empty()) {
+            std::string name = "buffer " + std::to_string(i);
+            if (buffer.contains("name") && buffer["name"].is_string())
+                name += " " + quoted(buffer["name"].get_ref<const std::string&>());
+            fail(name + ": uri " + quoted(uri) + " names " + quoted(file.path.string()) + ", " + file.problem);
+        }
+        approved_.files.insert(file.path);
+    }
 }
 
 // tinygltf's own warnings, minus those about image files: textures are ignored anyway (and a
@@ -771,8 +891,8 @@ void GltfLoader::addLight(const tinygltf::Node& node, const Mat4& world, int nod
 
 }  // namespace
 
-SceneDesc loadGltf(const std::string& path, WarningSink warn) {
-    return GltfLoader(path, std::move(warn)).load();
+SceneDesc loadGltf(const std::string& path, WarningSink warn, const GltfOptions& options) {
+    return GltfLoader(path, std::move(warn), options).load();
 }
 
 }  // namespace tripath

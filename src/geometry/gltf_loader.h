@@ -9,11 +9,17 @@
 
 namespace tripath {
 
+struct GltfOptions {
+    // Lets buffer URIs name files outside the scene's folder (absolute paths, `..`, symlinks that
+    // leave it). Off: only regular files in the folder and its subfolders (external_files.h).
+    bool allowExternalFiles = false;
+};
 
 // Loads the default scene of a glTF 2.0 file (chosen as .glb or .gltf by its magic bytes).
 // Throws InputError with one line "<path>: <problem>" for any bad input: missing or unreadable
 // file, broken JSON or GLB, out-of-range indices or reads, non-finite or collapsing transforms,
-// invalid materials or lights, unsupported required extensions, or a scene without triangles.
-SceneDesc loadGltf(const std::string& path, WarningSink warn = printWarning);
+// invalid materials or lights, unsupported required extensions, a scene without triangles, or a
+// buffer URI that names a file the options do not allow. Image files are never opened.
+SceneDesc loadGltf(const std::string& path, WarningSink warn = printWarning, const GltfOptions& options = {});
 
 }  // namespace tripath

@@ -2,12 +2,13 @@
 #pragma once
 #include <string>
 
+#include "geometry/gltf_loader.h"
 #include "geometry/scene_desc.h"
 
 namespace tripath {
 
 // A built-in scene by name, else a .gltf/.glb file. Throws InputError for an unknown name that
-// is not a file either, or for a bad file.
-SceneDesc loadSceneDesc(const std::string& nameOrPath);
+// is not a file either, or for a bad file (`gltf` says which files a glTF file may read).
+SceneDesc loadSceneDesc(const std::string& nameOrPath, const GltfOptions& gltf = {});
 
 }  // namespace tripath
