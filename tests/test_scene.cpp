@@ -1,5 +1,5 @@
 // Ray queries (and their independence of the threads that built the BVH), robust ray origins,
-// emitter sampling and the sensor's importance.
+// emitter sampling, the sensor's importance, and smallvcm-5 against the peer's conventions.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -315,6 +315,77 @@ TEST(Camera, RasterAndDirectionAreInverse) {
     }
     EXPECT_FALSE(cam.raster(-cam.forward()));
     EXPECT_EQ(cam.importance(-cam.forward()), 0.0f);
+}
+
+// smallvcm-5 must be SmallVCM's scene 5 as SmallVCM images it (the peer comparison of issue 11,
+// bench/peers-smallvcm.sh, compares images pixel for pixel). Its camera, restated from its
+// description: right = normalize(up × −forward), up' = −forward × right; camera coordinates c of a
+// point X are its offsets from the eye along right, up' and −forward; NDC x = f c.x / −c.z and
+// y = −f c.y / −c.z with f = 1 / tan(45°/2); raster = (NDC + 1) · size / 2, so raster y grows
+// downwards. Points of the scene must land where that projection puts them, and the light, the
+// spheres and the walls must be what the peer's description says.
+TEST(Scenes, SmallVcm5IsSmallVcmsScene5) {
+    const int size = 256;
+    const Scene scene(builtinScene("smallvcm-5"), size, size);
+    const Vec3 eye(-0.0439815f, -4.12529f, 0.222539f);
+    const Vec3 fwd = normalize(Vec3(0.00688625f, 0.998505f, -0.0542161f));
+    const Vec3 right = normalize(cross(Vec3(3.73896e-4f, 0.0542148f, 0.998529f), -fwd));
+    const Vec3 up = cross(-fwd, right);
+    const double f = 1.0 / std::tan(22.5 * kPi / 180.0);
+    auto peerRaster = [&](Vec3 x) {
+        const Vec3 d = x - eye;
+        const double cx = dot(right, d), cy = dot(up, d), depth = dot(fwd, d);
+        return Vec2{float((f * cx / depth + 1) * size / 2), float((-f * cy / depth + 1) * size / 2)};
+    };
+    const Vec3 points[] = {{-0.53885f, 0.02453f, -0.78002f},  // mirror sphere's centre
+                           {0.55831f, 0.02453f, -0.78002f},   // glass sphere's centre
+                           {0, 0, 1.26002f},                  // the light's centre
+                           {-1.27029f, 1.30455f, 1.28002f},   // back wall, top left corner
+                           {1.28975f, 1.30455f, -1.28002f}};  // back wall, bottom right corner
+    for (const Vec3& x : points) {
+        const auto ours = scene.camera().raster(normalize(x - eye));
+        ASSERT_TRUE(ours);
+        const Vec2 theirs = peerRaster(x);
+        EXPECT_NEAR(ours->x, theirs.x, 0.01f) << x.x << " " << x.y << " " << x.z;
+        EXPECT_NEAR(ours->y, theirs.y, 0.01f) << x.x << " " << x.y << " " << x.z;
+    }
+    // What the eye sees at those points: mirror, glass, the light's front, the walls' colours.
+    auto seen = [&](Vec3 x) -> const Material& {
+        const auto hit = scene.intersect(eye, normalize(x - eye));
+        EXPECT_TRUE(hit);
+        return scene.materials()[scene.triangles()[hit->triangle].material];
+    };
+    EXPECT_EQ(seen(points[0]).type, MaterialType::Mirror);
+    EXPECT_TRUE(seen(points[0]).albedo == Spectrum(1.0f));
+    EXPECT_EQ(seen(points[1]).type, MaterialType::Dielectric);
+    EXPECT_EQ(seen(points[1]).ior, 1.6f);
+    EXPECT_TRUE(seen(points[2]).emission == Spectrum(25.03329895614464f));
+    EXPECT_TRUE(seen({-1.27029f, 0, 0}).albedo == Spectrum(0.156863f, 0.803922f, 0.172549f));  // left: green
+    EXPECT_TRUE(seen({1.28975f, 0, 0}).albedo == Spectrum(0.803922f, 0.152941f, 0.152941f));   // right: red
+    // The emitter: the 0.5 m square at z = 1.26002, facing down, and nothing else.
+    double area = 0;
+    for (const Emitter& e : scene.emitters().all()) {
+        const Triangle& t = scene.triangles()[e.triangle];
+        EXPECT_FALSE(e.twoSided);
+        EXPECT_NEAR(t.geometricNormal().z, -1.0f, 1e-6f);
+        for (const Vec3& p : t.p) {
+            EXPECT_EQ(p.z, 1.26002f);
+            EXPECT_EQ(std::abs(p.x), 0.25f);
+            EXPECT_EQ(std::abs(p.y), 0.25f);
+        }
+        area += e.area;
+    }
+    EXPECT_NEAR(area, 0.25, 1e-6);
+    // Spheres of radius 0.5: every vertex of their triangles on the sphere.
+    int onSpheres = 0;
+    for (const Triangle& t : scene.triangles()) {
+        const MaterialType type = scene.materials()[t.material].type;
+        if (type == MaterialType::Lambertian) continue;
+        const Vec3 c = type == MaterialType::Mirror ? points[0] : points[1];
+        for (const Vec3& p : t.p) EXPECT_NEAR(length(p - c), 0.5f, 1e-5f);
+        ++onSpheres;
+    }
+    EXPECT_EQ(onSpheres, 2 * 16128);
 }
 
 }  // namespace

@@ -126,6 +126,64 @@ SceneDesc veachMis() {
     return s;
 }
 
+// ---- SmallVCM's scene 5 -------------------------------------------------------------------------
+// The scene we compare the bidirectional family against SmallVCM on (issue 11;
+// /work/shared/peers/smallvcm.md): its Cornell box with the light box under the ceiling and both
+// small spheres, which SmallVCM builds from the flags kLightCeiling | kBothSmallSpheres. Rebuilt
+// here from the numbers its scene description gives, in its own frame (z up, the camera looking
+// along +y), so an image of ours and one of SmallVCM's line up pixel for pixel: right is
+// forward × up and raster y grows downwards in both. Differences that cannot show in an image:
+// SmallVCM's Lambertian walls are one-sided and ours two-sided, but the camera and every light
+// path see only the inner faces (the box is open towards the camera only, and nothing outside it
+// sends light back); its spheres are analytic and ours are 16k triangles each with smooth normals
+// (the facets are at most 0.15 mm inside the true sphere).
+
+SceneDesc smallVcm5() {
+    SceneDesc s;
+    const int white = addMaterial(s, lambertian("white", Spectrum(0.803922f)));
+    const int green = addMaterial(s, lambertian("green", Spectrum(0.156863f, 0.803922f, 0.172549f)));
+    const int red = addMaterial(s, lambertian("red", Spectrum(0.803922f, 0.152941f, 0.152941f)));
+
+    // The box, open at y = y0 (towards the camera); every wall faces inwards.
+    const float x0 = -1.27029f, x1 = 1.28975f, y0 = -1.25549f, y1 = 1.30455f, z0 = -1.28002f, z1 = 1.28002f;
+    addQuad(s, "floor", white, {x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0});
+    addQuad(s, "ceiling", white, {x0, y0, z1}, {x0, y1, z1}, {x1, y1, z1}, {x1, y0, z1});
+    addQuad(s, "back", white, {x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1});
+    addQuad(s, "left", green, {x0, y0, z0}, {x0, y1, z0}, {x0, y1, z1}, {x0, y0, z1});
+    addQuad(s, "right", red, {x1, y0, z0}, {x1, y0, z1}, {x1, y1, z1}, {x1, y1, z0});
+
+    // The light box: a 0.5 m square emitting downwards 2 cm under the ceiling, closed up to the
+    // ceiling by four white sides that face outwards (its top is the room's ceiling).
+    const float h = 0.25f, zl = 1.26002f;
+    const int light = addMaterial(s, emitter("light", Spectrum(25.03329895614464f)));
+    addQuad(s, "light", light, {-h, -h, zl}, {-h, h, zl}, {h, h, zl}, {h, -h, zl});
+    addQuad(s, "light box back", white, {-h, h, zl}, {-h, h, z1}, {h, h, z1}, {h, h, zl});
+    addQuad(s, "light box front", white, {-h, -h, zl}, {h, -h, zl}, {h, -h, z1}, {-h, -h, z1});
+    addQuad(s, "light box left", white, {-h, -h, zl}, {-h, -h, z1}, {-h, h, z1}, {-h, h, zl});
+    addQuad(s, "light box right", white, {h, -h, zl}, {h, h, zl}, {h, h, z1}, {h, -h, z1});
+
+    // Spheres of radius 0.5 resting on the floor, midway between the front and back walls, their
+    // centres 2/7 of the box's width in from the side walls: mirror left, glass right.
+    const float r = 0.5f, inset = 2.0f * (x1 - x0) / 7.0f, yc = 0.5f * (y0 + y1), zc = z0 + r;
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.type = MaterialType::Mirror;
+    mirror.albedo = Spectrum(1.0f);
+    Material glassBall = glass("glass");
+    glassBall.ior = 1.6f;
+    constexpr int kRings = 64;  // 16,128 triangles per sphere
+    addSphere(s, "mirror sphere", addMaterial(s, mirror), {x0 + inset, yc, zc}, r, kRings);
+    addSphere(s, "glass sphere", addMaterial(s, glassBall), {x1 - inset, yc, zc}, r, kRings);
+
+    // The pinhole: SmallVCM's position, forward and up, made orthonormal the way it does it
+    // (right = forward × up, then up = right × forward); 45 degrees across the (square) image.
+    const Vec3 forward = normalize(Vec3(0.00688625f, 0.998505f, -0.0542161f));
+    const Vec3 right = normalize(cross(forward, Vec3(3.73896e-4f, 0.0542148f, 0.998529f)));
+    s.camera = CameraDesc{true, {-0.0439815f, -4.12529f, 0.222539f}, forward, cross(right, forward),
+                          45.0f * kPi / 180.0f};
+    return s;
+}
+
 struct Entry {
     BuiltinInfo info;
     SceneDesc (*make)();
@@ -143,6 +201,7 @@ const std::vector<Entry>& entries() {
         {{"furnace", "white furnace: closed sphere, albedo 0.5, emission 1; radiance is 2 everywhere"}, furnaceDefault},
         {{"furnace-0.9", "white furnace with albedo 0.9, emission 1; radiance is 10 everywhere"}, furnaceHigh},
         {{"veach-mis", "four metal plates of increasing roughness, four spherical lights of equal power"}, veachMis},
+        {{"smallvcm-5", "SmallVCM's scene 5: its Cornell box with a light box, a mirror and a glass sphere (peer comparison)"}, smallVcm5},
         // Scenes where methods fail for known reasons (failure_scenes.h, docs/failures.md).
         {{"caustic", "glass ball focusing a small area light onto a diffuse floor (pt noisy; lt, bdpt good)"}, causticScene},
         {{"caustic-point", "the caustic lit by a point light: pt cannot sample it (black)"}, causticPointScene},
