@@ -120,7 +120,7 @@ std::vector<SampledPath> samplePaths(const Scene& scene, int samples, const MisC
 // hits it and x0 of the path that ends there), two-sided emitters, point lights, smooth normals.
 std::vector<SceneDesc> oracleScenes() {
     std::vector<SceneDesc> v;
-    for (const char* name : {"cornell", "cornell-spheres", "cornell-small", "cornell-point", "veach-mis", "furnace"})
+    for (const char* name : {"cornell", "cornell-spheres", "cornell-small", "cornell-point", "veach-mis", "furnace", "smallvcm-5"})
         v.push_back(builtinScene(name));
     v.push_back(cornellTessellated(100));
     for (MaterialType type : {MaterialType::Mirror, MaterialType::Dielectric, MaterialType::Conductor})
