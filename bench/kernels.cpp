@@ -208,12 +208,7 @@ void registerPathKernels() {
 
 // A path of k segments split into s light and t = k + 1 − s camera vertices with random pdfs:
 // misWeight reads only kinds, delta flags, normals (for a delta light), the two pdfs, the
-// junction's four and, for the roulette factors, the material of surface vertices.
-const Material kSyntheticMaterial = [] {
-    Material m;
-    m.albedo = Spectrum(0.7f);
-    return m;
-}();
+// junction's four and the roulette's continuation probability of each vertex.
 
 struct SyntheticPath {
     std::vector<Vertex> light, camera;
@@ -227,7 +222,7 @@ SyntheticPath syntheticPath(int s, int t, Rng& rng) {
         Vertex v;
         v.kind = i == 0 ? Vertex::Kind::Emitter : Vertex::Kind::Surface;
         v.ng = Vec3(0, 1, 0);  // an area emitter, not a point light
-        v.material = &kSyntheticMaterial;
+        v.continuation = 0.7f;
         v.pdfFwd = pdf();
         v.pdfRev = pdf();
         p.light.push_back(v);
@@ -236,7 +231,7 @@ SyntheticPath syntheticPath(int s, int t, Rng& rng) {
         Vertex v;
         v.kind = i == 0 ? Vertex::Kind::Sensor : Vertex::Kind::Surface;
         v.ng = Vec3(0, 0, -1);
-        v.material = &kSyntheticMaterial;
+        v.continuation = 0.7f;
         v.pdfFwd = pdf();
         v.pdfRev = pdf();
         p.camera.push_back(v);

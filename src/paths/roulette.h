@@ -35,8 +35,9 @@ inline float continuationProbability(const Material& m) {
 struct Roulette {
     int depth = 3;  // roulette once a walk holds this many vertices (--rr-depth)
     // Probability that a walk goes on from v, its vertex number `index` (0 for its first vertex).
+    // v.continuation holds continuationProbability of its material, set when the walk found it.
     float continuation(const Vertex& v, int index) const {
-        return index >= 1 && index + 1 >= depth ? continuationProbability(*v.material) : 1.0f;
+        return index >= 1 && index + 1 >= depth ? v.continuation : 1.0f;
     }
 };
 

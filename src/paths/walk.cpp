@@ -22,6 +22,7 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     v.material = &scene.materialOf(hit.triangle);
     v.emitter = scene.emitters().emitterOfTriangle(hit.triangle);
     v.delta = isDelta(*v.material);
+    v.continuation = continuationProbability(*v.material);
     return v;
 }
 
