@@ -28,16 +28,15 @@ std::optional<Vec2> Camera::raster(Vec3 d) const {
     return r;
 }
 
-float Camera::importance(Vec3 d) const { return raster(d) ? importanceInImage(d) : 0.0f; }
-
-float Camera::importanceInImage(Vec3 d) const {
+float Camera::importance(Vec3 d) const {
+    if (!raster(d)) return 0.0f;
     const float c = dot(d, forward_);
     return static_cast<float>(width_) * height_ / (area_ * c * c * c * c);
 }
 
-float Camera::imagePdf(Vec3 d) const { return raster(d) ? imagePdfInImage(d) : 0.0f; }
+float Camera::imagePdf(Vec3 d) const { return raster(d) ? imageDensity(d) : 0.0f; }
 
-float Camera::imagePdfInImage(Vec3 d) const {
+float Camera::imageDensity(Vec3 d) const {
     const float c = dot(d, forward_);
     return 1.0f / (area_ * c * c * c);
 }

@@ -33,13 +33,12 @@ public:
 
     // Per-pixel importance W_j(ω) for the pixel that d passes through (zero outside the image).
     float importance(Vec3 d) const;
-    // W_j(ω) and imagePdf for a direction already known to cross the image (raster(d) has a
-    // value): the same values without projecting d again.
-    float importanceInImage(Vec3 d) const;
-    float imagePdfInImage(Vec3 d) const;
     // Solid-angle density of a direction sampled uniformly over the whole image, 1 / (A cos³θ);
-    // over one pixel it is N times that.
+    // over one pixel it is N times that. Zero outside the image.
     float imagePdf(Vec3 d) const;
+    // The same formula for any d in front of the camera, without asking whether d crosses the
+    // image: for directions the camera generated, which rounding may put just outside it.
+    float imageDensity(Vec3 d) const;
 
 private:
     int width_, height_;

@@ -31,7 +31,8 @@ struct TileOutput {
 // added in the same order whatever the thread count.
 class TileSink final : public ContributionSink {
 public:
-    TileSink(Film& film, const Camera& camera, TileOutput& out) : film_(film), camera_(camera), out_(out) {}
+    TileSink(Film& film, const Camera& camera, TileOutput& out)
+        : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPathsPerPass(camera))) {}
     void setPixel(int pixel) { pixel_ = pixel; }
     void add(int s, int t, const Connection& c) override {
         if (c.weightGuarded) ++out_.guardedWeights;
@@ -41,11 +42,9 @@ public:
             return;
         }
         if (t == 1) {
-            // Each splat is one of the pass's N_L estimates of every pixel it lands in.
-            const float share = static_cast<float>(1.0 / lightPathsPerPass(camera_));
             const int x = std::min(static_cast<int>(c.raster->x), camera_.width() - 1);
             const int y = std::min(static_cast<int>(c.raster->y), camera_.height() - 1);
-            out_.splats.push_back({y * camera_.width() + x, s, t, w * share, c.unweighted * share});
+            out_.splats.push_back({y * camera_.width() + x, s, t, w * splatShare_, c.unweighted * splatShare_});
         } else {
             film_.add(pixel_, s, t, w, c.unweighted);
         }
@@ -55,6 +54,7 @@ private:
     Film& film_;
     const Camera& camera_;
     TileOutput& out_;
+    const float splatShare_;  // each splat is one of the pass's N_L estimates of every pixel it lands in
     int pixel_ = 0;
 };
 

@@ -14,6 +14,8 @@ float Segment::toArea(float pdfOmega, const Vertex& to) const {
     return pdfOmega * cosine(to, w_) / d2_;
 }
 
+float Segment::toSolidAngle(float pdfArea, const Vertex& at) const { return pdfArea * d2_ / cosine(at, w_); }
+
 bool visible(const Scene& scene, const Vertex& a, const Vertex& b) {
     return scene.unoccluded(a.p, a.offsetNormal(), b.p, b.offsetNormal());
 }
@@ -31,7 +33,7 @@ bool LocalScattering::emits() const {
 double lightPathsPerPass(const Camera& camera) { return double(camera.width()) * camera.height(); }
 
 Spectrum LocalScattering::value() const {
-    if (v_.kind == Vertex::Kind::Sensor) return Spectrum(inImage_ ? scene_.camera().importanceInImage(light_) : 0.0f);
+    if (v_.kind == Vertex::Kind::Sensor) return Spectrum(hasLight_ ? scene_.camera().importance(light_) : 0.0f);
     if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, camera_);
     if (!sidesAgree(v_, light_) || !sidesAgree(v_, camera_)) return Spectrum(0.0f);
     return evalBsdf(*v_.material, cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, light_);
@@ -51,9 +53,9 @@ float LocalScattering::pdfTowardLight() const {
         // scene whose hit points are only as precise as its extent allows), and a zero here
         // would make the camera's own strategy impossible. A direction truly outside has W = 0.
         const Camera& cam = scene_.camera();
-        if (!hasLight_ || !(cam.cosTheta(light_) > 0) || dot(light_, v_.ng) <= 0) return 0.0f;
-        const float scale = static_cast<float>(double(cam.width()) * cam.height() / lightPathsPerPass(cam));
-        return cam.imagePdfInImage(light_) * scale;
+        if (!hasLight_ || !(dot(light_, v_.ng) > 0)) return 0.0f;  // v_.ng: the optical axis
+        const float pixelsOverPaths = static_cast<float>(double(cam.width()) * cam.height() / lightPathsPerPass(cam));
+        return cam.imageDensity(light_) * pixelsOverPaths;
     }
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
     return pdfBsdf(*v_.material, cameraLocal_, lightLocal_);

@@ -43,6 +43,8 @@ public:
     float G() const;
     // Solid-angle pdf at one end → area pdf at the other end, `to`: p_A = p_ω |cos θ_to| / r².
     float toArea(float pdfOmega, const Vertex& to) const;
+    // The inverse: an area pdf at `at` (one end) → the solid-angle pdf at the other end.
+    float toSolidAngle(float pdfArea, const Vertex& at) const;
 
 private:
     const Vertex& a_;
@@ -91,8 +93,6 @@ public:
         : scene_(scene), v_(v), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr) {
         if (hasLight_) light_ = *towardLight;
         if (hasCamera_) camera_ = *towardCamera;
-        // The sensor's W and pdf share one projection onto the image.
-        if (v.kind == Vertex::Kind::Sensor) inImage_ = hasLight_ && scene.camera().raster(light_).has_value();
         if (v.kind == Vertex::Kind::Surface && hasLight_ && hasCamera_) {
             const Frame frame(v.ns);
             lightLocal_ = frame.toLocal(light_);
@@ -115,7 +115,6 @@ private:
     const Scene& scene_;
     const Vertex& v_;
     bool hasLight_, hasCamera_;
-    bool inImage_ = false;  // sensor: the light-side direction crosses the image
     Vec3 light_, camera_;
     Vec3 lightLocal_, cameraLocal_;  // in v's shading frame (surfaces between two neighbours)
 };

@@ -41,11 +41,9 @@ float term(float r, MisHeuristic h) {
 // weighed down by (d_{g,g+1} / d_{j−1,j})², ~25× on the wall beside smallvcm-5's glass sphere.)
 float chainPdf(float recorded, const Vertex& x, bool xDelta, const Vertex* g, bool gDelta) {
     if (!g || (!gDelta && !xDelta)) return recorded;
-    const Vec3 d = g->p - x.p;
-    const float d2 = lengthSquared(d);
-    const float c = cosine(x, d / std::sqrt(d2));
-    if (gDelta) return xDelta ? 1.0f : c;
-    return recorded * d2 / c;  // back to the solid-angle pdf at g
+    const Segment toGenerator(x, *g);
+    if (gDelta) return xDelta ? 1.0f : cosine(x, toGenerator.direction());
+    return toGenerator.toSolidAngle(recorded, x);
 }
 
 }  // namespace
