@@ -224,17 +224,41 @@ TEST(Mis, AZeroPdfThatIsNoDeltaRulesOutOnlyTheStrategiesThatNeedIt) {
     EXPECT_FALSE(w.guarded);
 }
 
-TEST(Mis, ADeltaScattererCountsAsOneAndRulesOutTheConnectionsAtIt) {
-    // x0 = light[0], x1 = camera[2] (reached through the mirror x2 = camera[1]), x3 = the sensor.
-    HandPath h = handPath({4.0f, 0.0f});  // x1's pdf from the mirror: a delta, recorded as 0
-    h.camera[1].delta = true;
-    h.junction.cameraEnd = 3.0f;
-    h.junction.cameraBeforeEnd = 5.0f;  // x2 from x1: (3, 1) still joins the sensor to the mirror
-    h.junction.lightEnd = 1.0f;         // c: x0 from x1's BSDF
+// A specular chain between two diffuse vertices, with positions, so that its measure shows:
+//   x0 light (0,2,0), n (0,−1,0)      x1 diffuse (0,0,0), n (0,1,0)
+//   x2 mirror (1,1,0), n (0,−1,0)     x3 diffuse (3,0,0), n (0,1,0)      x4 the sensor
+// Strategy (1, 4): NEE to x1. Its rivals: (0, 5), moving x0 to the camera side, with ratio
+// lightEnd / e = 1/2; (2, 3) and (3, 2), which would join at the mirror: impossible; and (4, 1),
+// light tracing, reached by moving x1, x2 and x3 to the light side. Measured in projected solid
+// angle at the chain's ends (mis.h):
+//   x1: cameraEnd 3 over x1's pdf through the mirror, |cos θ1| toward x2 = 1/√2: ratio 3√2
+//   x2: the solid-angle pdf at x1, cameraBeforeEnd 5 · |x1 − x2|² / |cos θ2| = 5 · 2 · √2, over
+//       the one at x3, its recorded 3 · |x3 − x2|² / |cos θ2′| = 3 · 5 · √5: ratio 10√2 / (15√5)
+//   x3: its pdf through the mirror, |cos θ3| toward x2 = 1/√5, over its pdf from the sensor, 4:
+//       ratio 1 / (4√5)
+// so r = 3√2 · 10√2 / (15√5) · 1 / (4√5) = 60 / 300 = 0.2, and the power-heuristic weight is
+// 1 / (1 + 0.2² + 0.5²) = 1 / 1.29. Counting the mirror's pdfs as 1 and the area pdfs as
+// recorded (pbrt's convention) would give r = 3 · 5/3 · 1/4 = 1.25 and a weight of 1 / 2.8125;
+// joining at the mirror would add terms; a wrong cosine or distance moves r.
+TEST(Mis, ASpecularChainCountsInProjectedSolidAngleAndRulesOutTheConnectionsAtIt) {
+    HandPath h = handPath({4.0f, 3.0f, 0.0f});  // x3 from the sensor, x2 from x3, x1 from the mirror (a delta: 0)
+    h.light[0].p = {0, 2, 0};
+    h.camera[0].p = {3, 2, 0};
+    h.camera[0].ng = {0, -1, 0};
+    const Vec3 positions[] = {{3, 0, 0}, {1, 1, 0}, {0, 0, 0}};
+    const Vec3 normals[] = {{0, 1, 0}, {0, -1, 0}, {0, 1, 0}};
+    for (int i = 1; i <= 3; ++i) {
+        h.camera[i].p = positions[i - 1];
+        h.camera[i].ng = h.camera[i].ns = normals[i - 1];
+    }
+    h.camera[2].delta = true;           // x2, the mirror
+    h.camera[1].pdfRev = 0.0f;          // x3 from the mirror: a delta, recorded as 0
+    h.junction.cameraEnd = 3.0f;        // x1 from x0
+    h.junction.cameraBeforeEnd = 5.0f;  // x2 from x1 (area pdf at the mirror)
+    h.junction.lightEnd = 1.0f;         // x0 from x1
     const StrategySet bdpt{StrategySet::Kind::Bidirectional};
-    const MisWeight w = misWeight(h.light, 1, h.camera, 3, h.junction, {MisHeuristic::Power, bdpt, kNoRoulette});
-    // (2, 2) and (3, 1) would join at the mirror: impossible. (0, 4) competes with (c/e)² = 1/4.
-    EXPECT_FLOAT_EQ(w.value, 0.8f);
+    const MisWeight w = misWeight(h.light, 1, h.camera, 4, h.junction, {MisHeuristic::Power, bdpt, kNoRoulette});
+    EXPECT_NEAR(w.value, 1.0 / 1.29, 1e-5);
     EXPECT_FALSE(w.guarded);
 }
 
