@@ -63,7 +63,7 @@ Reference renderReference(const CompareOptions& o, const Scene& scene) {
     rs.progress = progressReporter(rs, r.width, r.height, "reference bdpt " + r.scene);
     const RenderResult result = render(scene, *integrator, rs);
     printSummary("reference bdpt " + r.scene, result, r.width, r.height);
-    writeExr(file, result.image(), renderMetadata(r, integrator->name(), result));
+    writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result));
     return {result.image(), fmt::format("bdpt, {} spp, {:.0f} s", result.passes, result.seconds), file};
 }
 
@@ -100,7 +100,7 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
     std::cerr << fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in the worst 0.1% of pixels\n",
                              label, f.error.relMse, f.error.mse, f.error.mae, perSampleRelVariance(f.error.relMse, f.spp),
                              tailShareText(f.error.tailShare));
-    return {std::move(run), std::move(image), renderMetadata(ro, integrator->name(), r)};
+    return {std::move(run), std::move(image), renderMetadata(ro, scene, *integrator, r)};
 }
 
 }  // namespace tripath::app

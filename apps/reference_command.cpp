@@ -85,7 +85,7 @@ void run(const ReferenceCommand& c) {
     const RenderResult r = render(*scene, *integrator, rs);
     printSummary(label, r, o.width, o.height);
 
-    Metadata meta = renderMetadata(o, integrator->name(), r);
+    Metadata meta = renderMetadata(o, *scene, *integrator, r);
     Image image = r.image();
     if (old) {
         image = combine(old->image, old->spp(), image, r.passes);

@@ -34,8 +34,8 @@ void run(const RenderCommand& c) {
         throw InputError("--png must name a .png file: " + c.png);
     if (c.strategyImages < 0 || c.strategyImages > 16)
         throw InputError(fmt::format("--strategy-images must be between 1 and 16 (got {})", c.strategyImages));
-    if (c.strategyImages > 0 && o.integrator != "bdpt")
-        throw InputError("--strategy-images needs --integrator bdpt (the others have no (s,t) to separate)");
+    if (c.strategyImages > 0 && (o.integrator == "pt" || o.integrator == "lt"))
+        throw InputError("--strategy-images needs --integrator bdpt, vcm, bpm or ppm (pt and lt have no (s,t) to separate)");
     checkWritable(c.out);
     if (!c.png.empty()) checkWritable(c.png);
 
@@ -50,13 +50,14 @@ void run(const RenderCommand& c) {
 
     const RenderResult r = render(*scene, *integrator, rs);
     printSummary(label, r, o.width, o.height);
-    const Metadata meta = renderMetadata(o, integrator->name(), r);
+    const Metadata meta = renderMetadata(o, *scene, *integrator, r);
     writeExr(c.out, r.image(), meta);
     if (!c.png.empty()) writePng(c.png, r.image(), c.exposure);
     for (int k = 1; k <= rs.layers.depthImages; ++k) writeExr(sibling(c.out, fmt::format("-k{}", k)), r.film.depthImage(k, r.passes), meta);
-    for (const auto& [s, t] : r.film.strategies()) {
-        writeExr(sibling(c.out, fmt::format("-s{}-t{}-weighted", s, t)), r.film.strategyImage(s, t, true, r.passes), meta);
-        writeExr(sibling(c.out, fmt::format("-s{}-t{}-unweighted", s, t)), r.film.strategyImage(s, t, false, r.passes), meta);
+    for (const Strategy& st : r.film.strategies()) {
+        const std::string name = fmt::format("-s{}-t{}{}", st.s, st.t, st.merge ? "-merge" : "");
+        writeExr(sibling(c.out, name + "-weighted"), r.film.strategyImage(st, true, r.passes), meta);
+        writeExr(sibling(c.out, name + "-unweighted"), r.film.strategyImage(st, false, r.passes), meta);
     }
     std::cerr << "wrote " << c.out << (c.png.empty() ? "" : " and " + c.png) << "\n";
 }
@@ -74,8 +75,9 @@ void addRenderCommand(CLI::App& app) {
                   "Also write <out>-k<K>.exr for each path length K = 1..max-depth: the Neumann-series terms, which "
                   "add up to the full image");
     cmd->add_option("--strategy-images", c->strategyImages,
-                    "bdpt only: also write <out>-s<S>-t<T>-weighted.exr and -unweighted.exr for every strategy (s,t) "
-                    "of path length k <= this value");
+                    "bdpt, vcm, bpm, ppm: also write <out>-s<S>-t<T>-weighted.exr and -unweighted.exr for every "
+                    "connection (s,t) of path length k <= this value (k = s+t-1), and <out>-s<S>-t<T>-merge-*.exr for "
+                    "every merge (k = s+t-2)");
     cmd->callback([c] { run(*c); });
 }
 

@@ -8,6 +8,7 @@
 
 #include "geometry/error.h"
 #include "geometry/scene_source.h"
+#include "paths/kernels.h"
 
 namespace tripath::app {
 
@@ -23,7 +24,10 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     if (withIntegrator)
         cmd.add_option("--integrator", o.integrator,
                        "pt: path tracing with next-event estimation; lt: light tracing; bdpt: bidirectional "
-                       "path tracing with MIS over every (s,t)")
+                       "path tracing with MIS over every (s,t); vcm: vertex connection and merging (bdpt plus "
+                       "photon merges at every non-delta camera vertex, one MIS); bpm: bidirectional photon "
+                       "mapping (merges only); ppm: progressive photon mapping (one merge where the camera path "
+                       "first meets a non-delta surface)")
             ->capture_default_str();
     // Functions rather than plain bindings: a given value is checked, whatever it is (even 0 or -1).
     auto* spp = cmd.add_option_function<int>(
@@ -41,6 +45,18 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     cmd.add_option("--rr-depth", o.rrDepth, "Russian roulette starts once a subpath has this many vertices")
         ->capture_default_str();
     cmd.add_option("--mis", o.mis, "MIS heuristic: balance, power (beta = 2) or none (uniform weights)")
+        ->capture_default_str();
+    auto* radius = cmd.add_option_function<float>(
+        "--radius", [&o](float v) { o.merge.radius = v, o.radiusGiven = true; },
+                                  "vcm, bpm, ppm: merge radius of the first pass in world units (default: "
+                                  "--radius-factor times the scene's bounding-sphere radius)");
+    cmd.add_option("--radius-factor", o.merge.radiusFactor,
+                   "vcm, bpm, ppm: merge radius of the first pass as a fraction of the scene's bounding-sphere radius")
+        ->capture_default_str()
+        ->excludes(radius);
+    cmd.add_option("--alpha", o.merge.alpha,
+                   "vcm, bpm, ppm: the radius of pass i is r_1 * i^((alpha-1)/2); 1 keeps it fixed (biased), "
+                   "below 1 shrinks it (consistent)")
         ->capture_default_str();
     cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
         ->capture_default_str();
@@ -60,6 +76,12 @@ void validateRenderOptions(const RenderOptions& o) {
     if (o.maxDepth < 1 || o.maxDepth > 1024) fail(fmt::format("--max-depth must be between 1 and 1024 (got {})", o.maxDepth));
     if (o.rrDepth < 1) fail(fmt::format("--rr-depth must be at least 1 (got {})", o.rrDepth));
     if (o.threads < 0 || o.threads > 4096) fail(fmt::format("--threads must be between 0 and 4096 (got {})", o.threads));
+    if (o.radiusGiven && !(o.merge.radius > 0 && o.merge.radius < 1e30f))
+        fail(fmt::format("--radius must be a length in world units above 0 (got {})", o.merge.radius));
+    if (!(o.merge.radiusFactor > 0 && o.merge.radiusFactor <= 1))
+        fail(fmt::format("--radius-factor must be above 0 and at most 1 (got {})", o.merge.radiusFactor));
+    if (!(o.merge.alpha > 0 && o.merge.alpha <= 1))
+        fail(fmt::format("--alpha must be above 0 and at most 1 (got {})", o.merge.alpha));
     parseMisHeuristic(o.mis);
     makeIntegrator(o.integrator, {});
 }
@@ -69,6 +91,7 @@ IntegratorSettings integratorSettings(const RenderOptions& o) {
     s.walk.maxDepth = o.maxDepth;
     s.walk.rrDepth = o.rrDepth;
     s.mis = parseMisHeuristic(o.mis);
+    s.merge = o.merge;
     return s;
 }
 
@@ -88,9 +111,9 @@ RenderSettings renderSettings(const RenderOptions& o) {
     return s;
 }
 
-Metadata renderMetadata(const RenderOptions& o, const std::string& integrator, const RenderResult& r) {
-    return {{"tripath:scene", o.scene},
-            {"tripath:integrator", integrator},
+Metadata renderMetadata(const RenderOptions& o, const Scene& scene, const Integrator& integrator, const RenderResult& r) {
+    Metadata m{{"tripath:scene", o.scene},
+            {"tripath:integrator", integrator.name()},
             {"tripath:spp", std::to_string(r.passes)},
             {"tripath:seconds", fmt::format("{:.3f}", r.seconds)},
             {"tripath:seed", std::to_string(o.seed)},
@@ -101,6 +124,13 @@ Metadata renderMetadata(const RenderOptions& o, const std::string& integrator, c
             {"tripath:dropped-samples", std::to_string(r.droppedSamples)},
             {"tripath:guarded-weights", std::to_string(r.guardedWeights)},
             {"tripath:version", TRIPATH_VERSION}};
+    if (integrator.hasLightPhase())
+        m.push_back({"tripath:light-paths-per-pass", fmt::format("{:.0f}", lightPathsPerPass(scene.camera()))});
+    if (integrator.strategies().merges()) {
+        m.push_back({"tripath:radius", fmt::format("{:.9g}", integrator.mergeRadius(scene, 0))});
+        m.push_back({"tripath:alpha", fmt::format("{:.9g}", o.merge.alpha)});
+    }
+    return m;
 }
 
 namespace {

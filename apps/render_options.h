@@ -20,11 +20,12 @@ struct RenderOptions {
     std::string integrator = "bdpt";
     int spp = 0;            // 0 unless --spp was given
     double seconds = 0;     // 0 unless --time was given
-    bool sppGiven = false, timeGiven = false;
+    bool sppGiven = false, timeGiven = false, radiusGiven = false;
     int width = 512, height = 512;
     int maxDepth = 16;
     int rrDepth = 3;
     std::string mis = "power";
+    MergeSettings merge;     // --radius, --radius-factor, --alpha (vcm, bpm, ppm)
     uint64_t seed = 1;
     int threads = 0;
     // Not a flag: the random streams the samples draw from. Renders use CameraSample; references
@@ -48,7 +49,7 @@ std::unique_ptr<Scene> loadScene(const RenderOptions& o);
 // spp/time budget, seed and threads as the render loop takes them (defaults to 16 spp).
 RenderSettings renderSettings(const RenderOptions& o);
 // The EXR metadata describing a finished render.
-Metadata renderMetadata(const RenderOptions& o, const std::string& integrator, const RenderResult& r);
+Metadata renderMetadata(const RenderOptions& o, const Scene& scene, const Integrator& integrator, const RenderResult& r);
 
 // Ctrl-C: the first one asks the render loop to stop at the next pass (the image so far is
 // written); a second one exits at once.

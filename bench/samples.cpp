@@ -31,9 +31,9 @@ constexpr uint64_t kSeed = 1;
 // connections that cast a shadow ray and came back unoccluded (s ≥ 1; s = 0 casts none).
 class SummingSink final : public ContributionSink {
 public:
-    void add(int s, int, const Connection& c) override {
+    void add(Strategy st, const Connection& c) override {
         sum += luminance(c.weighted());
-        if (s >= 1) ++shadowConnections;
+        if (!st.merge && st.s >= 1) ++shadowConnections;
     }
     double sum = 0;
     uint64_t shadowConnections = 0;
@@ -59,14 +59,21 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
         integrator = makeIntegrator(sampleKindName(spec.kind), settings);
 
     tbb::enumerable_thread_specific<Worker> workers;
+    // lt and bdpt read the light paths of their pass: a light phase for the block's pixels, traced
+    // from the render's light-path streams, runs before the block's camera samples (timed with them).
+    const bool lightPhase = integrator && integrator->hasLightPhase();
+    std::vector<Subpath> lightPaths(lightPhase ? kBlockPixels : 0);
+    LightStore store;
+    Pass pass;
+    if (integrator) pass.mis = integrator->misContext(scene, 0.0f);
     tbb::task_arena& arena = arenaFor(spec.threads);
     const uint64_t pixels = uint64_t(kWidth) * kHeight;
     uint64_t iteration = 0;
 
-    auto oneSample = [&](Worker& w, int x, int y, uint64_t pass) {
+    auto oneSample = [&](Worker& w, int x, int y, int blockPixel, uint64_t passIndex) {
         const int pixel = y * kWidth + x;
         // The render loop's stream for (pixel, pass), so the samples are the ones a render draws.
-        Rng rng(kSeed, static_cast<uint64_t>(StreamDomain::CameraSample), pass * pixels + pixel);
+        Rng rng(kSeed, static_cast<uint64_t>(StreamDomain::CameraSample), passIndex * pixels + pixel);
         const float jx = rng.uniform(), jy = rng.uniform();
         const Vec2 raster{x + jx, y + jy};
         switch (spec.kind) {
@@ -78,10 +85,13 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
                 lightSubpath(scene, rng, settings.walk, WalkPdfs::All, w.paths.light);
                 if (!w.paths.light.empty()) w.sink.sum += w.paths.light.back().beta.x;
                 break;
-            default: integrator->sample(scene, raster, rng, w.paths, w.sink); break;
+            default:
+                integrator->sample(scene, pass, blockPixel, raster, rng, w.paths, w.sink);
+                if (lightPhase) w.vertices += traced(lightPaths[blockPixel]);
+                break;
         }
-        // pt leaves an empty light subpath and lt a sensor-only camera subpath, so counting both
-        // buffers is right for every kind (the subpath-only kinds never fill the other buffer).
+        // lt leaves a sensor-only camera subpath, so counting both buffers is right for every kind
+        // (the subpath-only kinds never fill the other buffer).
         w.vertices += traced(w.paths.camera) + traced(w.paths.light);
         ++w.samples;
     };
@@ -89,12 +99,27 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
     for (auto _ : state) {
         const int block = blockOfIteration(iteration);
         const int bx = (block % kBlocksX) * kBlock, by = (block / kBlocksX) * kBlock;
-        const uint64_t pass = iteration / kBlocks;
+        const uint64_t passIndex = iteration / kBlocks;
         arena.execute([&] {
+            if (lightPhase) {
+                tbb::parallel_for(tbb::blocked_range<int>(0, kBlockPixels, kBlock), [&](const tbb::blocked_range<int>& r) {
+                    Worker& w = workers.local();
+                    const RayCounts before = threadRayCounts();
+                    for (int i = r.begin(); i < r.end(); ++i) {
+                        const int pixel = (by + i / kBlock) * kWidth + bx + i % kBlock;
+                        Rng rng(kSeed, static_cast<uint64_t>(StreamDomain::LightPath), passIndex * pixels + pixel);
+                        lightSubpath(scene, rng, settings.walk, integrator->strategies().lightWalkPdfs(), lightPaths[i]);
+                    }
+                    w.rays += threadRayCounts() - before;
+                });
+                store.clear();
+                for (const Subpath& path : lightPaths) store.append(path);
+                pass.light = &store;
+            }
             tbb::parallel_for(tbb::blocked_range<int>(0, kBlockPixels, kBlock), [&](const tbb::blocked_range<int>& r) {
                 Worker& w = workers.local();
                 const RayCounts before = threadRayCounts();
-                for (int i = r.begin(); i < r.end(); ++i) oneSample(w, bx + i % kBlock, by + i / kBlock, pass);
+                for (int i = r.begin(); i < r.end(); ++i) oneSample(w, bx + i % kBlock, by + i / kBlock, i, passIndex);
                 w.rays += threadRayCounts() - before;
             });
         });

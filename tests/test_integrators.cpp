@@ -125,7 +125,7 @@ TEST(ShadingNormals, NoLightLeaksThroughASmoothShadedWall) {
 // all strategies can sample all paths), so it agrees with the MIS-combined image of that length.
 TEST(Bdpt, EachStrategyUnweightedAgreesWithItsPathLength) {
     const SceneDesc desc = builtinScene("cornell");
-    std::map<std::pair<int, int>, std::vector<double>> diffs;
+    std::map<Strategy, std::vector<double>> diffs;
     for (uint64_t seed = 1; seed <= 16; ++seed) {
         RenderRequest r;
         r.integrator = "bdpt";
@@ -136,16 +136,16 @@ TEST(Bdpt, EachStrategyUnweightedAgreesWithItsPathLength) {
         r.layers.depthImages = 3;
         r.layers.strategyLength = 3;
         const RenderResult res = test::renderDesc(desc, r);
-        for (const auto& [s, t] : res.film.strategies()) {
-            const double strategy = imageMean(res.film.strategyImage(s, t, false, res.passes));
-            const double total = imageMean(res.film.depthImage(s + t - 1, res.passes));
-            diffs[{s, t}].push_back(strategy - total);
+        for (const Strategy& st : res.film.strategies()) {
+            const double strategy = imageMean(res.film.strategyImage(st, false, res.passes));
+            const double total = imageMean(res.film.depthImage(st.length(), res.passes));
+            diffs[st].push_back(strategy - total);
         }
     }
     ASSERT_EQ(diffs.size(), 9u);  // k = 1: 2 strategies, k = 2: 3, k = 3: 4
     for (const auto& [st, d] : diffs) {
         const auto m = meanAndError(d);
-        EXPECT_LT(std::abs(m.mean), 4.5 * m.stderr_ + 1e-6) << "s=" << st.first << " t=" << st.second;
+        EXPECT_LT(std::abs(m.mean), 4.5 * m.stderr_ + 1e-6) << "s=" << st.s << " t=" << st.t;
     }
 }
 

@@ -28,6 +28,7 @@
 #include "geometry/rng.h"
 #include "geometry/scene.h"
 #include "integrators/integrator.h"
+#include "integrators/light_phase.h"
 #include "integrators/render.h"
 
 namespace tripath {
@@ -39,6 +40,8 @@ const std::vector<std::string> kFailureScenes = {"caustic", "caustic-point", "sd
                                                  "door-ajar", "contact",     "grazing",    "degenerate",
                                                  "degenerate-tiny", "degenerate-far"};
 const std::vector<std::string> kIntegrators = {"pt", "lt", "bdpt"};
+// Where every method must hold up, merging ones included.
+const std::vector<std::string> kAllIntegrators = {"pt", "lt", "bdpt", "vcm", "bpm", "ppm"};
 
 void silent(const std::string&) {}
 
@@ -134,10 +137,10 @@ TEST(FailureScenes, AreBuiltinsAndBuildValidScenes) {
 class CheckingSink final : public ContributionSink {
 public:
     explicit CheckingSink(const Camera& camera) : camera_(camera) {}
-    void add(int, int t, const Connection& c) override {
+    void add(Strategy st, const Connection& c) override {
         if (!isFinite(c.unweighted) || !std::isfinite(c.weight)) ++nonFinite;
         if (!(c.weight >= 0.0f && c.weight <= 1.0f + 1e-4f)) ++badWeight;
-        if (t == 1 && (!c.raster || !(c.raster->x >= 0 && c.raster->x < camera_.width() && c.raster->y >= 0 &&
+        if (!st.merge && st.t == 1 && (!c.raster || !(c.raster->x >= 0 && c.raster->x < camera_.width() && c.raster->y >= 0 &&
                                       c.raster->y < camera_.height())))
             ++badRaster;
     }
@@ -157,19 +160,24 @@ TEST(FailureScenes, EverySampleIsFinite) {
     constexpr int kMaxDepth = 6, kSize = 12, kSamples = 4;
     for (const std::string& name : kFailureScenes) {
         const Scene scene(builtinScene(name), kSize, kSize, silent);
-        for (const std::string& integratorName : kIntegrators) {
+        for (const std::string& integratorName : kAllIntegrators) {
             IntegratorSettings is;
             is.walk.maxDepth = kMaxDepth;
+            is.merge.radiusFactor = 0.05f;  // large, so that merges happen at this size
             const auto integrator = makeIntegrator(integratorName, is);
             PathBuffers paths;
+            LightPhase lightPhase;
             CheckingSink sink(scene.camera());
             size_t vertices = 0;
-            for (int i = 0; i < kSize * kSize * kSamples; ++i) {
-                Rng rng(7, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(i));
-                const int pixel = i % (kSize * kSize);
-                const Vec2 raster{(pixel % kSize) + rng.uniform(), (pixel / kSize) + rng.uniform()};
-                integrator->sample(scene, raster, rng, paths, sink);
-                vertices += paths.camera.size() + paths.light.size();
+            for (int p = 0; p < kSamples; ++p) {
+                const Pass pass = lightPhase.run(scene, *integrator, p, 7, StreamDomain::Test);
+                vertices += lightPhase.store().vertices().size();
+                for (int pixel = 0; pixel < kSize * kSize; ++pixel) {
+                    Rng rng(7, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(p * kSize * kSize + pixel));
+                    const Vec2 raster{(pixel % kSize) + rng.uniform(), (pixel / kSize) + rng.uniform()};
+                    integrator->sample(scene, pass, pixel, raster, rng, paths, sink);
+                    vertices += paths.camera.size();
+                }
             }
             const std::string what = name + " " + integratorName;
             EXPECT_EQ(sink.nonFinite, 0) << what;
@@ -185,7 +193,7 @@ TEST(FailureScenes, EverySampleIsFinite) {
 TEST(FailureScenes, RendersDropNoSample) {
     for (const std::string& name : kFailureScenes) {
         const Scene scene(builtinScene(name), 16, 16, silent);
-        for (const std::string& integrator : kIntegrators) {
+        for (const std::string& integrator : kAllIntegrators) {
             Job job;
             job.integrator = integrator;
             job.size = 16;

@@ -41,8 +41,14 @@ private:
 // Stream domains: keep camera samples, light paths and anything else from sharing streams.
 // Reference: the per-pixel sample streams of `tripath reference` (and of the reference `tripath
 // compare` renders for itself), so that a reference is independent of every render made with the
-// same seed. The values are part of every stored image's identity: a retired one (2, once meant
-// for light paths and never used) is not reused, and new domains go at the end.
-enum class StreamDomain : uint64_t { CameraSample = 1, Test = 3, Reference = 4 };
+// same seed. LightPath and ReferenceLightPath: the light phase's paths (index pass × N_L + path)
+// of renders and of references. The values are part of every stored image's identity: a retired
+// one (2, once meant for light paths and never used) is not reused, and new domains go at the end.
+enum class StreamDomain : uint64_t { CameraSample = 1, Test = 3, Reference = 4, LightPath = 5, ReferenceLightPath = 6 };
+
+// The light paths' domain that goes with a camera samples' domain.
+inline StreamDomain lightPathDomain(StreamDomain cameraDomain) {
+    return cameraDomain == StreamDomain::Reference ? StreamDomain::ReferenceLightPath : StreamDomain::LightPath;
+}
 
 }  // namespace tripath

@@ -1,9 +1,9 @@
 // bdpt — bidirectional path tracing with multiple importance sampling (Veach §10).
 //
-// Builds a camera and a light subpath per sample and evaluates every strategy (s, t) that
-// joins their prefixes, weighted by MIS over all of them. Parameters: --max-depth, --rr-depth,
-// --mis (balance | power | none). With a pinhole and a point light, specular-diffuse-specular
-// paths have no strategy at all and stay black.
+// Joins each camera subpath to the pass's light subpath of the same index (the light phase) and
+// evaluates every strategy (s, t) over their prefixes, weighted by MIS over all of them.
+// Parameters: --max-depth, --rr-depth, --mis (balance | power | none). With a pinhole and a point
+// light, specular-diffuse-specular paths have no strategy at all and stay black.
 #include "integrators/integrator.h"
 
 namespace tripath {
@@ -13,10 +13,10 @@ public:
     using Integrator::Integrator;
     std::string name() const override { return "bdpt"; }
     StrategySet strategies() const override { return {StrategySet::Kind::Bidirectional}; }
-    void sample(const Scene& scene, Vec2 raster, Rng& rng, PathBuffers& paths, ContributionSink& sink) const override {
+    void sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
+                ContributionSink& sink) const override {
         cameraSubpath(scene, raster, rng, settings().walk, strategies().cameraWalkPdfs(), paths.camera);
-        lightSubpath(scene, rng, settings().walk, strategies().lightWalkPdfs(), paths.light);
-        connectAll(scene, paths, rng, sink);
+        connectAll(scene, pass, pass.light->path(pixel), paths.camera, rng, sink);
     }
 };
 

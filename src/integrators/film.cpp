@@ -5,9 +5,12 @@ namespace tripath {
 Film::Film(int width, int height, FilmLayers layers)
     : width_(width), height_(height), layers_(layers), main_(3 * size_t(width) * height, 0.0) {
     depth_.assign(std::max(0, layers.depthImages), main_);
-    for (int k = 1; k <= layers.strategyLength; ++k)
-        for (int s = 0; s <= k + 1; ++s)
-            if (k + 1 - s >= 1) strategy_[{s, k + 1 - s}] = {main_, main_};
+    for (int k = 1; k <= layers.strategyLength; ++k) {
+        for (int s = 0; s <= k; ++s) order_.push_back({s, k + 1 - s});  // connections: t ≥ 1
+        if (layers.merges)
+            for (int s = 2; s <= k; ++s) order_.push_back({s, k + 2 - s, true});  // merges: s, t ≥ 2
+    }
+    for (const Strategy& st : order_) strategy_[st] = {main_, main_};
 }
 
 void Film::addTo(Sums& sums, int pixel, Spectrum v) {
@@ -17,11 +20,11 @@ void Film::addTo(Sums& sums, int pixel, Spectrum v) {
     p[2] += v.z;
 }
 
-void Film::add(int pixel, int s, int t, Spectrum weighted, Spectrum unweighted) {
+void Film::add(int pixel, Strategy strategy, Spectrum weighted, Spectrum unweighted) {
     addTo(main_, pixel, weighted);
-    const int k = s + t - 1;
+    const int k = strategy.length();
     if (k >= 1 && k <= static_cast<int>(depth_.size())) addTo(depth_[k - 1], pixel, weighted);
-    if (const auto it = strategy_.find({s, t}); it != strategy_.end()) {
+    if (const auto it = strategy_.find(strategy); it != strategy_.end()) {
         addTo(it->second.first, pixel, weighted);
         addTo(it->second.second, pixel, unweighted);
     }
@@ -36,17 +39,11 @@ Image Film::toImage(const Sums& sums, int passes) const {
 
 Image Film::image(int passes) const { return toImage(main_, passes); }
 Image Film::depthImage(int k, int passes) const { return toImage(depth_.at(k - 1), passes); }
-Image Film::strategyImage(int s, int t, bool weighted, int passes) const {
-    const auto& sums = strategy_.at({s, t});
+Image Film::strategyImage(Strategy strategy, bool weighted, int passes) const {
+    const auto& sums = strategy_.at(strategy);
     return toImage(weighted ? sums.first : sums.second, passes);
 }
 
-std::vector<std::pair<int, int>> Film::strategies() const {
-    std::vector<std::pair<int, int>> out;
-    for (int k = 1; k <= layers_.strategyLength; ++k)
-        for (int s = 0; s <= k + 1; ++s)
-            if (strategy_.count({s, k + 1 - s})) out.push_back({s, k + 1 - s});
-    return out;
-}
+std::vector<Strategy> Film::strategies() const { return order_; }
 
 }  // namespace tripath

@@ -8,12 +8,14 @@
 
 #include "geometry/vec.h"
 #include "image/image.h"
+#include "paths/connect.h"
 
 namespace tripath {
 
 struct FilmLayers {
     int depthImages = 0;      // > 0: one layer per path length k = 1..depthImages
-    int strategyLength = 0;   // > 0: weighted and unweighted layers per (s,t) with k ≤ strategyLength
+    int strategyLength = 0;   // > 0: weighted and unweighted layers per strategy with k ≤ strategyLength
+    bool merges = false;      // the strategy layers include merges (set by the render loop)
 };
 
 class Film {
@@ -22,17 +24,17 @@ public:
 
     int width() const { return width_; }
     int height() const { return height_; }
-    // Adds a contribution of strategy (s, t) to a pixel. Not thread-safe for the same pixel: the
+    // Adds a contribution of a strategy to a pixel. Not thread-safe for the same pixel: the
     // render loop gives each pixel to one thread per pass and merges splats in a fixed order.
-    void add(int pixel, int s, int t, Spectrum weighted, Spectrum unweighted);
+    void add(int pixel, Strategy strategy, Spectrum weighted, Spectrum unweighted);
 
     // Sums divided by `passes`.
     Image image(int passes) const;
     Image depthImage(int k, int passes) const;
-    Image strategyImage(int s, int t, bool weighted, int passes) const;
+    Image strategyImage(Strategy strategy, bool weighted, int passes) const;
     const FilmLayers& layers() const { return layers_; }
-    // The (s,t) pairs that have layers, in order of k then s.
-    std::vector<std::pair<int, int>> strategies() const;
+    // The strategies that have layers, in order of k, connections before merges, then s.
+    std::vector<Strategy> strategies() const;
 
 private:
     using Sums = std::vector<double>;
@@ -42,7 +44,8 @@ private:
     FilmLayers layers_;
     Sums main_;
     std::vector<Sums> depth_;                          // index k − 1
-    std::map<std::pair<int, int>, std::pair<Sums, Sums>> strategy_;  // (s,t) → (weighted, unweighted)
+    std::map<Strategy, std::pair<Sums, Sums>> strategy_;  // → (weighted, unweighted)
+    std::vector<Strategy> order_;
 };
 
 }  // namespace tripath

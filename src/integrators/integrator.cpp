@@ -1,18 +1,40 @@
 #include "integrators/integrator.h"
 
+#include <cmath>
+
 #include "geometry/error.h"
+#include "paths/kernels.h"
 
 namespace tripath {
 
 std::unique_ptr<Integrator> makePathTracer(const IntegratorSettings& s);
 std::unique_ptr<Integrator> makeLightTracer(const IntegratorSettings& s);
 std::unique_ptr<Integrator> makeBidirectional(const IntegratorSettings& s);
+std::unique_ptr<Integrator> makeVertexMerging(const IntegratorSettings& s);
+std::unique_ptr<Integrator> makeBidirectionalPhotonMapping(const IntegratorSettings& s);
+std::unique_ptr<Integrator> makeProgressivePhotonMapping(const IntegratorSettings& s);
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const IntegratorSettings& settings) {
     if (name == "pt") return makePathTracer(settings);
     if (name == "lt") return makeLightTracer(settings);
     if (name == "bdpt") return makeBidirectional(settings);
-    throw InputError("unknown integrator '" + name + "' (pt, lt or bdpt)");
+    if (name == "vcm") return makeVertexMerging(settings);
+    if (name == "bpm") return makeBidirectionalPhotonMapping(settings);
+    if (name == "ppm") return makeProgressivePhotonMapping(settings);
+    throw InputError("unknown integrator '" + name + "' (pt, lt, bdpt, vcm, bpm or ppm)");
+}
+
+float Integrator::mergeRadius(const Scene& scene, uint64_t index) const {
+    if (!strategies().merges()) return 0.0f;
+    const MergeSettings& m = settings_.merge;
+    const float sceneRadius = 0.5f * length(scene.boundsMax() - scene.boundsMin());
+    const double r1 = m.radius > 0 ? m.radius : m.radiusFactor * sceneRadius;
+    return static_cast<float>(r1 * std::pow(double(index + 1), 0.5 * (double(m.alpha) - 1.0)));
+}
+
+MisContext Integrator::misContext(const Scene& scene, float radius) const {
+    const float eta = radius > 0 ? mergeEta(radius, lightPathsPerPass(scene.camera())) : 0.0f;
+    return {settings_.mis, strategies(), Roulette{settings_.walk.rrDepth}, eta};
 }
 
 }  // namespace tripath

@@ -8,9 +8,19 @@
 
 namespace tripath {
 
+// Vertex merging's radius schedule (vcm, bpm, ppm): r_i = r_1 · i^((α−1)/2) at the i-th pass
+// (i = 1, 2, … over the whole render, a reference's continuation included), so that the radius
+// depends on the pass index alone, never on threads or timing.
+struct MergeSettings {
+    float radius = 0;              // r_1 in world units; 0: radiusFactor × the scene's bounding-sphere radius
+    float radiusFactor = 0.003f;   // r_1 as a fraction of the scene's bounding-sphere radius
+    float alpha = 0.75f;           // 1: a fixed radius; < 1: shrinking (consistent); in (0, 1]
+};
+
 struct IntegratorSettings {
     WalkSettings walk;
     MisHeuristic mis = MisHeuristic::Power;
+    MergeSettings merge;
 };
 
 // Per-thread scratch subpaths, reused from sample to sample.
@@ -18,12 +28,22 @@ struct PathBuffers {
     Subpath light, camera;
 };
 
-// Receives the contributions of one camera sample: (s, t) and the connection; t = 1 connections
-// carry the raster position to splat at, the others belong to the sample's own pixel.
+// What every camera sample of one pass shares: the pass's stored light subpaths (its light
+// phase, integrators/light_phase.h), the range search over them, and the MIS context with the
+// pass's merge factor. Read-only while the camera samples run.
+struct Pass {
+    uint64_t index = 0;                         // 0-based, over the whole render
+    const LightStore* light = nullptr;          // set when the integrator has a light phase
+    const LightVertexSearch* search = nullptr;  // set when it merges
+    MisContext mis;
+};
+
+// Receives the contributions of one camera sample: the strategy and its result; t = 1
+// connections carry the raster position to splat at, the others belong to the sample's own pixel.
 class ContributionSink {
 public:
     virtual ~ContributionSink() = default;
-    virtual void add(int s, int t, const Connection& c) = 0;
+    virtual void add(Strategy strategy, const Connection& c) = 0;
 };
 
 class Integrator {
@@ -32,23 +52,39 @@ public:
     virtual ~Integrator() = default;
     virtual std::string name() const = 0;
     virtual StrategySet strategies() const = 0;
-    // One sample for the pixel at raster position `raster` (already jittered inside the pixel).
-    virtual void sample(const Scene& scene, Vec2 raster, Rng& rng, PathBuffers& paths, ContributionSink& sink) const = 0;
+    // One sample for pixel `pixel` at raster position `raster` (already jittered inside the pixel);
+    // it pairs with the pass's light path number `pixel`.
+    virtual void sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
+                        ContributionSink& sink) const = 0;
     const IntegratorSettings& settings() const { return settings_; }
 
+    // Whether passes trace and store light subpaths first: for any strategy with s ≥ 2 or a merge.
+    bool hasLightPhase() const { return strategies().merges() || strategies().maxS() >= 2; }
+    // The merge radius of 0-based pass `index` (0 when the integrator does not merge).
+    float mergeRadius(const Scene& scene, uint64_t index) const;
+    // The MIS context of a pass whose merge radius is `radius`.
+    MisContext misContext(const Scene& scene, float radius) const;
+
 protected:
-    // Runs every enabled strategy over the two subpaths into the sink.
-    void connectAll(const Scene& scene, PathBuffers& paths, Rng& rng, ContributionSink& sink) const {
-        const MisContext mis{settings_.mis, strategies(), Roulette{settings_.walk.rrDepth}};
-        evaluateStrategies(scene, paths.light, paths.camera, rng, settings_.walk.maxDepth, mis,
-                           [&](int s, int t, const Connection& c) { sink.add(s, t, c); });
+    // Runs every enabled connection over the two subpaths into the sink.
+    void connectAll(const Scene& scene, const Pass& pass, std::span<const Vertex> light, const Subpath& camera,
+                    Rng& rng, ContributionSink& sink) const {
+        evaluateStrategies(scene, light, camera, rng, settings_.walk.maxDepth, pass.mis,
+                           [&](Strategy st, const Connection& c) { sink.add(st, c); });
+    }
+    // Runs every merge of the camera subpath with the pass's light vertices into the sink.
+    void mergeAll(const Scene& scene, const Pass& pass, const Subpath& camera, ContributionSink& sink) const {
+        evaluateMerges(scene, *pass.search, camera, settings_.walk.maxDepth, pass.mis,
+                       [&](Strategy st, const Connection& c) { sink.add(st, c); });
     }
 
 private:
     IntegratorSettings settings_;
 };
 
-// "pt", "lt" or "bdpt"; throws InputError for anything else.
+// The integrators by name, for --integrator and its help.
+inline constexpr const char* kIntegratorNames[] = {"pt", "lt", "bdpt", "vcm", "bpm", "ppm"};
+// One of kIntegratorNames; throws InputError for anything else.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const IntegratorSettings& settings);
 
 }  // namespace tripath

@@ -1,10 +1,10 @@
 // lt — light tracing (particle tracing) with connections to the sensor.
 //
-// Builds a light subpath only; every vertex of it is connected to the pinhole (strategy t = 1)
-// and splatted into the pixel it projects to. One light subpath is traced per camera sample, so a
-// pass of N pixels traces N light paths. Parameters: --max-depth, --rr-depth (--mis has nothing to
-// weigh: one strategy per path length). Cannot see emitters or paths through delta surfaces
-// next to the sensor (a mirror seen directly is black), as it must.
+// Connects every vertex of the pass's light subpaths (the light phase: one per pixel, so a pass
+// of N pixels traces N light paths) to the pinhole (strategy t = 1) and splats it into the pixel
+// it projects to; camera sample i takes light path i. Parameters: --max-depth, --rr-depth (--mis
+// has nothing to weigh: one strategy per path length). Cannot see emitters or paths through delta
+// surfaces next to the sensor (a mirror seen directly is black), as it must.
 #include "integrators/integrator.h"
 
 namespace tripath {
@@ -14,10 +14,10 @@ public:
     using Integrator::Integrator;
     std::string name() const override { return "lt"; }
     StrategySet strategies() const override { return {StrategySet::Kind::LightTracing}; }
-    void sample(const Scene& scene, Vec2, Rng& rng, PathBuffers& paths, ContributionSink& sink) const override {
-        lightSubpath(scene, rng, settings().walk, strategies().lightWalkPdfs(), paths.light);
+    void sample(const Scene& scene, const Pass& pass, int pixel, Vec2, Rng& rng, PathBuffers& paths,
+                ContributionSink& sink) const override {
         paths.camera.assign(1, sensorVertex(scene));
-        connectAll(scene, paths, rng, sink);
+        connectAll(scene, pass, pass.light->path(pixel), paths.camera, rng, sink);
     }
 };
 

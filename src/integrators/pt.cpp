@@ -1,10 +1,10 @@
 // pt — path tracing with next-event estimation.
 //
-// Builds a camera subpath only. Strategies: s = 0 (the walk hits an emitter) and s = 1 (an
-// emitter point sampled at each camera vertex on a surface, t ≥ 2), weighted against each other
-// by MIS. No splats: joining an emitter point straight to the sensor (1, 1) is light tracing's.
-// Parameters: --max-depth, --rr-depth, --mis. Cannot sample paths that reach a point light by
-// way of a delta surface (point-light caustics): those stay black, as they must.
+// Builds a camera subpath only (no light phase). Strategies: s = 0 (the walk hits an emitter)
+// and s = 1 (an emitter point sampled at each camera vertex on a surface, t ≥ 2), weighted
+// against each other by MIS. No splats: joining an emitter point straight to the sensor (1, 1) is
+// light tracing's. Parameters: --max-depth, --rr-depth, --mis. Cannot sample paths that reach a
+// point light by way of a delta surface (point-light caustics): those stay black, as they must.
 #include "integrators/integrator.h"
 
 namespace tripath {
@@ -14,10 +14,10 @@ public:
     using Integrator::Integrator;
     std::string name() const override { return "pt"; }
     StrategySet strategies() const override { return {StrategySet::Kind::PathTracing}; }
-    void sample(const Scene& scene, Vec2 raster, Rng& rng, PathBuffers& paths, ContributionSink& sink) const override {
+    void sample(const Scene& scene, const Pass& pass, int, Vec2 raster, Rng& rng, PathBuffers& paths,
+                ContributionSink& sink) const override {
         cameraSubpath(scene, raster, rng, settings().walk, strategies().cameraWalkPdfs(), paths.camera);
-        paths.light.clear();
-        connectAll(scene, paths, rng, sink);
+        connectAll(scene, pass, {}, paths.camera, rng, sink);
     }
 };
 

@@ -6,6 +6,7 @@
 
 #include <chrono>
 
+#include "integrators/light_phase.h"
 #include "paths/kernels.h"
 
 namespace tripath {
@@ -15,7 +16,8 @@ namespace {
 constexpr int kTileSize = 16;
 
 struct Splat {
-    int pixel, s, t;
+    int pixel;
+    Strategy strategy;
     Spectrum weighted, unweighted;
 };
 
@@ -34,19 +36,19 @@ public:
     TileSink(Film& film, const Camera& camera, TileOutput& out)
         : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPathsPerPass(camera))) {}
     void setPixel(int pixel) { pixel_ = pixel; }
-    void add(int s, int t, const Connection& c) override {
+    void add(Strategy st, const Connection& c) override {
         if (c.weightGuarded) ++out_.guardedWeights;
         const Spectrum w = c.weighted();
         if (!isFinite(w) || !isFinite(c.unweighted)) {
             ++out_.dropped;
             return;
         }
-        if (t == 1) {
+        if (!st.merge && st.t == 1) {
             const int x = std::min(static_cast<int>(c.raster->x), camera_.width() - 1);
             const int y = std::min(static_cast<int>(c.raster->y), camera_.height() - 1);
-            out_.splats.push_back({y * camera_.width() + x, s, t, w * splatShare_, c.unweighted * splatShare_});
+            out_.splats.push_back({y * camera_.width() + x, st, w * splatShare_, c.unweighted * splatShare_});
         } else {
-            film_.add(pixel_, s, t, w, c.unweighted);
+            film_.add(pixel_, st, w, c.unweighted);
         }
     }
 
@@ -58,7 +60,7 @@ private:
     int pixel_ = 0;
 };
 
-void renderTile(const Scene& scene, const Integrator& integrator, Film& film, int tile, uint64_t passIndex,
+void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pass, Film& film, int tile,
                 uint64_t seed, StreamDomain domain, TileOutput& out) {
     const Camera& cam = scene.camera();
     const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
@@ -69,10 +71,10 @@ void renderTile(const Scene& scene, const Integrator& integrator, Film& film, in
     for (int y = y0; y < std::min(y0 + kTileSize, cam.height()); ++y)
         for (int x = x0; x < std::min(x0 + kTileSize, cam.width()); ++x) {
             const int pixel = y * cam.width() + x;
-            Rng rng(seed, static_cast<uint64_t>(domain), passIndex * pixels + pixel);
+            Rng rng(seed, static_cast<uint64_t>(domain), pass.index * pixels + pixel);
             const float jx = rng.uniform(), jy = rng.uniform();
             sink.setPixel(pixel);
-            integrator.sample(scene, {x + jx, y + jy}, rng, paths, sink);
+            integrator.sample(scene, pass, pixel, {x + jx, y + jy}, rng, paths, sink);
         }
 }
 
@@ -80,7 +82,10 @@ void renderTile(const Scene& scene, const Integrator& integrator, Film& film, in
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
     const Camera& cam = scene.camera();
-    RenderResult result{Film(cam.width(), cam.height(), settings.layers)};
+    FilmLayers layers = settings.layers;
+    layers.merges = integrator.strategies().merges();
+    RenderResult result{Film(cam.width(), cam.height(), layers)};
+    LightPhase lightPhase;
     const int tiles = ((cam.width() + kTileSize - 1) / kTileSize) * ((cam.height() + kTileSize - 1) / kTileSize);
     std::vector<TileOutput> outputs(tiles);
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
@@ -95,14 +100,14 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         if (settings.stop && settings.stop->load() && result.passes > 0) break;
         const uint64_t passIndex = settings.firstPass + static_cast<uint64_t>(result.passes);
         arena.execute([&] {
+            const Pass pass = lightPhase.run(scene, integrator, passIndex, settings.seed, settings.domain);
             tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
                 for (int tile = r.begin(); tile < r.end(); ++tile)
-                    renderTile(scene, integrator, result.film, tile, passIndex, settings.seed, settings.domain,
-                               outputs[tile]);
+                    renderTile(scene, integrator, pass, result.film, tile, settings.seed, settings.domain, outputs[tile]);
             });
         });
         for (TileOutput& out : outputs) {
-            for (const Splat& sp : out.splats) result.film.add(sp.pixel, sp.s, sp.t, sp.weighted, sp.unweighted);
+            for (const Splat& sp : out.splats) result.film.add(sp.pixel, sp.strategy, sp.weighted, sp.unweighted);
             out.splats.clear();
             result.droppedSamples += out.dropped;
             result.guardedWeights += out.guardedWeights;

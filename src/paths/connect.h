@@ -9,6 +9,15 @@
 
 namespace tripath {
 
+// A strategy: s light vertices and t camera vertices, joined by a shadow ray (connection: a path of
+// k = s + t − 1 segments) or merged (merge.h: the two endpoints are one vertex, k = s + t − 2).
+struct Strategy {
+    int s = 0, t = 0;
+    bool merge = false;
+    int length() const { return s + t - (merge ? 2 : 1); }
+    auto operator<=>(const Strategy&) const = default;
+};
+
 struct Connection {
     Spectrum unweighted{0.0f};      // f(x̄) / p_{s,t}(x̄)
     float weight = 0;               // MIS weight of (s, t) among the enabled strategies

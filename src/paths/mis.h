@@ -29,6 +29,15 @@
 // is not finite (a pdf the sampler produced but the points' recomputation rounds to 0) gives the
 // weight 0 and is reported, never a NaN.
 //
+// Merges (merge.h) join the same sum. A merge at interior vertex x_j (non-delta) has the pdf
+// p_j · p_light(x_j) · η = p_{j+1} · p_camera(x_j) · η, where p_j is the connection with x_j on the
+// camera side and η = π r² N_L: so the walk that passes x_j from one side to the other adds the
+// merge's term on the way, from the ratio it already holds and x_j's pdf from the other side. A
+// merge's own weight is taken with the connection that holds its merged vertex on the camera side
+// as the reference. Chains of deltas keep their projected-solid-angle measure: x_j's pdf from
+// across a chain is the chain measure's, and every strategy, merges included, crosses each chain
+// exactly once, so the chains' Jacobians still cancel from every ratio.
+//
 // Cost: O(k) per connection under BDPT. Paths here are short (Russian roulette, max depth), the
 // loop is a few multiplies per vertex with no ray casts, and it lets any subset of strategies be
 // enabled, which the running-sum form of Georgiev et al. cannot; bench/ measures it against path
@@ -49,34 +58,63 @@ MisHeuristic parseMisHeuristic(const std::string& name);  // "balance" | "power"
 // of vertices that lie on an emitter, or none.
 enum class WalkPdfs { All, AtEmitters, None };
 
-// The strategies an integrator switches on.
+// The strategies an integrator switches on: connections (s, t) and, for the vertex-merging
+// sets, merges (merge.h).
 struct StrategySet {
-    enum class Kind { PathTracing, LightTracing, Bidirectional };
+    enum class Kind {
+        PathTracing,        // s = 0 and s = 1 (next-event estimation)
+        LightTracing,       // t = 1
+        Bidirectional,      // every (s, t)
+        VertexMerging,      // every (s, t) and every merge
+        PhotonMapping,      // s = 0 and every merge
+        FirstHitMerging,    // the merge at the first non-delta camera vertex, and s = 0 through deltas only
+    };
     Kind kind = Kind::Bidirectional;
-    // PT: s = 0 (the walk hits an emitter) and s = 1 (next-event estimation at a camera vertex
-    // on a surface, t ≥ 2; joining an emitter point straight to the sensor would be light
-    // tracing's splat). LT: t = 1 (connect to the sensor). BDPT: every (s, t). t = 0 is impossible
-    // with a pinhole and never enabled. Each set is a box s ≤ maxS, minT ≤ t ≤ maxT.
-    int maxS() const { return kind == Kind::PathTracing ? 1 : kUnbounded; }
-    int minT() const { return kind == Kind::PathTracing ? 2 : 1; }
+    // Connections. PT: s = 0 (the walk hits an emitter) and s = 1 (next-event estimation at a
+    // camera vertex on a surface, t ≥ 2; joining an emitter point straight to the sensor would be
+    // light tracing's splat). LT: t = 1 (connect to the sensor). BDPT and VCM: every (s, t). The
+    // photon-mapping sets: s = 0 only. t = 0 is impossible with a pinhole and never enabled. Each
+    // set is a box s ≤ maxS, minT ≤ t ≤ maxT.
+    int maxS() const {
+        return kind == Kind::PathTracing ? 1 : kind == Kind::PhotonMapping || kind == Kind::FirstHitMerging ? 0 : kUnbounded;
+    }
+    int minT() const { return kind == Kind::LightTracing || kind == Kind::Bidirectional || kind == Kind::VertexMerging ? 1 : 2; }
     int maxT() const { return kind == Kind::LightTracing ? 1 : kUnbounded; }
     bool enabled(int s, int t) const { return s <= maxS() && t >= minT() && t <= maxT(); }
+    // Merges of light vertex y_{s−1} with camera vertex z_{t−1} (s, t ≥ 2): at every non-delta
+    // vertex (VertexMerging, PhotonMapping), or only where the camera walk first meets a non-delta
+    // surface (FirstHitMerging, which also counts s = 0 only for camera walks through deltas alone).
+    bool merges() const { return kind == Kind::VertexMerging || kind == Kind::PhotonMapping || kind == Kind::FirstHitMerging; }
+    // Every path FirstHitMerging samples, it samples with exactly one strategy: its weight is 1.
+    bool uniqueStrategy() const { return kind == Kind::FirstHitMerging; }
 
     // The weight of (s, t) walks outward from the connection through strategies (s+t−i, i) on the
     // camera side and (i, s+t−i) on the light side, multiplying one pdf ratio per vertex, and needs
     // to go only as far as the last enabled one. So it reads the pdfs of camera vertex i only when
     // i ≥ minT and s + t − i ≤ maxS, and of light vertex i only when s + t − i ≤ maxT (the
-    // light side's t only grows). `connect` sets no other pdf, and the walks record no other.
-    bool readsCameraPdfs(int i, int s, int t) const { return i >= minT() && i < t && s + t - i <= maxS(); }
-    bool readsLightPdfs(int i, int s, int t) const { return i >= 0 && i < s && s + t - i <= maxT(); }
+    // light side's t only grows). With merges, a merge may be enabled at any vertex: every pdf is
+    // read. `connect` sets no other pdf, and the walks record no other.
+    bool readsCameraPdfs(int i, int s, int t) const {
+        if (uniqueStrategy()) return false;
+        return i < t && (merges() ? i >= 1 : i >= minT() && s + t - i <= maxS());
+    }
+    bool readsLightPdfs(int i, int s, int t) const {
+        if (uniqueStrategy()) return false;
+        return i >= 0 && i < s && (merges() || s + t - i <= maxT());
+    }
     // What that leaves the walks to record. Camera vertex i's pdfs are read by (s, t) = (0, i+1)
     // when maxS ≥ 1 -- a non-zero contribution only if the vertex lies on an emitter -- and by
     // some (s ≥ 1, t) or (s, t ≥ i+2) only when maxS ≥ 2. Light vertex i's are read by (i+1, 1)
     // and beyond when maxT ≥ 2; nothing plays the part of s = 0 (t = 0 is never enabled).
     WalkPdfs cameraWalkPdfs() const {
+        if (uniqueStrategy()) return WalkPdfs::None;
+        if (merges()) return WalkPdfs::All;
         return maxS() >= 2 ? WalkPdfs::All : maxS() == 1 ? WalkPdfs::AtEmitters : WalkPdfs::None;
     }
-    WalkPdfs lightWalkPdfs() const { return maxT() >= 2 ? WalkPdfs::All : WalkPdfs::None; }
+    WalkPdfs lightWalkPdfs() const {
+        if (uniqueStrategy()) return WalkPdfs::None;
+        return merges() || maxT() >= 2 ? WalkPdfs::All : WalkPdfs::None;
+    }
 
 private:
     static constexpr int kUnbounded = 1 << 20;
@@ -105,14 +143,22 @@ struct MisWeight {
 
 // What a weight depends on besides the path: the heuristic, the strategies the integrator enables,
 // and the roulette its walks play (each strategy's pdf includes its walks' continuation factors).
+// With merges, also the pass's merge factor η = π r² N_L: a merge at x_j has the pdf of the
+// connection with x_j on the camera side times x_j's pdf from the light side times η (merge.h).
 struct MisContext {
     MisHeuristic heuristic = MisHeuristic::Power;
     StrategySet strategies;
     Roulette roulette;
+    float mergeEta = 0;
 };
 
-// Weight of strategy (s, t) for the path light[0..s) + camera[0..t) reversed.
+// Weight of connection (s, t) for the path light[0..s) + camera[0..t) reversed.
 MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                     const Junction& junction, const MisContext& mis);
+// Weight of the merge of light[s−1] with camera[t−1] (s, t ≥ 2) for the path light[0..s−1) +
+// camera[0..t) reversed, of k = s + t − 2 segments: camera[t−1] stands for the merged vertex.
+// `junction` is that of the connection (s−1, t) joining light[s−2] to camera[t−1] (merge.cpp).
+MisWeight mergeWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
+                      const Junction& junction, const MisContext& mis);
 
 }  // namespace tripath

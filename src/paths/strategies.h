@@ -1,6 +1,7 @@
-// Every enabled strategy over one pair of subpaths: the loop all three integrators share.
+// Every enabled strategy over one pair of subpaths, and every merge of a camera subpath with the
+// pass's light vertices: the loops all integrators share.
 //
-// PT, LT and BDPT differ only in the subpaths they build and the strategies they switch on
+// The integrators differ only in the subpaths they build and the strategies they switch on
 // (DESIGN.md §1): PT passes an empty light subpath, LT a camera subpath of the sensor alone.
 // Strategy s = 1 always uses an emitter point sampled afresh (next-event estimation), so PT has
 // it without a light subpath; its pdf is the same as that of a light subpath's first vertex.
@@ -9,6 +10,8 @@
 
 #include "geometry/rng.h"
 #include "paths/connect.h"
+#include "paths/light_store.h"
+#include "paths/merge.h"
 #include "paths/walk.h"
 
 namespace tripath {
@@ -19,10 +22,10 @@ inline Connection connectNextEvent(const Scene& scene, Rng& rng, const Subpath& 
     return connect(scene, std::span<const Vertex>(&y0, 1), 1, camera, t, mis);
 }
 
-// Calls sink(s, t, connection) for each enabled (s, t) with 1 ≤ k = s + t − 1 ≤ maxDepth and a
-// non-zero contribution.
+// Calls sink(strategy, connection) for each enabled (s, t) with 1 ≤ k = s + t − 1 ≤ maxDepth and
+// a non-zero contribution.
 template <class Sink>
-void evaluateStrategies(const Scene& scene, const Subpath& light, const Subpath& camera, Rng& rng, int maxDepth,
+void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, const Subpath& camera, Rng& rng, int maxDepth,
                         const MisContext& mis, Sink&& sink) {
     const int nl = static_cast<int>(light.size()), nc = static_cast<int>(camera.size());
     for (int t = 1; t <= nc; ++t) {
@@ -32,8 +35,24 @@ void evaluateStrategies(const Scene& scene, const Subpath& light, const Subpath&
             // Initialised from the call rather than assigned: no copy of the Connection.
             const Connection c = s == 1 ? connectNextEvent(scene, rng, camera, t, mis)
                                         : connect(scene, light, s, camera, t, mis);
-            if (!isBlack(c.unweighted)) sink(s, t, c);
+            if (!isBlack(c.unweighted)) sink(Strategy{s, t}, c);
         }
+    }
+}
+
+// Calls sink(strategy, merge) for each merge of a non-delta camera vertex z_{t−1} (t ≥ 2) with a
+// light vertex the search finds within its radius, with k = s + t − 2 ≤ maxDepth and a non-zero
+// contribution, in a fixed order.
+template <class Sink>
+void evaluateMerges(const Scene& scene, const LightVertexSearch& search, const Subpath& camera, int maxDepth,
+                    const MisContext& mis, Sink&& sink) {
+    for (int t = 2; t <= static_cast<int>(camera.size()) && t <= maxDepth; ++t) {
+        if (camera[t - 1].delta) continue;
+        search.forEachWithin(camera[t - 1].p, [&](std::span<const Vertex> light, int s) {
+            if (s + t - 2 > maxDepth) return;
+            const Connection c = merge(scene, light, s, camera, t, mis);
+            if (!isBlack(c.unweighted)) sink(Strategy{s, t, true}, c);
+        });
     }
 }
 

@@ -64,7 +64,7 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
         if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0))
             recordPdfs(scene, path, v, mode);
         path.push_back(v);
-        if (path.size() == maxVertices) return;
+        if (path.size() == maxVertices || (mode == TransportMode::Radiance && settings.cameraUntilNonDelta && !v.delta)) return;
 
         const Vec3 wo = normalize(path[path.size() - 2].p - v.p);
         if (!sidesAgree(v, wo)) return;  // arrived through the surface's shading hemisphere: leak mask

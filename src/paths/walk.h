@@ -11,6 +11,7 @@ namespace tripath {
 struct WalkSettings {
     int maxDepth = 16;  // longest path in segments: camera subpaths get ≤ maxDepth+1 vertices, light ≤ maxDepth
     int rrDepth = 3;    // Russian roulette once a subpath has this many vertices (roulette.h)
+    bool cameraUntilNonDelta = false;  // end camera walks at their first vertex that scatters through no delta lobe
 };
 
 // The sensor endpoint z0 of every camera subpath.

@@ -1,0 +1,30 @@
+// bpm — bidirectional photon mapping (Vorba 2011; the merging half of VCM).
+//
+// At every non-delta camera vertex, merges with every stored light vertex of the pass within the
+// merge radius (paths/merge.h); emitters the camera walk hits count through s = 0. MIS weighs the
+// merges at the different vertices of a path, and s = 0, against each other: no shadow-ray
+// connections at all. Parameters: --max-depth, --rr-depth, --mis, --radius or --radius-factor,
+// --alpha. Biased for a fixed radius; consistent for α < 1. Direct light comes from merges alone,
+// so it is noisier than any method with next-event estimation.
+#include "integrators/integrator.h"
+
+namespace tripath {
+
+class BidirectionalPhotonMapping final : public Integrator {
+public:
+    using Integrator::Integrator;
+    std::string name() const override { return "bpm"; }
+    StrategySet strategies() const override { return {StrategySet::Kind::PhotonMapping}; }
+    void sample(const Scene& scene, const Pass& pass, int, Vec2 raster, Rng& rng, PathBuffers& paths,
+                ContributionSink& sink) const override {
+        cameraSubpath(scene, raster, rng, settings().walk, strategies().cameraWalkPdfs(), paths.camera);
+        connectAll(scene, pass, {}, paths.camera, rng, sink);
+        mergeAll(scene, pass, paths.camera, sink);
+    }
+};
+
+std::unique_ptr<Integrator> makeBidirectionalPhotonMapping(const IntegratorSettings& s) {
+    return std::make_unique<BidirectionalPhotonMapping>(s);
+}
+
+}  // namespace tripath

@@ -1,0 +1,49 @@
+#include "integrators/light_phase.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "paths/kernels.h"
+
+namespace tripath {
+
+namespace {
+constexpr size_t kChunk = 1024;  // light paths per task: enough work to amortise the task, small enough to balance
+}
+
+Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
+                     StreamDomain cameraDomain) {
+    Pass pass;
+    pass.index = index;
+    const float radius = integrator.mergeRadius(scene, index);
+    pass.mis = integrator.misContext(scene, radius);
+    search_.reset();
+    store_.clear();
+    if (!integrator.hasLightPhase()) return pass;
+
+    const uint64_t paths = static_cast<uint64_t>(lightPathsPerPass(scene.camera()));
+    const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
+    const WalkPdfs pdfs = integrator.strategies().lightWalkPdfs();
+    const WalkSettings& walk = integrator.settings().walk;
+    chunks_.resize((paths + kChunk - 1) / kChunk);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks_.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+        thread_local Subpath path;
+        for (size_t c = r.begin(); c < r.end(); ++c) {
+            chunks_[c].clear();
+            for (uint64_t i = c * kChunk; i < std::min(paths, (c + 1) * kChunk); ++i) {
+                Rng rng(seed, domain, index * paths + i);
+                lightSubpath(scene, rng, walk, pdfs, path);
+                chunks_[c].append(path);
+            }
+        }
+    });
+    for (const LightStore& chunk : chunks_) store_.append(chunk);
+    pass.light = &store_;
+    if (radius > 0) {
+        search_.emplace(store_, radius);
+        pass.search = &*search_;
+    }
+    return pass;
+}
+
+}  // namespace tripath

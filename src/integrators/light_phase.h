@@ -1,0 +1,33 @@
+// The light phase of a pass: before any camera sample, trace the pass's N_L light subpaths
+// (lightPathsPerPass), store them, and index their vertices for merging (DESIGN.md §1.1).
+//
+// Light path i of pass p draws from its own stream (seed, light-path domain, p · N_L + i), and the
+// paths are traced in fixed chunks whose stores are joined in chunk order, so the store -- and
+// every image made from it -- is the same for any number of threads.
+#pragma once
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "integrators/integrator.h"
+
+namespace tripath {
+
+class LightPhase {
+public:
+    // Traces pass `index` for `integrator` (nothing if it has no light phase), in parallel in the
+    // calling thread's TBB arena, and returns what the pass's camera samples share. The Pass
+    // points into this object: it stays valid until the next run.
+    Pass run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed, StreamDomain cameraDomain);
+
+    const LightStore& store() const { return store_; }
+    // Bytes held by the store and the search (for bench/).
+    size_t bytes() const { return store_.bytes(); }
+
+private:
+    LightStore store_;
+    std::vector<LightStore> chunks_;
+    std::optional<LightVertexSearch> search_;
+};
+
+}  // namespace tripath

@@ -1,0 +1,37 @@
+// ppm — progressive photon mapping (Hachisuka, Ogaki, Jensen 2008), in its per-pass form with a
+// shrinking radius (Knaus and Zwicker 2011).
+//
+// The camera walk follows delta surfaces (mirrors, glass) to its first non-delta vertex and stops
+// there; that vertex merges with every stored light vertex of the pass within the merge radius
+// (paths/merge.h). Emitters seen directly or through deltas count through s = 0. Each path has
+// exactly one strategy, so there is nothing to weigh (--mis has no effect). Parameters:
+// --max-depth, --rr-depth, --radius or --radius-factor, --alpha. Biased for a fixed radius;
+// consistent for α < 1. All indirect light comes from the density estimate, blur included.
+#include "integrators/integrator.h"
+
+namespace tripath {
+
+class ProgressivePhotonMapping final : public Integrator {
+public:
+    explicit ProgressivePhotonMapping(IntegratorSettings s) : Integrator(firstHit(s)) {}
+    std::string name() const override { return "ppm"; }
+    StrategySet strategies() const override { return {StrategySet::Kind::FirstHitMerging}; }
+    void sample(const Scene& scene, const Pass& pass, int, Vec2 raster, Rng& rng, PathBuffers& paths,
+                ContributionSink& sink) const override {
+        cameraSubpath(scene, raster, rng, settings().walk, strategies().cameraWalkPdfs(), paths.camera);
+        connectAll(scene, pass, {}, paths.camera, rng, sink);
+        mergeAll(scene, pass, paths.camera, sink);
+    }
+
+private:
+    static IntegratorSettings firstHit(IntegratorSettings s) {
+        s.walk.cameraUntilNonDelta = true;
+        return s;
+    }
+};
+
+std::unique_ptr<Integrator> makeProgressivePhotonMapping(const IntegratorSettings& s) {
+    return std::make_unique<ProgressivePhotonMapping>(s);
+}
+
+}  // namespace tripath

@@ -1,0 +1,32 @@
+// vcm — vertex connection and merging (Georgiev, Křivánek, Davidovič, Slusallek 2012).
+//
+// Everything bdpt does -- every connection (s, t) of the camera subpath with the pass's light
+// subpath of the same index -- and, at every non-delta camera vertex, a merge with every stored
+// light vertex of the pass within the merge radius (paths/merge.h). One MIS weighs connections and
+// merges together (paths/mis.h), so merging takes over where connections are poor: caustics seen
+// through mirrors or glass (specular-diffuse-specular paths), which no connection can sample.
+// Parameters: --max-depth, --rr-depth, --mis, and the radius schedule --radius or
+// --radius-factor with --alpha (integrator.h). Biased for a fixed radius (α = 1); consistent for
+// α < 1, the bias shrinking with the radius.
+#include "integrators/integrator.h"
+
+namespace tripath {
+
+class VertexConnectionMerging final : public Integrator {
+public:
+    using Integrator::Integrator;
+    std::string name() const override { return "vcm"; }
+    StrategySet strategies() const override { return {StrategySet::Kind::VertexMerging}; }
+    void sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
+                ContributionSink& sink) const override {
+        cameraSubpath(scene, raster, rng, settings().walk, strategies().cameraWalkPdfs(), paths.camera);
+        connectAll(scene, pass, pass.light->path(pixel), paths.camera, rng, sink);
+        mergeAll(scene, pass, paths.camera, sink);
+    }
+};
+
+std::unique_ptr<Integrator> makeVertexMerging(const IntegratorSettings& s) {
+    return std::make_unique<VertexConnectionMerging>(s);
+}
+
+}  // namespace tripath
