@@ -25,6 +25,7 @@ struct RenderRequest {
     MisHeuristic mis = MisHeuristic::Power;
     int threads = 0;
     FilmLayers layers;
+    MergeSettings merge;
 };
 
 // Renders a scene built by the caller (at r.width x r.height).
@@ -33,6 +34,7 @@ inline RenderResult renderScene(const Scene& scene, const RenderRequest& r) {
     is.walk.maxDepth = r.maxDepth;
     is.walk.rrDepth = r.rrDepth;
     is.mis = r.mis;
+    is.merge = r.merge;
     const auto integrator = makeIntegrator(r.integrator, is);
     RenderSettings rs;
     rs.spp = r.spp;

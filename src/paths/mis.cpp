@@ -125,9 +125,17 @@ Competition compete(std::span<const Vertex> light, int s, std::span<const Vertex
 
 }  // namespace
 
+// FirstHitMerging's one strategy per path: s = 0 or the merge at z_{t−1}, for a camera walk that
+// reached z_{t−1} through deltas alone (its walks stop there; this keeps the weight right for any caller).
+MisWeight firstHitWeight(std::span<const Vertex> camera, int t) {
+    for (int i = 1; i < t - 1; ++i)
+        if (!camera[i].delta) return {0.0f, false};
+    return {1.0f, false};
+}
+
 MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                     const Junction& junction, const MisContext& mis) {
-    if (mis.strategies.uniqueStrategy()) return {1.0f, false};
+    if (mis.strategies.uniqueStrategy()) return firstHitWeight(camera, t);
     const Competition c = compete(light, s, camera, t, junction, mis, true);
     if (!std::isfinite(c.sum)) return {0.0f, true};
     return {1.0f / c.sum, false};
@@ -135,7 +143,7 @@ MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex
 
 MisWeight mergeWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                       const Junction& junction, const MisContext& mis) {
-    if (mis.strategies.uniqueStrategy()) return {1.0f, false};
+    if (mis.strategies.uniqueStrategy()) return firstHitWeight(camera, t);
     // The reference: the connection (s−1, t) that holds the merged vertex on the camera side,
     // counted if it is enabled and possible (z_{t−1} is not delta, or there were no merge).
     const int k = s + t - 2;
