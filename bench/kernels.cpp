@@ -243,17 +243,33 @@ SyntheticPath syntheticPath(int s, int t, Rng& rng) {
     return p;
 }
 
-void runMis(benchmark::State& state, int k, MisHeuristic h, StrategySet::Kind kind) {
-    // BDPT: the middle split, every strategy enabled. PT: next-event estimation (s = 1, t = k),
-    // the connection pt makes at every bounce; its loop walks the same k vertices.
-    const int s = kind == StrategySet::Kind::PathTracing ? 1 : (k + 1) / 2, t = k + 1 - s;
+struct MisSeries {
+    MisHeuristic heuristic;
+    StrategySet::Kind kind;
+    bool runningSums = false;  // the O(1) form (mis.h): the vertices carry recorded sums
+    bool merge = false;        // the weight of a merge of y_{s−1} with z_{t−1} (vcm) instead of a connection
+};
+
+void runMis(benchmark::State& state, int k, MisSeries series) {
+    // BDPT and VCM: the middle split, every strategy enabled. PT: next-event estimation (s = 1,
+    // t = k), the connection pt makes at every bounce; its loop walks the same k vertices. A merge
+    // of s light and t camera vertices has k = s + t − 2.
+    const bool pt = series.kind == StrategySet::Kind::PathTracing;
+    const int s = pt ? 1 : (k + 1) / 2 + (series.merge ? 1 : 0), t = k + (series.merge ? 2 : 1) - s;
     constexpr size_t kPaths = 64;
     std::vector<SyntheticPath> paths;
     Rng rng = testRng(static_cast<uint64_t>(k));
-    for (size_t i = 0; i < kPaths; ++i) paths.push_back(syntheticPath(s, t, rng));
-    const MisContext mis{h, {kind}, Roulette{}};  // roulette from the 3rd vertex, as rendered
+    MisContext mis{series.heuristic, {series.kind}, Roulette{}, 0.5f};  // roulette from the 3rd vertex, as rendered
+    mis.runningSums = series.runningSums;
+    for (size_t i = 0; i < kPaths; ++i) {
+        paths.push_back(syntheticPath(s, t, rng));
+        recordRunningSums(paths.back().light, true, mis);
+        recordRunningSums(paths.back().camera, false, mis);
+    }
     cycle(state, kPaths, [&](size_t i) {
-        MisWeight w = misWeight(paths[i].light, s, paths[i].camera, t, paths[i].junction, mis);
+        const SyntheticPath& p = paths[i];
+        MisWeight w = series.merge ? mergeWeight(p.light, s, p.camera, t, p.junction, mis)
+                                   : misWeight(p.light, s, p.camera, t, p.junction, mis);
         benchmark::DoNotOptimize(w);
     });
     state.counters["k"] = k;
@@ -313,18 +329,23 @@ const bool registered = [] {
     registerPathKernels();
 
     const int lengths[] = {2, 3, 4, 6, 8, 12, 16, 20, 24, 28, 32};
-    for (auto [h, hName] : {std::pair{MisHeuristic::Balance, "balance"}, std::pair{MisHeuristic::Power, "power"},
-                            std::pair{MisHeuristic::Uniform, "uniform"}})
+    using K = StrategySet::Kind;
+    const std::pair<const char*, MisSeries> misSeries[] = {
+        {"bdpt/balance", {MisHeuristic::Balance, K::Bidirectional}},
+        {"bdpt/power", {MisHeuristic::Power, K::Bidirectional}},
+        {"bdpt/uniform", {MisHeuristic::Uniform, K::Bidirectional}},
+        {"bdpt/balance/sums", {MisHeuristic::Balance, K::Bidirectional, true}},
+        {"bdpt/power/sums", {MisHeuristic::Power, K::Bidirectional, true}},
+        {"vcm/power", {MisHeuristic::Power, K::VertexMerging}},
+        {"vcm/power/sums", {MisHeuristic::Power, K::VertexMerging, true}},
+        {"vcm_merge/power", {MisHeuristic::Power, K::VertexMerging, false, true}},
+        {"vcm_merge/power/sums", {MisHeuristic::Power, K::VertexMerging, true, true}},
+        {"pt_nee/power", {MisHeuristic::Power, K::PathTracing}},
+    };
+    for (const auto& [name, series] : misSeries)
         for (int k : lengths)
-            benchmark::RegisterBenchmark((std::string("kernel/mis/bdpt/") + hName + "/k:" + std::to_string(k)).c_str(),
-                                         [k, h = h](benchmark::State& st) {
-                                             runMis(st, k, h, StrategySet::Kind::Bidirectional);
-                                         });
-    for (int k : lengths)
-        benchmark::RegisterBenchmark(("kernel/mis/pt_nee/power/k:" + std::to_string(k)).c_str(),
-                                     [k](benchmark::State& st) {
-                                         runMis(st, k, MisHeuristic::Power, StrategySet::Kind::PathTracing);
-                                     });
+            benchmark::RegisterBenchmark((std::string("kernel/mis/") + name + "/k:" + std::to_string(k)).c_str(),
+                                         [k, series = series](benchmark::State& st) { runMis(st, k, series); });
 
     const std::pair<int, int> strategies[] = {{0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 2}, {2, 3},
                                               {3, 3}, {4, 4}, {2, 1}, {3, 1}};

@@ -228,6 +228,59 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
     }
 }
 
+// The running sums (mis.h) give the weights the full O(k) walk gives: for every connection and for
+// every pairing of a light vertex with a camera vertex as a merge (the weight is defined for any
+// pair; the two computations must agree on all of them), on real subpaths up to 10 segments long,
+// for each summable set, both multiplicative heuristics, both merge factors, and roulette starting
+// at every depth from 1 to 4 (the sums must leave the unsettled roulette factors to the explicit
+// steps). Catches a running sum that misses a term, applies a roulette factor too early or late,
+// reads a pdf the junction redefines, or stops a step short.
+TEST(Mis, RunningSumsGiveTheWeightsOfTheFullWalk) {
+    constexpr int kMaxDepth = 10;
+    for (const SceneDesc& desc : oracleScenes()) {
+        const Scene scene(desc, 24, 24);
+        int checked = 0;
+        for (StrategySet set : kSets) {
+            if (!set.summable()) continue;
+            for (int rrDepth = 1; rrDepth <= 4; ++rrDepth)
+                for (float eta : etasOf(set))
+                    for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power}) {
+                        const MisContext full{h, set, Roulette{rrDepth}, eta};
+                        MisContext sums = full;
+                        sums.runningSums = true;
+                        ASSERT_TRUE(canUseRunningSums(sums));
+                        const WalkSettings ws{kMaxDepth, rrDepth};
+                        Subpath light, camera;
+                        for (int i = 0; i < 30; ++i) {
+                            Rng rng(17, static_cast<uint64_t>(StreamDomain::Test), i);
+                            const Vec2 raster{rng.uniform() * 24, rng.uniform() * 24};
+                            cameraSubpath(scene, raster, rng, ws, WalkPdfs::All, camera);
+                            lightSubpath(scene, rng, ws, WalkPdfs::All, light);
+                            recordRunningSums(camera, false, sums);
+                            recordRunningSums(light, true, sums);
+                            auto expectSame = [&](const Connection& a, const Connection& b, const char* what, int s, int t) {
+                                if (isBlack(a.unweighted)) return;
+                                ASSERT_NEAR(a.weight, b.weight, 1e-3 * std::max(1.0f, b.weight))
+                                    << desc.name << " " << what << " s=" << s << " t=" << t << " set=" << int(set.kind)
+                                    << " rr=" << rrDepth << " eta=" << eta << " h=" << int(h);
+                                ++checked;
+                            };
+                            for (int t = 1; t <= static_cast<int>(camera.size()); ++t)
+                                for (int s = 0; s <= static_cast<int>(light.size()); ++s) {
+                                    if (s + t < 2 || s == 1 || !set.enabled(s, t)) continue;
+                                    expectSame(connect(scene, light, s, camera, t, sums), connect(scene, light, s, camera, t, full),
+                                               "connection", s, t);
+                                    if (set.merges() && s >= 2 && t >= 2)
+                                        expectSame(merge(scene, light, s, camera, t, sums), merge(scene, light, s, camera, t, full),
+                                                   "merge", s, t);
+                                }
+                        }
+                    }
+        }
+        EXPECT_GT(checked, 300) << desc.name;
+    }
+}
+
 // ---- MIS on hand-made pdfs: deltas are flags, zeros are zeros ---------------------------------
 
 const Roulette kNoRoulette{1000};

@@ -15,7 +15,7 @@ public:
     StrategySet strategies() const override { return {StrategySet::Kind::Bidirectional}; }
     void sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
                 ContributionSink& sink) const override {
-        cameraSubpath(scene, raster, rng, settings().walk, strategies().cameraWalkPdfs(), paths.camera);
+        cameraWalk(scene, pass, raster, rng, paths.camera);
         connectAll(scene, pass, pass.light->path(pixel), paths.camera, rng, sink);
     }
 };

@@ -17,7 +17,7 @@ public:
     StrategySet strategies() const override { return {StrategySet::Kind::PhotonMapping}; }
     void sample(const Scene& scene, const Pass& pass, int, Vec2 raster, Rng& rng, PathBuffers& paths,
                 ContributionSink& sink) const override {
-        cameraSubpath(scene, raster, rng, settings().walk, strategies().cameraWalkPdfs(), paths.camera);
+        cameraWalk(scene, pass, raster, rng, paths.camera);
         connectAll(scene, pass, {}, paths.camera, rng, sink);
         mergeAll(scene, pass, paths.camera, sink);
     }

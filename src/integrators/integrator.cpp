@@ -34,7 +34,14 @@ float Integrator::mergeRadius(const Scene& scene, uint64_t index) const {
 
 MisContext Integrator::misContext(const Scene& scene, float radius) const {
     const float eta = radius > 0 ? mergeEta(radius, lightPathsPerPass(scene.camera())) : 0.0f;
-    return {settings_.mis, strategies(), Roulette{settings_.walk.rrDepth}, eta};
+    MisContext mis{settings_.mis, strategies(), Roulette{settings_.walk.rrDepth}, eta};
+    mis.runningSums = canUseRunningSums(mis);
+    return mis;
+}
+
+void Integrator::cameraWalk(const Scene& scene, const Pass& pass, Vec2 raster, Rng& rng, Subpath& camera) const {
+    cameraSubpath(scene, raster, rng, settings_.walk, strategies().cameraWalkPdfs(), camera);
+    recordRunningSums(camera, false, pass.mis);
 }
 
 }  // namespace tripath

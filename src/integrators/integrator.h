@@ -66,6 +66,9 @@ public:
     MisContext misContext(const Scene& scene, float radius) const;
 
 protected:
+    // The sample's camera subpath through raster position `raster`, with the MIS running sums of
+    // the pass's context where it keeps them.
+    void cameraWalk(const Scene& scene, const Pass& pass, Vec2 raster, Rng& rng, Subpath& camera) const;
     // Runs every enabled connection over the two subpaths into the sink.
     void connectAll(const Scene& scene, const Pass& pass, std::span<const Vertex> light, const Subpath& camera,
                     Rng& rng, ContributionSink& sink) const {

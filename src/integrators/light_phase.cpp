@@ -33,6 +33,7 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
             for (uint64_t i = c * kChunk; i < std::min(paths, (c + 1) * kChunk); ++i) {
                 Rng rng(seed, domain, index * paths + i);
                 lightSubpath(scene, rng, walk, pdfs, path);
+                recordRunningSums(path, true, pass.mis);
                 chunks_[c].append(path);
             }
         }

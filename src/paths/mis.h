@@ -38,10 +38,17 @@
 // across a chain is the chain measure's, and every strategy, merges included, crosses each chain
 // exactly once, so the chains' Jacobians still cancel from every ratio.
 //
-// Cost: O(k) per connection under BDPT. Paths here are short (Russian roulette, max depth), the
-// loop is a few multiplies per vertex with no ray casts, and it lets any subset of strategies be
-// enabled, which the running-sum form of Georgiev et al. cannot; bench/ measures it against path
-// length. The loops stop at the last strategy the set enables: one ratio for PT, none for LT.
+// Cost. The weight walks outward from the junction, one ratio per vertex: O(k) per connection.
+// The loops stop at the last strategy the set enables: one ratio for PT, none for LT. For the
+// unbounded sets (bdpt, vcm, bpm) under the balance or power heuristic the walk is cut short:
+// every term beyond the first few vertices is a product of ratios that depend on one subpath
+// alone, so each vertex can carry the sum of all of them from its subpath's start (misSum, the
+// running sums of Georgiev et al.'s "Implementing Vertex Connection and Merging", here in this
+// file's pdf terms), recorded once per subpath after its walk (recordRunningSums). The weight
+// then steps over the vertices whose pdfs the junction defines (two) and those whose roulette
+// factor depends on the other walk's length (up to --rr-depth), and takes the rest from the
+// vertex where it stopped: O(1) in the path length. The O(k) walk stays as the reference the
+// tests hold the running sums to, and serves the uniform heuristic and the bounded sets.
 #pragma once
 #include <span>
 #include <string>
@@ -87,6 +94,9 @@ struct StrategySet {
     bool merges() const { return kind == Kind::VertexMerging || kind == Kind::PhotonMapping || kind == Kind::FirstHitMerging; }
     // Every path FirstHitMerging samples, it samples with exactly one strategy: its weight is 1.
     bool uniqueStrategy() const { return kind == Kind::FirstHitMerging; }
+    // Whether the weights can use running sums (mis.h): every strategy beyond the junction is
+    // enabled or disabled by its vertex count on one side alone (all connections; or s = 0 only).
+    bool summable() const { return kind == Kind::Bidirectional || kind == Kind::VertexMerging || kind == Kind::PhotonMapping; }
 
     // The weight of (s, t) walks outward from the connection through strategies (s+t−i, i) on the
     // camera side and (i, s+t−i) on the light side, multiplying one pdf ratio per vertex, and needs
@@ -150,7 +160,18 @@ struct MisContext {
     StrategySet strategies;
     Roulette roulette;
     float mergeEta = 0;
+    // The subpaths carry running sums recorded for this context (recordRunningSums): weights in
+    // O(1). Only for a summable set under the balance or power heuristic.
+    bool runningSums = false;
 };
+
+// Whether a context may use running sums: the set is summable and the heuristic multiplicative.
+bool canUseRunningSums(const MisContext& mis);
+
+// Records misSum at each vertex of a finished subpath (a light subpath if `light`, else a camera
+// subpath), for the weights of context `mis`; a no-op unless mis.runningSums. Vertex i's sum needs
+// the pdfs recorded up to vertex i+2: the last two get none, and no weight reads them.
+void recordRunningSums(std::span<Vertex> path, bool light, const MisContext& mis);
 
 // Weight of connection (s, t) for the path light[0..s) + camera[0..t) reversed.
 MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,

@@ -27,6 +27,7 @@ struct Vertex {
     float pdfFwd = 0;      // area pdf from the vertex before it in its own subpath
     float pdfRev = 0;      // area pdf from the vertex after it (a walk from the other end)
     float continuation = 1;  // Russian roulette's q for a walk going on from here (roulette.h)
+    float misSum = 0;      // running sum of MIS terms from the subpath's start to here (mis.h)
     // Point light: a delta in position, so no path can hit it (strategy s = 0 is impossible).
     bool isDeltaLight() const { return kind == Kind::Emitter && lengthSquared(ng) == 0; }
     // Has an area (a surface, an area emitter), so shadow rays start off it.
