@@ -76,6 +76,9 @@ void run(const ReferenceCommand& c) {
     // (a reference written before tripath:streams existed drew from the render streams).
     o.domain = old ? streamDomain(*old) : StreamDomain::Reference;
     const auto scene = loadScene(o);
+    // A merging reference continues its radius schedule from the passes in the file (the pass
+    // index runs on): the schedule must be the same one.
+    if (old) requireSettings(*old, lightPhaseMetadata(o, *scene, *integrator), false);
 
     RenderSettings rs = renderSettings(o);
     rs.firstPass = old ? old->spp() : 0;  // fresh sample indices after the ones already in the file

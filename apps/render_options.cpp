@@ -124,6 +124,13 @@ Metadata renderMetadata(const RenderOptions& o, const Scene& scene, const Integr
             {"tripath:dropped-samples", std::to_string(r.droppedSamples)},
             {"tripath:guarded-weights", std::to_string(r.guardedWeights)},
             {"tripath:version", TRIPATH_VERSION}};
+    const Metadata light = lightPhaseMetadata(o, scene, integrator);
+    m.insert(m.end(), light.begin(), light.end());
+    return m;
+}
+
+Metadata lightPhaseMetadata(const RenderOptions& o, const Scene& scene, const Integrator& integrator) {
+    Metadata m;
     if (integrator.hasLightPhase())
         m.push_back({"tripath:light-paths-per-pass", fmt::format("{:.0f}", lightPathsPerPass(scene.camera()))});
     if (integrator.strategies().merges()) {

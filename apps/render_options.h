@@ -50,6 +50,9 @@ std::unique_ptr<Scene> loadScene(const RenderOptions& o);
 RenderSettings renderSettings(const RenderOptions& o);
 // The EXR metadata describing a finished render.
 Metadata renderMetadata(const RenderOptions& o, const Scene& scene, const Integrator& integrator, const RenderResult& r);
+// The part of it that describes the light phase: light paths per pass, and for the merging
+// integrators the first pass's radius in world units and alpha (the radius schedule).
+Metadata lightPhaseMetadata(const RenderOptions& o, const Scene& scene, const Integrator& integrator);
 
 // Ctrl-C: the first one asks the render loop to stop at the next pass (the image so far is
 // written); a second one exits at once.

@@ -122,6 +122,33 @@ TEST_F(Cli, NegativeBudgetsAreRefused) {
     expectRefused(render("--width 8 --height 8 --time -0.5 " + out()), "--time");
 }
 
+TEST_F(Cli, BadMergeRadiusSettingsAreRefused) {
+    const std::string vcm = "--integrator vcm --width 8 --height 8 --spp 1 ";
+    expectRefused(render(vcm + "--radius 0 " + out()), "--radius");
+    expectRefused(render(vcm + "--radius -1 " + out()), "--radius");
+    expectRefused(render(vcm + "--radius nan " + out()), "--radius");
+    expectRefused(render(vcm + "--radius-factor 0 " + out()), "--radius-factor");
+    expectRefused(render(vcm + "--radius-factor 2 " + out()), "--radius-factor");
+    expectRefused(render(vcm + "--alpha 0 " + out()), "--alpha");
+    expectRefused(render(vcm + "--alpha 1.5 " + out()), "--alpha");
+    expectRefused(render(vcm + "--radius 0.01 --radius-factor 0.01 " + out()), "--radius");
+}
+
+// A merging reference continues its radius schedule from the passes in the file, so adding
+// samples with another schedule would mix two different estimates: refused, and the file kept.
+TEST_F(Cli, AReferenceIsNotContinuedWithAnotherRadiusSchedule) {
+    const std::string ref = "reference --scene cornell --integrator vcm --width 8 --height 8 --spp 1 --out '" +
+                            path("ref.exr") + "' ";
+    ASSERT_EQ(run(ref).exitCode, 0);
+    EXPECT_EQ(run(ref).exitCode, 0) << "the same schedule adds samples";
+    const Outcome o = run(ref + "--alpha 0.5");
+    EXPECT_EQ(o.exitCode, 1);
+    EXPECT_NE(o.err.find("alpha"), std::string::npos) << o.err;
+    const Outcome r = run(ref + "--radius 0.5");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("radius"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, OutputInAMissingFolderIsRefusedBeforeRendering) {
     // A budget of hours: refusing must come before rendering, or this would time out.
     expectRefused(render("--spp 1000000 --width 4096 --height 4096 --out '" + path("missing/out.exr") + "'"),
