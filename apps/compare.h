@@ -20,6 +20,7 @@ struct CompareOptions {
     RenderOptions render;              // scene, size, depth, MIS, seed, threads and --time
     std::vector<std::string> methods;  // integrator names, in the order given
     std::string referencePath;         // empty: render one
+    std::string referenceIntegrator = "bdpt";  // the integrator that renders it
     int runs = 1;
     std::optional<Region> crop;
     std::string outDir;

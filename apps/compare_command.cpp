@@ -85,6 +85,7 @@ void validate(CompareCommand& c) {
     if (!(o.render.seconds > 0)) throw InputError("--time must be more than 0 seconds");
     if (o.runs < 1 || o.runs > 100) throw InputError(fmt::format("--runs must be between 1 and 100 (got {})", o.runs));
     o.methods = parseMethods(c.integrators);
+    makeIntegrator(o.referenceIntegrator, {});  // an unknown name is refused before anything renders
     o.crop = parseCrop(c.crop, o.render.width, o.render.height);
     if (!o.referencePath.empty() && !fs::exists(o.referencePath))
         throw InputError(fmt::format("cannot read reference '{}': file does not exist", o.referencePath));
@@ -154,13 +155,18 @@ void addCompareCommand(CLI::App& app) {
     // Every method gets the same time; a sample count would not be a fair budget across methods.
     cmd->remove_option(cmd->get_option("--spp"));
     cmd->get_option("--time")->required()->description("Wall-clock budget in seconds for each run of each integrator");
-    cmd->add_option("--integrators", c->integrators, "Comma-separated integrators to compare (pt, lt, bdpt)")
+    cmd->add_option("--integrators", c->integrators, "Comma-separated integrators to compare (pt, lt, bdpt, vcm, bpm, ppm)")
         ->capture_default_str();
     cmd->add_option("--reference", c->options.referencePath,
                     "Reference EXR of the same scene and size (see `tripath reference`, whose random streams are "
-                    "independent of every run's, whatever the seeds); without it, bdpt renders one for 10x --time "
-                    "into <out>/reference.exr. An image from `tripath render` whose seed one of the runs would "
-                    "reuse is refused: it would share their samples");
+                    "independent of every run's, whatever the seeds); without it, --reference-integrator renders one "
+                    "for 10x --time into <out>/reference.exr. An image from `tripath render` whose seed one of the "
+                    "runs would reuse is refused: it would share their samples");
+    cmd->add_option("--reference-integrator", c->options.referenceIntegrator,
+                    "The integrator that renders the reference when --reference is not given: one that can sample "
+                    "every path of the scene (vcm where bdpt cannot, e.g. caustics seen through glass under a point "
+                    "light)")
+        ->capture_default_str();
     cmd->add_option("--runs", c->options.runs,
                     "Independent runs per integrator (seeds seed, seed+1, ...); the chart shows their mean and "
                     "min-max band")

@@ -14,8 +14,8 @@ namespace tripath::app {
 
 namespace {
 
-// Without --reference, bdpt renders one for this many times the per-method budget. Its own
-// noise then adds about 1/10 of bdpt's error to every measurement: fine for ranking methods,
+// Without --reference, --reference-integrator (bdpt) renders one for this many times the per-method
+// budget. Its own noise then adds about 1/10 of that method's error to every measurement: fine for ranking methods,
 // and the message says how to do better.
 constexpr double kReferenceBudget = 10;
 
@@ -50,21 +50,23 @@ Reference readGivenReference(const CompareOptions& o) {
 
 Reference renderReference(const CompareOptions& o, const Scene& scene) {
     RenderOptions r = o.render;
-    r.integrator = "bdpt";
+    r.integrator = o.referenceIntegrator;
     r.seconds = kReferenceBudget * o.render.seconds;
     r.domain = StreamDomain::Reference;  // the reference streams: independent of every run
     const std::string file = (std::filesystem::path(o.outDir) / "reference.exr").string();
     std::cerr << fmt::format(
-        "no --reference: rendering one with bdpt for {:g} x {} = {} (seed {}, reference streams) into {}; its own "
-        "noise adds about 1/{:g} of bdpt's error to each measurement. For a cleaner one, see `tripath reference`.\n",
-        kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds), r.seed, file, kReferenceBudget);
+        "no --reference: rendering one with {} for {:g} x {} = {} (seed {}, reference streams) into {}; its own "
+        "noise adds about 1/{:g} of {}'s error to each measurement. For a cleaner one, see `tripath reference`.\n",
+        r.integrator, kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds), r.seed, file,
+        kReferenceBudget, r.integrator);
     const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
     RenderSettings rs = renderSettings(r);
-    rs.progress = progressReporter(rs, r.width, r.height, "reference bdpt " + r.scene);
+    const std::string label = "reference " + r.integrator + " " + r.scene;
+    rs.progress = progressReporter(rs, r.width, r.height, label);
     const RenderResult result = render(scene, *integrator, rs);
-    printSummary("reference bdpt " + r.scene, result, r.width, r.height);
+    printSummary(label, result, r.width, r.height);
     writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result));
-    return {result.image(), fmt::format("bdpt, {} spp, {:.0f} s", result.passes, result.seconds), file};
+    return {result.image(), fmt::format("{}, {} spp, {:.0f} s", r.integrator, result.passes, result.seconds), file};
 }
 
 }  // namespace

@@ -3,14 +3,15 @@
 #
 #   scripts/failure-table.sh [SECONDS] [SIZE]     defaults: 4 seconds per integrator, 128x128
 #
-# For each failure scene (src/geometry/failure_scenes.h) it runs `tripath compare`: a bdpt
-# reference rendered for 10x the time, then pt, lt and bdpt for SECONDS each (equal time). It
+# For each failure scene (src/geometry/failure_scenes.h) it runs `tripath compare`: a reference
+# rendered for 10x the time (by bdpt, or by vcm on the scenes with paths bdpt cannot sample),
+# then pt, lt, bdpt, vcm, bpm and ppm for SECONDS each (equal time). It
 # reads each method's final relMSE (and spp) from the compare's error.csv and writes:
 #   docs/failures.md          the table between its <!-- table:begin/end --> markers (the text
 #                             around them is written by hand and left alone); best in bold
-#   docs/images/failures.png  reference, pt, lt, bdpt per scene, each row scaled alike
+#   docs/images/failures.png  reference and every method per scene, each row scaled alike
 # The renders themselves stay in build/failures/<scene>/ (compare's report: index.html).
-# Runtime: 10 scenes x 13 x SECONDS plus start-up, about 10 minutes at the defaults. Timings
+# Runtime: 10 scenes x 16 x SECONDS plus start-up, about 11 minutes at the defaults. Timings
 # are wall-clock: run it on an otherwise idle machine, or the table measures the neighbours.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,7 +20,10 @@ size="${2:-128}"
 tripath="${TRIPATH:-build/tripath}"
 out=build/failures
 scenes=(caustic caustic-point sds sds-point door-ajar contact grazing degenerate degenerate-tiny degenerate-far)
-methods=(pt lt bdpt)
+methods=(pt lt bdpt vcm bpm ppm)
+# The reference's integrator: vcm where some light has no bdpt strategy (the caustic seen through
+# the pane), bdpt elsewhere (unbiased, and at least as good where it can sample every path).
+declare -A reference_integrator=([sds]=vcm [sds-point]=vcm)
 
 [ -x "$tripath" ] || { echo "error: $tripath not found: build first (scripts/build.sh) or set TRIPATH" >&2; exit 1; }
 mkdir -p "$out" docs/images
@@ -32,15 +36,16 @@ final() {
 
 table="$out/table.md"
 {
-  echo "| scene | pt | lt | bdpt |"
-  echo "|---|---|---|---|"
+  echo "| scene | reference | $(IFS='|'; echo "${methods[*]}" | sed 's/|/ | /g') |"
+  echo "|---|---|$(printf -- '---|%.0s' "${methods[@]}")"
 } >"$table"
 sheet=()
 for scene in "${scenes[@]}"; do
   dir="$out/$scene"
   rm -rf "$dir"
-  "$tripath" compare --scene "$scene" --time "$seconds" --width "$size" --height "$size" \
-    --out "$dir" 2>"$out/$scene.log" || { cat "$out/$scene.log" >&2; exit 1; }
+  refint="${reference_integrator[$scene]:-bdpt}"
+  "$tripath" compare --scene "$scene" --integrators "$(IFS=,; echo "${methods[*]}")" --reference-integrator "$refint" \
+    --time "$seconds" --width "$size" --height "$size" --out "$dir" 2>"$out/$scene.log" || { cat "$out/$scene.log" >&2; exit 1; }
   declare -A rel=() spp=()
   best=""
   for m in "${methods[@]}"; do
@@ -49,20 +54,21 @@ for scene in "${scenes[@]}"; do
     spp[$m]=$s
     if [ -z "$best" ] || awk -v a="$r" -v b="${rel[$best]}" 'BEGIN { exit !(a < b) }'; then best=$m; fi
   done
-  row="| \`$scene\` |"
+  row="| \`$scene\` | $refint |"
   for m in "${methods[@]}"; do
     cell=$(printf '%.3g (%s spp)' "${rel[$m]}" "${spp[$m]}")
     [ "$m" = "$best" ] && cell="**$cell**"
     row="$row $cell |"
   done
   echo "$row" >>"$table"
-  sheet+=("$dir/reference.exr" "$dir/pt.exr" "$dir/lt.exr" "$dir/bdpt.exr")
+  sheet+=("$dir/reference.exr")
+  for m in "${methods[@]}"; do sheet+=("$dir/$m.exr"); done
   echo "$row" >&2
 done
 
 # Shrunk 2x (box filter) so that the sheet stays small enough for the repository.
-"$tripath" montage "${sheet[@]}" --columns 4 --shrink 2 --out docs/images/failures.png \
-  --column-labels "reference,pt,lt,bdpt" --row-labels "$(IFS=,; echo "${scenes[*]}")"
+"$tripath" montage "${sheet[@]}" --columns $((${#methods[@]} + 1)) --shrink 2 --out docs/images/failures.png \
+  --column-labels "reference,$(IFS=,; echo "${methods[*]}")" --row-labels "$(IFS=,; echo "${scenes[*]}")"
 
 # Replace the generated block of docs/failures.md, keeping the hand-written text around it.
 note="relMSE against the reference after ${seconds} s per method at ${size}x${size} ($(date -u +%Y-%m-%d), $(nproc) cores); lower is better, the best of each row in bold."
