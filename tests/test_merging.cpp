@@ -24,23 +24,24 @@ using test::RenderRequest;
 TEST(PointGrid, FindsExactlyThePointsWithinTheRadius) {
     Rng rng(3, static_cast<uint64_t>(StreamDomain::Test), 0);
     for (float radius : {0.01f, 0.1f, 1.0f}) {
-        std::vector<Vec3> points;
+        std::vector<PointGrid<uint32_t>::Entry> points;
         for (int i = 0; i < 3000; ++i) {
             const float a = rng.uniform(), b = rng.uniform(), c = rng.uniform();
             // A cube of side 4 around −1000 and a tight cluster, plus grid-aligned points.
-            if (i % 3 == 0) points.push_back(Vec3(-1000.0f) + Vec3(4 * a, 4 * b, 4 * c));
-            else if (i % 3 == 1) points.push_back(Vec3(0.01f * a, 0.01f * b, 0.01f * c));
-            else points.push_back(Vec3(2 * radius * std::floor(8 * a), 2 * radius * std::floor(8 * b), 0.0f));
+            const uint32_t i32 = static_cast<uint32_t>(i);
+            if (i % 3 == 0) points.push_back({Vec3(-1000.0f) + Vec3(4 * a, 4 * b, 4 * c), i32});
+            else if (i % 3 == 1) points.push_back({Vec3(0.01f * a, 0.01f * b, 0.01f * c), i32});
+            else points.push_back({Vec3(2 * radius * std::floor(8 * a), 2 * radius * std::floor(8 * b), 0.0f), i32});
         }
-        points.push_back(Vec3(radius, 0, 0));  // exactly at distance r from the origin
-        const PointGrid grid(points, radius);
+        points.push_back({Vec3(radius, 0, 0), static_cast<uint32_t>(points.size())});  // exactly at distance r from the origin
+        const PointGrid<uint32_t> grid(points, radius);
         std::vector<Vec3> queries = {Vec3(0.0f), Vec3(-998, -998, -998), Vec3(2 * radius, 2 * radius, 0)};
-        for (int q = 0; q < 200; ++q) queries.push_back(points[(q * 37) % points.size()] + Vec3(0.5f * radius * rng.uniform()));
+        for (int q = 0; q < 200; ++q) queries.push_back(points[(q * 37) % points.size()].p + Vec3(0.5f * radius * rng.uniform()));
         for (const Vec3 q : queries) {
             std::vector<int> found(points.size(), 0);
             grid.forEachWithin(q, [&](uint32_t i) { ++found[i]; });
             for (size_t i = 0; i < points.size(); ++i) {
-                const bool inside = lengthSquared(points[i] - q) <= radius * radius;
+                const bool inside = lengthSquared(points[i].p - q) <= radius * radius;
                 ASSERT_EQ(found[i], inside ? 1 : 0) << "radius " << radius << " point " << i;
             }
         }
@@ -48,7 +49,7 @@ TEST(PointGrid, FindsExactlyThePointsWithinTheRadius) {
 }
 
 TEST(PointGrid, EmptyFindsNothing) {
-    const PointGrid grid({}, 0.5f);
+    const PointGrid<uint32_t> grid({}, 0.5f);
     int n = 0;
     grid.forEachWithin(Vec3(0.0f), [&](uint32_t) { ++n; });
     EXPECT_EQ(n, 0);

@@ -7,9 +7,13 @@
 // contiguous run of points. A kd-tree (nanoflann) would adapt to uneven density, but its build
 // sorts and its queries walk a tree; with one fixed radius the grid does strictly less work.
 // Hash collisions only add candidates, which the distance test removes; a bucket reached from two
-// of those cells is read once. Points keep their input order within a bucket, so queries
-// report them in a fixed order: sums over them do not depend on threads.
+// of those cells is read once. Each point is stored with its payload (what the caller needs to
+// use it), so a query touches nothing outside the runs it reads. Points keep their input order
+// within a bucket, so queries report them in a fixed order: sums over them do not depend on threads.
 #pragma once
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -18,13 +22,37 @@
 
 namespace tripath {
 
+template <class Payload>
 class PointGrid {
 public:
-    // Indexes `points` (copied) for queries of radius `radius` > 0.
-    PointGrid(std::span<const Vec3> points, float radius);
+    struct Entry {
+        Vec3 p;
+        Payload payload;
+    };
+
+    // Indexes `entries` for queries of radius `radius` > 0.
+    PointGrid(std::span<const Entry> entries, float radius) : radius_(radius), invCell_(0.5f / radius) {
+        if (entries.empty()) return;
+        // About one bucket per point: short runs without a table much larger than the points.
+        const uint32_t buckets = std::bit_ceil(static_cast<uint32_t>(entries.size()));
+        mask_ = buckets - 1;
+        std::vector<uint32_t> bucket(entries.size());
+        begin_.assign(size_t(buckets) + 1, 0);
+        for (size_t i = 0; i < entries.size(); ++i) {
+            const Vec3 p = entries[i].p;
+            bucket[i] = bucketOf(cellCoordinate(p.x), cellCoordinate(p.y), cellCoordinate(p.z));
+            ++begin_[bucket[i] + 1];
+        }
+        for (uint32_t b = 0; b < buckets; ++b) begin_[b + 1] += begin_[b];
+        sorted_.resize(entries.size());
+        std::vector<uint32_t> next(begin_.begin(), begin_.end() - 1);
+        for (size_t i = 0; i < entries.size(); ++i) sorted_[next[bucket[i]]++] = entries[i];
+    }
 
     float radius() const { return radius_; }
-    // Calls f(i) for every input point i with |points[i] − p|² ≤ r², in a fixed order.
+    size_t bytes() const { return begin_.capacity() * sizeof(uint32_t) + sorted_.capacity() * sizeof(Entry); }
+
+    // Calls f(payload) for every point within distance r of p (|q − p|² ≤ r²), in a fixed order.
     template <class F>
     void forEachWithin(Vec3 p, F&& f) const {
         if (sorted_.empty()) return;
@@ -33,21 +61,41 @@ public:
         const float r2 = radius_ * radius_;
         for (int b = 0; b < n; ++b)
             for (uint32_t j = begin_[buckets[b]]; j < begin_[buckets[b] + 1]; ++j)
-                if (lengthSquared(sorted_[j] - p) <= r2) f(index_[j]);
+                if (lengthSquared(sorted_[j].p - p) <= r2) f(sorted_[j].payload);
     }
 
 private:
-    // The distinct buckets of the cells the ball around p touches (2×2×2; 3 on an axis only
-    // where rounding puts p ± r on either side of two cell boundaries).
-    int bucketsAround(Vec3 p, uint32_t out[27]) const;
-    uint32_t bucketOf(int64_t x, int64_t y, int64_t z) const;
-    int64_t cellCoordinate(float v) const;
+    int64_t cellCoordinate(float v) const { return static_cast<int64_t>(std::floor(v * invCell_)); }
+
+    uint32_t bucketOf(int64_t x, int64_t y, int64_t z) const {
+        // Teschner et al. 2003's spatial hash: three large primes, xor-ed.
+        const uint64_t h = (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u);
+        return static_cast<uint32_t>(h ^ (h >> 32)) & mask_;
+    }
+
+    // The distinct buckets of the cells the ball around p touches: cells are 2r wide, so the
+    // ball's box [p − r, p + r] spans two cells per axis (three only if rounding stretches it
+    // across two boundaries).
+    int bucketsAround(Vec3 p, uint32_t out[27]) const {
+        int64_t lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = cellCoordinate(p[a] - radius_);
+            hi[a] = std::min(lo[a] + 2, cellCoordinate(p[a] + radius_));
+        }
+        int n = 0;
+        for (int64_t z = lo[2]; z <= hi[2]; ++z)
+            for (int64_t y = lo[1]; y <= hi[1]; ++y)
+                for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+                    const uint32_t b = bucketOf(x, y, z);
+                    if (std::find(out, out + n, b) == out + n) out[n++] = b;
+                }
+        return n;
+    }
 
     float radius_, invCell_;
-    uint32_t mask_ = 0;              // bucket count − 1 (a power of two)
-    std::vector<uint32_t> begin_;    // bucket b holds sorted_[begin_[b] .. begin_[b+1])
-    std::vector<Vec3> sorted_;       // the points, grouped by bucket
-    std::vector<uint32_t> index_;    // their input indices
+    uint32_t mask_ = 0;            // bucket count − 1 (a power of two)
+    std::vector<uint32_t> begin_;  // bucket b holds sorted_[begin_[b] .. begin_[b+1])
+    std::vector<Entry> sorted_;    // the points with their payloads, grouped by bucket
 };
 
 }  // namespace tripath

@@ -19,23 +19,18 @@ void LightStore::clear() {
 }
 
 LightVertexSearch::LightVertexSearch(const LightStore& store, float radius)
-    : store_(store), candidates_(mergeable(store)), grid_(positions(store, candidates_), radius) {}
+    : store_(store), grid_(mergeable(store), radius) {}
 
-std::vector<LightVertexSearch::Candidate> LightVertexSearch::mergeable(const LightStore& store) {
-    std::vector<Candidate> out;
+std::vector<LightVertexSearch::Grid::Entry> LightVertexSearch::mergeable(const LightStore& store) {
+    std::vector<Grid::Entry> out;
+    const Vertex* base = store.vertices().data();
     for (size_t i = 0; i < store.paths(); ++i) {
         const std::span<const Vertex> path = store.path(i);
         for (size_t j = 1; j < path.size(); ++j)
-            if (!path[j].delta) out.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(j + 1)});
+            if (!path[j].delta)
+                out.push_back({path[j].p, {static_cast<uint32_t>(&path[j] - base), static_cast<uint32_t>(j + 1)}});
     }
     return out;
-}
-
-std::vector<Vec3> LightVertexSearch::positions(const LightStore& store, const std::vector<Candidate>& candidates) {
-    std::vector<Vec3> p;
-    p.reserve(candidates.size());
-    for (const Candidate& c : candidates) p.push_back(store.path(c.path)[c.s - 1].p);
-    return p;
 }
 
 }  // namespace tripath

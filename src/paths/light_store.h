@@ -42,26 +42,26 @@ class LightVertexSearch {
 public:
     LightVertexSearch(const LightStore& store, float radius);
     float radius() const { return grid_.radius(); }
+    size_t bytes() const { return grid_.bytes(); }
     // Calls f(prefix, s) for each mergeable light vertex within the radius of p, in a fixed order:
     // `prefix` is its light subpath up to and including it, which is y_{s−1} of that prefix.
     template <class F>
     void forEachWithin(Vec3 p, F&& f) const {
-        grid_.forEachWithin(p, [&](uint32_t i) {
-            const Candidate& c = candidates_[i];
-            const std::span<const Vertex> path = store_.path(c.path);
-            f(path.first(c.s), static_cast<int>(c.s));
+        grid_.forEachWithin(p, [&](Candidate c) {
+            const Vertex* y = store_.vertices().data() + c.vertex;
+            f(std::span<const Vertex>(y + 1 - c.s, c.s), static_cast<int>(c.s));
         });
     }
 
 private:
     struct Candidate {
-        uint32_t path, s;
+        uint32_t vertex;  // its index in the store's flat array
+        uint32_t s;       // its index in its light subpath, plus one
     };
-    static std::vector<Candidate> mergeable(const LightStore& store);
-    static std::vector<Vec3> positions(const LightStore& store, const std::vector<Candidate>& candidates);
+    using Grid = PointGrid<Candidate>;
+    static std::vector<Grid::Entry> mergeable(const LightStore& store);
     const LightStore& store_;
-    std::vector<Candidate> candidates_;
-    PointGrid grid_;
+    Grid grid_;
 };
 
 }  // namespace tripath
