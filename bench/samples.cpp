@@ -112,8 +112,8 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
                     }
                     w.rays += threadRayCounts() - before;
                 });
-                store.clear();
-                for (const Subpath& path : lightPaths) store.append(path);
+                store.reset(lightPaths.size());
+                for (size_t i = 0; i < lightPaths.size(); ++i) store.chunk(i / LightStore::kPathsPerChunk).append(lightPaths[i]);
                 pass.light = &store;
             }
             tbb::parallel_for(tbb::blocked_range<int>(0, kBlockPixels, kBlock), [&](const tbb::blocked_range<int>& r) {

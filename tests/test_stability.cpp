@@ -171,7 +171,7 @@ TEST(FailureScenes, EverySampleIsFinite) {
             size_t vertices = 0;
             for (int p = 0; p < kSamples; ++p) {
                 const Pass pass = lightPhase.run(scene, *integrator, p, 7, StreamDomain::Test);
-                vertices += lightPhase.store().vertices().size();
+                vertices += lightPhase.store().vertices();
                 for (int pixel = 0; pixel < kSize * kSize; ++pixel) {
                     Rng rng(7, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(p * kSize * kSize + pixel));
                     const Vec2 raster{(pixel % kSize) + rng.uniform(), (pixel / kSize) + rng.uniform()};

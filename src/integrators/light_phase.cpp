@@ -7,10 +7,6 @@
 
 namespace tripath {
 
-namespace {
-constexpr size_t kChunk = 1024;  // light paths per task: enough work to amortise the task, small enough to balance
-}
-
 Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
                      StreamDomain cameraDomain) {
     Pass pass;
@@ -18,27 +14,27 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     const float radius = integrator.mergeRadius(scene, index);
     pass.mis = integrator.misContext(scene, radius);
     search_.reset();
-    store_.clear();
+    store_.reset(0);
     if (!integrator.hasLightPhase()) return pass;
 
     const uint64_t paths = static_cast<uint64_t>(lightPathsPerPass(scene.camera()));
     const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
     const WalkPdfs pdfs = integrator.strategies().lightWalkPdfs();
     const WalkSettings& walk = integrator.settings().walk;
-    chunks_.resize((paths + kChunk - 1) / kChunk);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks_.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+    store_.reset(paths);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, store_.chunks(), 1), [&](const tbb::blocked_range<size_t>& r) {
         thread_local Subpath path;
         for (size_t c = r.begin(); c < r.end(); ++c) {
-            chunks_[c].clear();
-            for (uint64_t i = c * kChunk; i < std::min(paths, (c + 1) * kChunk); ++i) {
+            LightStore::Chunk& chunk = store_.chunk(c);
+            const uint64_t first = c * LightStore::kPathsPerChunk;
+            for (uint64_t i = first; i < std::min(paths, first + LightStore::kPathsPerChunk); ++i) {
                 Rng rng(seed, domain, index * paths + i);
                 lightSubpath(scene, rng, walk, pdfs, path);
                 recordRunningSums(path, true, pass.mis);
-                chunks_[c].append(path);
+                chunk.append(path);
             }
         }
     });
-    for (const LightStore& chunk : chunks_) store_.append(chunk);
     pass.light = &store_;
     if (radius > 0) {
         search_.emplace(store_, radius);

@@ -2,8 +2,8 @@
 // (lightPathsPerPass), store them, and index their vertices for merging (DESIGN.md §1.1).
 //
 // Light path i of pass p draws from its own stream (seed, light-path domain, p · N_L + i), and the
-// paths are traced in fixed chunks whose stores are joined in chunk order, so the store -- and
-// every image made from it -- is the same for any number of threads.
+// paths are traced in the store's fixed chunks, one task per chunk, so the store -- and every
+// image made from it -- is the same for any number of threads.
 #pragma once
 #include <memory>
 #include <optional>
@@ -21,12 +21,9 @@ public:
     Pass run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed, StreamDomain cameraDomain);
 
     const LightStore& store() const { return store_; }
-    // Bytes held by the store and the search (for bench/).
-    size_t bytes() const { return store_.bytes(); }
 
 private:
     LightStore store_;
-    std::vector<LightStore> chunks_;
     std::optional<LightVertexSearch> search_;
 };
 

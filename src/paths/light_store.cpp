@@ -2,33 +2,33 @@
 
 namespace tripath {
 
-void LightStore::append(std::span<const Vertex> path) {
-    vertices_.insert(vertices_.end(), path.begin(), path.end());
-    begin_.push_back(static_cast<uint32_t>(vertices_.size()));
+void LightStore::reset(size_t paths) {
+    paths_ = paths;
+    chunks_.resize((paths + kPathsPerChunk - 1) / kPathsPerChunk);
+    for (Chunk& c : chunks_) c.clear();
 }
 
-void LightStore::append(const LightStore& other) {
-    const uint32_t offset = static_cast<uint32_t>(vertices_.size());
-    vertices_.insert(vertices_.end(), other.vertices_.begin(), other.vertices_.end());
-    for (size_t i = 1; i < other.begin_.size(); ++i) begin_.push_back(offset + other.begin_[i]);
+size_t LightStore::vertices() const {
+    size_t n = 0;
+    for (const Chunk& c : chunks_) n += c.vertices();
+    return n;
 }
 
-void LightStore::clear() {
-    vertices_.clear();
-    begin_.assign(1, 0);
+size_t LightStore::bytes() const {
+    size_t n = 0;
+    for (const Chunk& c : chunks_) n += c.bytes();
+    return n;
 }
 
-LightVertexSearch::LightVertexSearch(const LightStore& store, float radius)
-    : store_(store), grid_(mergeable(store), radius) {}
+LightVertexSearch::LightVertexSearch(const LightStore& store, float radius) : grid_(mergeable(store), radius) {}
 
 std::vector<LightVertexSearch::Grid::Entry> LightVertexSearch::mergeable(const LightStore& store) {
     std::vector<Grid::Entry> out;
-    const Vertex* base = store.vertices().data();
+    out.reserve(store.vertices());
     for (size_t i = 0; i < store.paths(); ++i) {
         const std::span<const Vertex> path = store.path(i);
         for (size_t j = 1; j < path.size(); ++j)
-            if (!path[j].delta)
-                out.push_back({path[j].p, {static_cast<uint32_t>(&path[j] - base), static_cast<uint32_t>(j + 1)}});
+            if (!path[j].delta) out.push_back({path[j].p, {&path[j], static_cast<uint32_t>(j + 1)}});
     }
     return out;
 }

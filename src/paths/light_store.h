@@ -1,11 +1,13 @@
 // A pass's light phase, stored: the N_L light subpaths of one pass, traced before any camera
 // sample, kept read-only while the camera samples connect to them and merge with them.
 //
-// Paths lie end to end in one flat array in light-path order, so the store is the same whatever
-// thread traced which path. Camera sample i connects to light path i (bdpt, lt, vcm); merges
-// search every stored vertex at once (LightVertexSearch). Nothing writes into a stored vertex
-// after the light phase: MIS reads the subpaths and takes what a strategy defines at its junction
-// apart (mis.h), so all threads can share the store.
+// Paths are stored end to end in chunks of kPathsPerChunk consecutive light paths, each chunk one
+// flat array; a chunk is filled by one task, so the light phase needs no copy to put its paths in
+// order, and the arrays keep their capacity from pass to pass (no allocation once warm). The
+// store is the same whatever thread traced which chunk. Camera sample i connects to light path i
+// (bdpt, lt, vcm); merges search every stored vertex at once (LightVertexSearch). Nothing writes
+// into a stored vertex after the light phase: MIS reads the subpaths and takes what a strategy
+// defines at its junction apart (mis.h), so all threads can share the store.
 #pragma once
 #include <cstdint>
 #include <span>
@@ -18,21 +20,45 @@ namespace tripath {
 
 class LightStore {
 public:
-    // Appends the next light path (possibly empty).
-    void append(std::span<const Vertex> path);
-    // Appends every path of `other`, in order.
-    void append(const LightStore& other);
-    void clear();
-    size_t paths() const { return begin_.size() - 1; }
-    std::span<const Vertex> path(size_t i) const {
-        return {vertices_.data() + begin_[i], vertices_.data() + begin_[i + 1]};
-    }
-    const std::vector<Vertex>& vertices() const { return vertices_; }
-    size_t bytes() const { return vertices_.capacity() * sizeof(Vertex) + begin_.capacity() * sizeof(uint32_t); }
+    static constexpr size_t kPathsPerChunk = 1024;
+
+    // Light paths in order, each of its chunk's paths appended in turn by one writer.
+    class Chunk {
+    public:
+        void clear() {
+            vertices_.clear();
+            begin_.assign(1, 0);
+        }
+        void append(std::span<const Vertex> path) {
+            vertices_.insert(vertices_.end(), path.begin(), path.end());
+            begin_.push_back(static_cast<uint32_t>(vertices_.size()));
+        }
+        size_t paths() const { return begin_.size() - 1; }
+        std::span<const Vertex> path(size_t i) const {
+            return {vertices_.data() + begin_[i], vertices_.data() + begin_[i + 1]};
+        }
+        size_t vertices() const { return vertices_.size(); }
+        size_t bytes() const { return vertices_.capacity() * sizeof(Vertex) + begin_.capacity() * sizeof(uint32_t); }
+
+    private:
+        std::vector<Vertex> vertices_;
+        std::vector<uint32_t> begin_{0};  // path i holds vertices_[begin_[i] .. begin_[i+1])
+    };
+
+    // Empties the store and makes room for `paths` light paths, in chunks to be filled in order.
+    void reset(size_t paths);
+    size_t chunks() const { return chunks_.size(); }
+    Chunk& chunk(size_t c) { return chunks_[c]; }
+    const Chunk& chunk(size_t c) const { return chunks_[c]; }
+
+    size_t paths() const { return paths_; }
+    std::span<const Vertex> path(size_t i) const { return chunks_[i / kPathsPerChunk].path(i % kPathsPerChunk); }
+    size_t vertices() const;
+    size_t bytes() const;
 
 private:
-    std::vector<Vertex> vertices_;
-    std::vector<uint32_t> begin_{0};  // path i holds vertices_[begin_[i] .. begin_[i+1])
+    std::vector<Chunk> chunks_;
+    size_t paths_ = 0;
 };
 
 // Range search over the stored light vertices a camera vertex can merge with: those a light walk
@@ -45,22 +71,36 @@ public:
     size_t bytes() const { return grid_.bytes(); }
     // Calls f(prefix, s) for each mergeable light vertex within the radius of p, in a fixed order:
     // `prefix` is its light subpath up to and including it, which is y_{s−1} of that prefix.
+    // The vertices found are gathered first and their cache lines requested before the first
+    // is used: each merge reads a light vertex and its predecessors from anywhere in the store,
+    // and waiting for those reads one merge after another took most of a merge's time.
     template <class F>
     void forEachWithin(Vec3 p, F&& f) const {
+        constexpr int kBatch = 32;
+        Candidate found[kBatch];
+        int n = 0;
+        auto flush = [&] {
+            for (int i = 0; i < n; ++i) f(std::span<const Vertex>(found[i].vertex + 1 - found[i].s, found[i].s), int(found[i].s));
+            n = 0;
+        };
         grid_.forEachWithin(p, [&](Candidate c) {
-            const Vertex* y = store_.vertices().data() + c.vertex;
-            f(std::span<const Vertex>(y + 1 - c.s, c.s), static_cast<int>(c.s));
+            // The vertex and the one before it: the merge's first reads.
+            __builtin_prefetch(c.vertex);
+            __builtin_prefetch(reinterpret_cast<const char*>(c.vertex) + 64);
+            __builtin_prefetch(c.vertex - 1);
+            found[n++] = c;
+            if (n == kBatch) flush();
         });
+        flush();
     }
 
 private:
     struct Candidate {
-        uint32_t vertex;  // its index in the store's flat array
-        uint32_t s;       // its index in its light subpath, plus one
+        const Vertex* vertex;  // in the store
+        uint32_t s;            // its index in its light subpath, plus one
     };
     using Grid = PointGrid<Candidate>;
     static std::vector<Grid::Entry> mergeable(const LightStore& store);
-    const LightStore& store_;
     Grid grid_;
 };
 
