@@ -112,24 +112,36 @@ TEST(Merging, VcmAgreesWithBdptOnVeachMis) { expectVcmAgreesWithBdpt("veach-mis"
 // A density estimate over a disc of radius r loses the light near the box's edges and corners (the
 // disc reaches over them, where no light vertex can be) and blurs the light's falloff: in the
 // Cornell box the image comes out darker by an amount about proportional to r. For each merging
-// integrator, the whole-image difference to bdpt must be significant at a large radius (5σ), and
-// fall by more than half when the radius is a quarter (to a quarter, if the bias is linear in r).
+// integrator, against bdpt:
+// - the whole image's difference must be significant at a large radius (5σ) and fall by more than
+//   half when the radius is a quarter (to a quarter, if the bias is linear in r);
+// - per 8×8 block, Σ_b (Δ_b² − σ_b²) -- an unbiased estimate of the blocks' squared bias, the
+//   noise's share taken out -- must fall below a quarter (a sixteenth, if linear).
 TEST(Merging, BiasShrinksWithTheRadius) {
     const SceneDesc desc = builtinScene("cornell");
-    const auto reference = meanAndError(renderRuns(desc, request("bdpt", 32, 0, 1), 8).image);
+    const Runs reference = renderRuns(desc, request("bdpt", 32, 0, 1), 8);
+    const auto whole = meanAndError(reference.image);
     for (const char* integrator : {"vcm", "bpm", "ppm"}) {
         // bpm and ppm take their direct light from merges too: noisier, so more samples.
         const int spp = std::string(integrator) == "vcm" ? 16 : 32;
-        std::vector<double> bias;
+        std::vector<double> bias, blockBias2;
         for (float factor : {0.2f, 0.05f}) {
-            const auto m = meanAndError(renderRuns(desc, request(integrator, spp, factor, 1), 8).image);
-            const double sigma = std::hypot(m.stderr_, reference.stderr_);
-            bias.push_back(m.mean - reference.mean);
-            std::cout << integrator << " radius factor " << factor << ": " << m.mean << " ± " << m.stderr_
-                      << " vs bdpt " << reference.mean << " ± " << reference.stderr_ << "\n";
-            if (factor == 0.2f) EXPECT_GT(std::abs(bias.back()), 5 * sigma) << integrator << ": the bias must show";
+            const Runs runs = renderRuns(desc, request(integrator, spp, factor, 1), 8);
+            const auto m = meanAndError(runs.image);
+            bias.push_back(m.mean - whole.mean);
+            double b2 = 0;
+            for (int b = 0; b < 16; ++b) {
+                const auto x = meanAndError(runs.blocks[b]), y = meanAndError(reference.blocks[b]);
+                b2 += (x.mean - y.mean) * (x.mean - y.mean) - x.stderr_ * x.stderr_ - y.stderr_ * y.stderr_;
+            }
+            blockBias2.push_back(b2);
+            std::cout << integrator << " radius factor " << factor << ": " << m.mean << " ± " << m.stderr_ << " vs bdpt "
+                      << whole.mean << " ± " << whole.stderr_ << "; blocks' squared bias " << b2 << "\n";
+            if (factor == 0.2f)
+                EXPECT_GT(std::abs(bias.back()), 5 * std::hypot(m.stderr_, whole.stderr_)) << integrator << ": the bias must show";
         }
         EXPECT_LT(std::abs(bias[1]), 0.5 * std::abs(bias[0])) << integrator;
+        EXPECT_LT(blockBias2[1], 0.25 * blockBias2[0]) << integrator;
     }
 }
 
