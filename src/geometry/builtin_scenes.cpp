@@ -207,6 +207,7 @@ const std::vector<Entry>& entries() {
         {{"caustic-point", "the caustic lit by a point light: pt cannot sample it (black)"}, causticPointScene},
         {{"sds", "the caustic seen through a glass pane (specular-diffuse-specular); lt cannot see through it"}, sdsScene},
         {{"sds-point", "sds with a point light: no integrator can sample the caustic through the pane"}, sdsPointScene},
+        {{"sds-mirrors", "point light, floor mirror, diffuse panel seen in a wall mirror: analytic; only vcm, bpm, ppm see it"}, sdsMirrorsScene},
         {{"door-ajar", "a room lit only through the gap of a door ajar from a light in the next room"}, doorAjarScene},
         {{"contact", "boxes with faces inside the walls, a thin slab 1e-4 above the floor"}, contactScene},
         {{"grazing", "camera and light at 89.9 degrees to a glossy metal plane"}, grazingScene},

@@ -93,6 +93,47 @@ SceneDesc sdsPointScene() {
     return s;
 }
 
+// ---- an analytic specular-diffuse-specular path ------------------------------------------------
+
+SceneDesc sdsMirrorsScene() {
+    const SdsMirrorsLayout& k = kSdsMirrors;
+    SceneDesc s;
+    // The hood, black so that it sends nothing on. Its walls reach 1 cm past the corners and past
+    // the top, so that no ray from the light slips through a crack where two quads meet; the
+    // walls' bottom edges bound the opening.
+    const int black = addMaterial(s, lambertian("black hood", Spectrum(0.0f)));
+    const float hx = k.hoodHalfX, hz = k.hoodHalfZ, lo = k.hoodBottom, top = k.hoodTop, o = 0.01f;
+    addQuad(s, "hood top", black, {-hx - o, top, -hz - o}, {hx + o, top, -hz - o}, {hx + o, top, hz + o},
+            {-hx - o, top, hz + o});
+    addQuad(s, "hood -x", black, {-hx, lo, -hz - o}, {-hx, lo, hz + o}, {-hx, top + o, hz + o}, {-hx, top + o, -hz - o});
+    addQuad(s, "hood +x", black, {hx, lo, hz + o}, {hx, lo, -hz - o}, {hx, top + o, -hz - o}, {hx, top + o, hz + o});
+    addQuad(s, "hood -z", black, {hx + o, lo, -hz}, {-hx - o, lo, -hz}, {-hx - o, top + o, -hz}, {hx + o, top + o, -hz});
+    addQuad(s, "hood +z", black, {-hx - o, lo, hz}, {hx + o, lo, hz}, {hx + o, top + o, hz}, {-hx - o, top + o, hz});
+    s.pointLights.push_back({k.light, Spectrum(k.intensity)});
+
+    Material floorMirror;
+    floorMirror.name = "floor mirror";
+    floorMirror.type = MaterialType::Mirror;
+    floorMirror.albedo = Spectrum(k.floorReflectance);
+    const float fz = k.floorHalfZ;
+    addQuad(s, "floor mirror", addMaterial(s, floorMirror), {k.floorX0, 0, fz}, {k.floorX1, 0, fz},
+            {k.floorX1, 0, -fz}, {k.floorX0, 0, -fz});
+
+    const int panel = addMaterial(s, lambertian("panel", Spectrum(k.panelAlbedo)));
+    const float px = k.panelX, pz = k.panelHalfZ;
+    addQuad(s, "panel", panel, {px, k.panelY0, -pz}, {px, k.panelY0, pz}, {px, k.panelY1, pz}, {px, k.panelY1, -pz});
+
+    Material wallMirror;
+    wallMirror.name = "wall mirror";
+    wallMirror.type = MaterialType::Mirror;
+    wallMirror.albedo = Spectrum(k.wallReflectance);
+    addQuad(s, "wall mirror", addMaterial(s, wallMirror), {k.wallX0, k.wallY0, k.wallZ}, {k.wallX1, k.wallY0, k.wallZ},
+            {k.wallX1, k.wallY1, k.wallZ}, {k.wallX0, k.wallY1, k.wallZ});
+
+    s.camera = lookAt(k.camera, k.cameraTarget, k.cameraYfov);
+    return s;
+}
+
 // ---- visibility ----------------------------------------------------------------------------
 // Room A (camera): x ∈ [-4, 0]; room B (light): x ∈ [0.1, 4]; both y ∈ [0, 2.5], z ∈ [-2, 2].
 // The shared wall x ∈ [0, 0.1] has a doorway z ∈ [-0.5, 0.5], y ∈ [0, 2]; the door (1 × 2 m,

@@ -45,6 +45,68 @@ SceneDesc sdsScene();
 // of these methods, fixed only by regularisation or manifold walks, which tripath does not do).
 SceneDesc sdsPointScene();
 
+// ---- an analytic specular-diffuse-specular path ------------------------------------------------
+// sds-mirrors: a point light, a floor mirror that reflects it onto a diffuse panel, and a wall
+// mirror through which the camera sees the panel -- the path L S D S E, with a closed-form answer
+// that the merging integrators are checked against. Three mutually perpendicular planes carry the
+// three surfaces:
+//
+//   - the floor mirror M1 in y = 0 (reflectance R1 = 0.9, no Fresnel: MaterialType::Mirror
+//     reflects exactly its albedo), facing up;
+//   - the panel D in x = 0.4, facing −x (Lambertian, albedo ρ = 0.75), y ∈ [0.1, 0.6], |z| ≤ 0.25;
+//   - the wall mirror M2 in z = −1 (reflectance R2 = 0.8), facing +z;
+//
+// and the point light L = (0, 0.1, 0) of intensity I = 3 W/sr sits in a black hood (albedo 0)
+// open only at the bottom, 2 cm below it: a 10 × 6 cm opening, so light leaves the hood only
+// downward, in a pyramid that lands wholly on M1. Reflected, it rises as if from L's image
+// L' = (0, −0.1, 0), in a pyramid that covers the whole panel and passes beside the hood (its
+// z-spread, |z| ≤ 1.5 (y + 0.1), keeps it off M2, whose top edge is at y = 0.5 < 0.567).
+//
+// The analytic value. The panel receives light from L' only: L itself is inside the hood; M2 is
+// lit by nothing but the panel; reflections in the floor and the wall both keep the x-component
+// of a direction, so light leaving the panel (towards −x) never comes back to the plane x = 0.4,
+// and everything else is black. Hence, at a panel point x (normal n = −x̂),
+//     E(x) = R1 · I · cos θ / |x − L'|² = R1 · I · 0.4 / |x − L'|³,
+//     Lo(x) = ρ / π · E(x)      (Lambertian: the same in every direction),
+// and a pixel that sees the panel through M2 reads R2 · ρ/π · E averaged over its footprint
+// (0.945 at the panel's centre, y = 0.35, z = 0; from 2.31 at the middle of its bottom edge to
+// 0.39 at the middle of its top edge).
+// The camera looks into M2, which fills its view, at the panel's image: every pixel's ray meets
+// M2 first; those that go on to the panel read the value above.
+//
+// Who can sample it. Every vertex of L S D S E but D is a delta (the light's position, two ideal
+// mirrors, the pinhole), and D's two neighbours are mirrors: no connection (s, t) joins two
+// adjacent non-delta vertices and no walk can hit a point, so PT, LT and BDPT give exactly 0 in
+// every pixel that sees the panel through M2, however many samples. Seen directly (another
+// camera), the panel is the caustic L S D E, which LT and BDPT sample through t = 1 and PT
+// cannot (the shadow ray toward L hits the hood, and no walk hits a point). Vertex merging
+// (vcm, bpm, ppm) samples L S D S E by merging at D, its only strategy there (MIS weight 1): for
+// a merge radius r the expected pixel value is R2 ρ/π times the mean of E over the disc of radius
+// r around each panel point (a bias of order r² on the panel, of order r within r of its edges),
+// and it converges to the value above as r shrinks. tests/test_sds_analytic.cpp checks all this.
+struct SdsMirrorsLayout {
+    Vec3 light{0.0f, 0.1f, 0.0f};
+    float intensity = 3.0f;                   // W/sr, grey
+    // The hood: open bottom |x| ≤ hoodHalfX, |z| ≤ hoodHalfZ at y = hoodBottom, top at hoodTop.
+    float hoodHalfX = 0.05f, hoodHalfZ = 0.03f, hoodBottom = 0.08f, hoodTop = 0.11f;
+    // Floor mirror M1 (y = 0): x ∈ [floorX0, floorX1], |z| ≤ floorHalfZ.
+    float floorReflectance = 0.9f;
+    float floorX0 = -0.3f, floorX1 = 0.3f, floorHalfZ = 0.2f;
+    // Diffuse panel D (x = panelX, facing −x): y ∈ [panelY0, panelY1], |z| ≤ panelHalfZ.
+    float panelAlbedo = 0.75f;
+    float panelX = 0.4f, panelY0 = 0.1f, panelY1 = 0.6f, panelHalfZ = 0.25f;
+    // Wall mirror M2 (z = wallZ, facing +z): x ∈ [wallX0, wallX1], y ∈ [wallY0, wallY1].
+    float wallReflectance = 0.8f;
+    float wallZ = -1.0f, wallX0 = -1.6f, wallX1 = -0.6f, wallY0 = 0.0f, wallY1 = 0.5f;
+    // The pinhole, aimed at the panel's image in M2.
+    Vec3 camera{-1.5f, 0.35f, -0.8f};
+    Vec3 cameraTarget{0.4f, 0.35f, -2.0f};
+    float cameraYfov = 0.3f;
+};
+inline constexpr SdsMirrorsLayout kSdsMirrors{};
+
+SceneDesc sdsMirrorsScene();
+
 // ---- visibility ----------------------------------------------------------------------------
 // Two rooms sharing a wall; the door between them is ajar by a few degrees and the only light
 // is on the far room's ceiling. Every path from the light to the camera's room squeezes through
