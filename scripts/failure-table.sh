@@ -11,7 +11,7 @@
 #                             around them is written by hand and left alone); best in bold
 #   docs/images/failures.png  reference and every method per scene, each row scaled alike
 # The renders themselves stay in build/failures/<scene>/ (compare's report: index.html).
-# Runtime: 10 scenes x 16 x SECONDS plus start-up, about 11 minutes at the defaults. Timings
+# Runtime: 11 scenes x 16 x SECONDS plus start-up, about 12 minutes at the defaults. Timings
 # are wall-clock: run it on an otherwise idle machine, or the table measures the neighbours.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,11 +19,11 @@ seconds="${1:-4}"
 size="${2:-128}"
 tripath="${TRIPATH:-build/tripath}"
 out=build/failures
-scenes=(caustic caustic-point sds sds-point door-ajar contact grazing degenerate degenerate-tiny degenerate-far)
+scenes=(caustic caustic-point sds sds-point sds-mirrors door-ajar contact grazing degenerate degenerate-tiny degenerate-far)
 methods=(pt lt bdpt vcm bpm ppm)
 # The reference's integrator: vcm where some light has no bdpt strategy (the caustic seen through
 # the pane), bdpt elsewhere (unbiased, and at least as good where it can sample every path).
-declare -A reference_integrator=([sds]=vcm [sds-point]=vcm)
+declare -A reference_integrator=([sds]=vcm [sds-point]=vcm [sds-mirrors]=vcm)
 
 [ -x "$tripath" ] || { echo "error: $tripath not found: build first (scripts/build.sh) or set TRIPATH" >&2; exit 1; }
 mkdir -p "$out" docs/images

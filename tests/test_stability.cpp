@@ -36,9 +36,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kFailureScenes = {"caustic", "caustic-point", "sds",        "sds-point",
-                                                 "door-ajar", "contact",     "grazing",    "degenerate",
-                                                 "degenerate-tiny", "degenerate-far"};
+const std::vector<std::string> kFailureScenes = {"caustic",         "caustic-point",  "sds",     "sds-point",
+                                                 "sds-mirrors",     "door-ajar",      "contact", "grazing",
+                                                 "degenerate",      "degenerate-tiny", "degenerate-far"};
 const std::vector<std::string> kIntegrators = {"pt", "lt", "bdpt"};
 // Where every method must hold up, merging ones included.
 const std::vector<std::string> kAllIntegrators = {"pt", "lt", "bdpt", "vcm", "bpm", "ppm"};
