@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Equal-time comparison with SmallVCM on its scene 5 (issue 11; the peer is described in
-# /work/shared/peers/smallvcm.md): tripath pt and bdpt on the built-in `smallvcm-5` against
+# /work/shared/peers/smallvcm.md): tripath pt, bdpt and vcm on the built-in `smallvcm-5` against
 # SmallVCM's pt, bpt and vcm on its own analytic scene 5, at 256×256, max path length 10, on two
 # cores, SECONDS_EACH seconds each. Each image is measured against a converged reference of its
 # own renderer (the two scenes differ by the tessellation of the spheres), with tripath's relMSE
@@ -86,7 +86,7 @@ row() {  # renderer method seconds spp image reference
     echo "$1 $2 $3 $4 $m" >> "$ROWS"
 }
 
-for method in pt bdpt; do
+for method in pt bdpt vcm; do
     echo "tripath $method: $SECONDS_EACH s"
     log=$($PIN "$TRIPATH" render --scene smallvcm-5 --integrator $method --time "$SECONDS_EACH" --width $SIZE \
         --height $SIZE --max-depth $DEPTH --threads 2 --seed 7 --out "$OUT/tripath-$method.exr" 2>&1 | grep "spp in")

@@ -53,14 +53,24 @@ public:
     size_t bytes() const { return begin_.capacity() * sizeof(uint32_t) + sorted_.capacity() * sizeof(Entry); }
 
     // Calls f(payload) for every point within distance r of p (|q − p|² ≤ r²), in a fixed order.
+    // The table and the runs are far larger than the caches and a query's buckets lie anywhere
+    // in them, so the reads are requested in two waves before they are used -- every bucket's
+    // bounds, then the start of every run -- and the misses overlap instead of following one another.
     template <class F>
     void forEachWithin(Vec3 p, F&& f) const {
         if (sorted_.empty()) return;
         uint32_t buckets[27];
         const int n = bucketsAround(p, buckets);
+        for (int b = 0; b < n; ++b) __builtin_prefetch(&begin_[buckets[b]]);
+        uint32_t first[27], last[27];
+        for (int b = 0; b < n; ++b) {
+            first[b] = begin_[buckets[b]];
+            last[b] = begin_[buckets[b] + 1];
+            if (first[b] < last[b]) __builtin_prefetch(&sorted_[first[b]]);
+        }
         const float r2 = radius_ * radius_;
         for (int b = 0; b < n; ++b)
-            for (uint32_t j = begin_[buckets[b]]; j < begin_[buckets[b] + 1]; ++j)
+            for (uint32_t j = first[b]; j < last[b]; ++j)
                 if (lengthSquared(sorted_[j].p - p) <= r2) f(sorted_[j].payload);
     }
 
