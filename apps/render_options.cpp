@@ -48,12 +48,17 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
         ->capture_default_str();
     auto* radius = cmd.add_option_function<float>(
         "--radius", [&o](float v) { o.merge.radius = v, o.radiusGiven = true; },
-                                  "vcm, bpm, ppm: merge radius of the first pass in world units (default: "
-                                  "--radius-factor times the scene's bounding-sphere radius)");
-    cmd.add_option("--radius-factor", o.merge.radiusFactor,
-                   "vcm, bpm, ppm: merge radius of the first pass as a fraction of the scene's bounding-sphere radius")
+        "vcm, bpm, ppm: merge radius of the first pass in world units");
+    auto* factor = cmd.add_option_function<float>(
+        "--radius-factor", [&o](float v) { o.merge.radiusFactor = v, o.radiusFactorGiven = true; },
+        "vcm, bpm, ppm: merge radius of the first pass as a fraction of the scene's bounding-sphere radius");
+    cmd.add_option("--radius-pixels", o.merge.radiusPixels,
+                   "vcm, bpm, ppm: merge radius of the first pass in pixel widths on the surfaces the camera sees "
+                   "(the median over a grid of pixels); the default when neither --radius nor --radius-factor is given")
         ->capture_default_str()
-        ->excludes(radius);
+        ->excludes(radius)
+        ->excludes(factor);
+    radius->excludes(factor);
     cmd.add_option("--alpha", o.merge.alpha,
                    "vcm, bpm, ppm: the radius of pass i is r_1 * i^((alpha-1)/2); 1 keeps it fixed (biased), "
                    "below 1 shrinks it (consistent)")
@@ -78,8 +83,10 @@ void validateRenderOptions(const RenderOptions& o) {
     if (o.threads < 0 || o.threads > 4096) fail(fmt::format("--threads must be between 0 and 4096 (got {})", o.threads));
     if (o.radiusGiven && !(o.merge.radius > 0 && o.merge.radius < 1e30f))
         fail(fmt::format("--radius must be a length in world units above 0 (got {})", o.merge.radius));
-    if (!(o.merge.radiusFactor > 0 && o.merge.radiusFactor <= 1))
+    if (o.radiusFactorGiven && !(o.merge.radiusFactor > 0 && o.merge.radiusFactor <= 1))
         fail(fmt::format("--radius-factor must be above 0 and at most 1 (got {})", o.merge.radiusFactor));
+    if (!(o.merge.radiusPixels > 0 && o.merge.radiusPixels <= 1000))
+        fail(fmt::format("--radius-pixels must be above 0 and at most 1000 (got {})", o.merge.radiusPixels));
     if (!(o.merge.alpha > 0 && o.merge.alpha <= 1))
         fail(fmt::format("--alpha must be above 0 and at most 1 (got {})", o.merge.alpha));
     parseMisHeuristic(o.mis);

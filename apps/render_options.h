@@ -20,12 +20,12 @@ struct RenderOptions {
     std::string integrator = "bdpt";
     int spp = 0;            // 0 unless --spp was given
     double seconds = 0;     // 0 unless --time was given
-    bool sppGiven = false, timeGiven = false, radiusGiven = false;
+    bool sppGiven = false, timeGiven = false, radiusGiven = false, radiusFactorGiven = false;
     int width = 512, height = 512;
     int maxDepth = 16;
     int rrDepth = 3;
     std::string mis = "power";
-    MergeSettings merge;     // --radius, --radius-factor, --alpha (vcm, bpm, ppm)
+    MergeSettings merge;     // --radius, --radius-factor, --radius-pixels, --alpha (vcm, bpm, ppm)
     uint64_t seed = 1;
     int threads = 0;
     // Not a flag: the random streams the samples draw from. Renders use CameraSample; references

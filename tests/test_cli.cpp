@@ -131,7 +131,9 @@ TEST_F(Cli, BadMergeRadiusSettingsAreRefused) {
     expectRefused(render(vcm + "--radius-factor 2 " + out()), "--radius-factor");
     expectRefused(render(vcm + "--alpha 0 " + out()), "--alpha");
     expectRefused(render(vcm + "--alpha 1.5 " + out()), "--alpha");
+    expectRefused(render(vcm + "--radius-pixels 0 " + out()), "--radius-pixels");
     expectRefused(render(vcm + "--radius 0.01 --radius-factor 0.01 " + out()), "--radius");
+    expectRefused(render(vcm + "--radius-factor 0.01 --radius-pixels 2 " + out()), "--radius");
 }
 
 // A merging reference continues its radius schedule from the passes in the file, so adding

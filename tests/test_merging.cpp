@@ -8,6 +8,7 @@
 #include "geometry/builtin_scenes.h"
 #include "geometry/point_grid.h"
 #include "geometry/rng.h"
+#include "integrators/integrator.h"
 #include "support.h"
 
 namespace tripath {
@@ -53,6 +54,27 @@ TEST(PointGrid, EmptyFindsNothing) {
     int n = 0;
     grid.forEachWithin(Vec3(0.0f), [&](uint32_t) { ++n; });
     EXPECT_EQ(n, 0);
+}
+
+// ---- the default radius ----------------------------------------------------------------------
+
+float defaultRadius(const std::string& scene, int size) {
+    const Scene s(builtinScene(scene), size, size);
+    return makeIntegrator("vcm", IntegratorSettings{})->mergeRadius(s, 0);
+}
+
+// The default first-pass radius is a number of pixel widths on what the camera sees: half the
+// radius at twice the resolution; 500 times the radius in the Cornell box scaled 500×; and in
+// degenerate-tiny (a 1 mm cube seen from 4 mm on a 10 km ground) a fraction of a millimetre, where
+// a fraction of the scene's radius would be metres and every camera vertex would merge with every
+// light vertex of the pass.
+TEST(MergeRadius, TheDefaultFollowsThePixelNotTheSceneExtent) {
+    EXPECT_NEAR(defaultRadius("cornell", 64) / defaultRadius("cornell", 128), 2.0, 0.04);
+    EXPECT_NEAR(defaultRadius("degenerate-far", 64) / defaultRadius("cornell", 64), 500.0, 10.0);
+    const Scene tiny(builtinScene("degenerate-tiny"), 64, 64);
+    const float sceneRadius = 0.5f * length(tiny.boundsMax() - tiny.boundsMin());
+    EXPECT_GT(sceneRadius, 1000.0f);
+    EXPECT_LT(defaultRadius("degenerate-tiny", 64), 1e-4f) << "a 3 mm view over 64 pixels";
 }
 
 // ---- images against bdpt ---------------------------------------------------------------------

@@ -425,7 +425,7 @@ TEST(SdsMirrors, MergingConvergesToTheClosedForm) {
     const Pinhole cam(desc.camera, kSize, kSize);
     const Region inner = interior(cam), band = bottomBand(cam);
     constexpr int kPasses = 128;
-    const MergeSettings merge{kMaxRadius, 0.0f, 0.5f};
+    const MergeSettings merge{.radius = kMaxRadius, .alpha = 0.5f};
     const std::vector<int> at = {8, 32, kPasses};
     const double scale = K.wallReflectance;
     const auto innerExpected = expectedMeans(inner, scale, merge.radius, merge.alpha, kPasses);
@@ -489,7 +489,7 @@ TEST(SdsMirrors, MergeBiasShrinksWithTheRadius) {
     const double innerExact = exactMean(inner, scale), bandExact = exactMean(band, scale);
     std::vector<double> bandBias;
     for (double radius : {kMaxRadius, kMaxRadius / 2}) {
-        const MergeSettings merge{float(radius), 0.0f, 1.0f};
+        const MergeSettings merge{.radius = float(radius), .alpha = 1.0f};
         std::vector<double> innerRuns, bandRuns;
         for (int i = 0; i < kRuns; ++i) {
             const auto out = renderRegions(scene, "ppm", merge, 5000 + i, 64, {64}, {&inner, &band});

@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/error.h"
@@ -215,6 +216,23 @@ bool Scene::unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const {
     ray.flags = 0;
     rtcOccluded1(rtcScene_, &ctx, &ray);
     return ray.tfar >= 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+float medianPixelFootprint(const Scene& scene) {
+    constexpr int kGrid = 16;
+    const Camera& cam = scene.camera();
+    std::vector<float> widths;
+    for (int j = 0; j < kGrid; ++j)
+        for (int i = 0; i < kGrid; ++i) {
+            const Vec2 raster{(i + 0.5f) * cam.width() / kGrid, (j + 0.5f) * cam.height() / kGrid};
+            const Vec3 d = cam.direction(raster);
+            const Vec3 next = cam.direction({raster.x + 1.0f, raster.y});
+            if (const auto hit = scene.intersect(cam.position(), d)) widths.push_back(hit->t * length(next - d));
+        }
+    if (widths.empty()) return 0.0f;
+    const auto middle = widths.begin() + widths.size() / 2;
+    std::nth_element(widths.begin(), middle, widths.end());
+    return *middle;
 }
 
 }  // namespace tripath

@@ -84,4 +84,10 @@ private:
 // A camera looking at the whole box [lo, hi] from +z, used when the scene has none.
 CameraDesc frameBounds(Vec3 lo, Vec3 hi);
 
+// The width of one pixel on the surfaces the camera sees: for a 16×16 grid of pixel centres, the
+// distance to the first hit times the angle between neighbouring pixels' rays, and the median of
+// those; 0 if no ray hits anything. A scale for image-space quantities (the merge radius) that
+// follows the resolution and what the camera looks at, not the extent of the whole scene.
+float medianPixelFootprint(const Scene& scene);
+
 }  // namespace tripath

@@ -28,7 +28,10 @@ float Integrator::mergeRadius(const Scene& scene, uint64_t index) const {
     if (!strategies().merges()) return 0.0f;
     const MergeSettings& m = settings_.merge;
     const float sceneRadius = 0.5f * length(scene.boundsMax() - scene.boundsMin());
-    const double r1 = m.radius > 0 ? m.radius : m.radiusFactor * sceneRadius;
+    double r1 = m.radius;
+    if (!(r1 > 0)) r1 = m.radiusFactor * sceneRadius;
+    if (!(r1 > 0)) r1 = m.radiusPixels * medianPixelFootprint(scene);
+    if (!(r1 > 0)) r1 = kFallbackRadiusFactor * sceneRadius;
     return static_cast<float>(r1 * std::pow(double(index + 1), 0.5 * (double(m.alpha) - 1.0)));
 }
 

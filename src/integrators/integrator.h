@@ -11,11 +11,19 @@ namespace tripath {
 // Vertex merging's radius schedule (vcm, bpm, ppm): r_i = r_1 · i^((α−1)/2) at the i-th pass
 // (i = 1, 2, … over the whole render, a reference's continuation included), so that the radius
 // depends on the pass index alone, never on threads or timing.
+// r_1 is the first of these that is set: a length in world units; a fraction of the scene's
+// bounding-sphere radius; or, by default, a number of pixel widths on the surfaces the camera sees
+// (medianPixelFootprint). The default follows the image: it keeps the blur of a merge near a
+// pixel at any resolution, and cannot blow up on a scene whose extent dwarfs the view (a
+// fraction of a 10 km scene's radius is metres over a 3 mm view, where every camera vertex would
+// merge with every light vertex). If the camera sees nothing, kFallbackRadiusFactor applies.
 struct MergeSettings {
-    float radius = 0;              // r_1 in world units; 0: radiusFactor × the scene's bounding-sphere radius
-    float radiusFactor = 0.003f;   // r_1 as a fraction of the scene's bounding-sphere radius
-    float alpha = 0.75f;           // 1: a fixed radius; < 1: shrinking (consistent); in (0, 1]
+    float radius = 0;          // r_1 in world units (0: not given)
+    float radiusFactor = 0;    // r_1 as a fraction of the scene's bounding-sphere radius (0: not given)
+    float radiusPixels = 0.75f;  // r_1 in pixel widths
+    float alpha = 0.75f;       // 1: a fixed radius; < 1: shrinking (consistent); in (0, 1]
 };
+inline constexpr float kFallbackRadiusFactor = 0.003f;
 
 struct IntegratorSettings {
     WalkSettings walk;

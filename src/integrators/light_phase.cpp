@@ -14,7 +14,6 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     const float radius = integrator.mergeRadius(scene, index);
     pass.mis = integrator.misContext(scene, radius);
     search_.reset();
-    store_.reset(0);
     if (!integrator.hasLightPhase()) return pass;
 
     const uint64_t paths = static_cast<uint64_t>(lightPathsPerPass(scene.camera()));

@@ -66,8 +66,8 @@ Competition compete(std::span<const Vertex> light, int s, std::span<const Vertex
     const StrategySet strategies = mis.strategies;
     const Roulette& roulette = mis.roulette;
     const bool merges = strategies.merges();
-    // The merge at x_j, j = 1 … k−1 (non-delta): r_j is the ratio of the connection with x_j on
-    // the camera side, pOther x_j's pdf from the light side (as the chain measure counts it).
+    // The merge at x_j, j = 1 … k−1 (non-delta): rj is the ratio of the connection with x_j on
+    // the camera side, pFromLight x_j's pdf from the light side (as the chain measure counts it).
     auto mergeTerm = [&](float rj, float pFromLight) { return rj * pFromLight * mis.mergeEta; };
 
     // With running sums, the steps stop where every remaining term is one the subpath's vertex
@@ -120,9 +120,8 @@ Competition compete(std::span<const Vertex> light, int s, std::span<const Vertex
                                 : (pointLight ? 1.0f : x.pdfFwd);
         const float qOther = roulette.continuation(cameraSide, k - i - 1);
         const float qOwn = i > 0 ? roulette.continuation(light[i - 1], i - 1) : 1.0f;
-        // The merge at y_i = x_i: the connection with x_i on the camera side is the next ratio,
-        // r · other / own, so its term is r · own (x_i's light pdf) · η; written from `other`
-        // and the ratio after the step, it is the same number.
+        // After this step r is the ratio of the connection with y_i = x_i on the camera side, so
+        // the merge at y_i adds r times x_i's light-side pdf (own · qOwn) times η.
         r *= (other * qOther) / (own * qOwn);
         if (merges && i >= 1 && !lightDelta(i)) c.sum += term(mergeTerm(r, own * qOwn), mis.heuristic);
         const bool possible = i > 0 ? !lightDelta(i) && !lightDelta(i - 1) : !pointLight;
@@ -131,7 +130,6 @@ Competition compete(std::span<const Vertex> light, int s, std::span<const Vertex
     if (lightStop > 0) c.sum += term(r, mis.heuristic) * light[lightStop - 1].misSum;
     return c;
 }
-
 
 }  // namespace
 
@@ -200,7 +198,8 @@ MisWeight mergeWeight(std::span<const Vertex> light, int s, std::span<const Vert
                       const Junction& junction, const MisContext& mis) {
     if (mis.strategies.uniqueStrategy()) return firstHitWeight(camera, t);
     // The reference: the connection (s−1, t) that holds the merged vertex on the camera side,
-    // counted if it is enabled and possible (z_{t−1} is not delta, or there were no merge).
+    // counted if it is enabled and possible (z_{t−1} never scatters through a delta lobe -- merges
+    // happen only where it does not -- but y_{s−2} may).
     const int k = s + t - 2;
     const bool base = mis.strategies.enabled(s - 1, t) && !scattersDelta(light[s - 2], s - 2, k);
     const Competition c = compete(light, s - 1, camera, t, junction, mis, base);
