@@ -77,6 +77,17 @@ TEST(MergeRadius, TheDefaultFollowsThePixelNotTheSceneExtent) {
     EXPECT_LT(defaultRadius("degenerate-tiny", 64), 1e-4f) << "a 3 mm view over 64 pixels";
 }
 
+// Seen in a mirror, a surface's pixel is as wide as at the unfolded distance. In sds-mirrors the
+// camera at (−1.5, 0.35, −0.8) looks at the panel's image (0.4, 0.35, −2) in the wall mirror z = −1:
+// the mirror is 0.37 away along the ray, the panel 2.247 (|(1.9, 0, −1.2)|). A pixel of a 128-pixel
+// image with a vertical field of view of 0.3 rad subtends 2 tan(0.15) / 128 near the centre, so the
+// default radius is 0.75 × 2.247 × that = 4.0 mm (at the mirror it would be 0.67 mm: 36 times
+// fewer light vertices per merge).
+TEST(MergeRadius, TheDefaultMeasuresThePixelBeyondMirrors) {
+    const double expected = 0.75 * std::sqrt(1.9 * 1.9 + 1.2 * 1.2) * 2 * std::tan(0.15) / 128;
+    EXPECT_NEAR(defaultRadius("sds-mirrors", 128), expected, 0.03 * expected);
+}
+
 // ---- images against bdpt ---------------------------------------------------------------------
 
 // Luminance mean of the whole image and of its 4×4 blocks over `runs` independent runs.

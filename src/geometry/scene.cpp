@@ -218,6 +218,31 @@ bool Scene::unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const {
     return ray.tfar >= 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+namespace {
+
+// The distance along the ray from `origin` in `dir` to the first surface that does not scatter
+// through a delta lobe, following mirrors and glass (refraction where there is a choice) for a
+// few bounces: a plane mirror or pane leaves a pixel's footprint the size it has at the unfolded
+// distance. 0 if the ray leaves the scene or stays among deltas.
+float distanceToFirstNonDelta(const Scene& scene, Vec3 origin, Vec3 dir) {
+    float travelled = 0;
+    for (int bounce = 0; bounce < 8; ++bounce) {
+        const auto hit = scene.intersect(origin, dir);
+        if (!hit) return 0.0f;
+        travelled += hit->t;
+        const Material& m = scene.materialOf(hit->triangle);
+        if (!isDelta(m)) return travelled;
+        const Frame frame(hit->ns);
+        const auto s = sampleBsdf(m, frame.toLocal(-dir), {0.5f, 0.5f}, 0.9999f, TransportMode::Radiance);
+        if (!s) return 0.0f;
+        dir = frame.toWorld(s->wi);
+        origin = offsetRayOrigin(hit->p, hit->ng, dir);
+    }
+    return 0.0f;
+}
+
+}  // namespace
+
 float medianPixelFootprint(const Scene& scene) {
     constexpr int kGrid = 16;
     const Camera& cam = scene.camera();
@@ -227,7 +252,8 @@ float medianPixelFootprint(const Scene& scene) {
             const Vec2 raster{(i + 0.5f) * cam.width() / kGrid, (j + 0.5f) * cam.height() / kGrid};
             const Vec3 d = cam.direction(raster);
             const Vec3 next = cam.direction({raster.x + 1.0f, raster.y});
-            if (const auto hit = scene.intersect(cam.position(), d)) widths.push_back(hit->t * length(next - d));
+            const float distance = distanceToFirstNonDelta(scene, cam.position(), d);
+            if (distance > 0) widths.push_back(distance * length(next - d));
         }
     if (widths.empty()) return 0.0f;
     const auto middle = widths.begin() + widths.size() / 2;

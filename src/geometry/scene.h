@@ -85,8 +85,9 @@ private:
 CameraDesc frameBounds(Vec3 lo, Vec3 hi);
 
 // The width of one pixel on the surfaces the camera sees: for a 16×16 grid of pixel centres, the
-// distance to the first hit times the angle between neighbouring pixels' rays, and the median of
-// those; 0 if no ray hits anything. A scale for image-space quantities (the merge radius) that
+// distance to the first surface that scatters through no delta lobe (through mirrors and glass,
+// unfolded) times the angle between neighbouring pixels' rays, and the median of those; 0 if no
+// ray reaches such a surface. A scale for image-space quantities (the merge radius) that
 // follows the resolution and what the camera looks at, not the extent of the whole scene.
 float medianPixelFootprint(const Scene& scene);
 
