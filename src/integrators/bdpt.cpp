@@ -13,11 +13,6 @@ public:
     using Integrator::Integrator;
     std::string name() const override { return "bdpt"; }
     StrategySet strategies() const override { return {StrategySet::Kind::Bidirectional}; }
-    void sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
-                ContributionSink& sink) const override {
-        cameraWalk(scene, pass, raster, rng, paths.camera);
-        connectAll(scene, pass, pass.light->path(pixel), paths.camera, rng, sink);
-    }
 };
 
 std::unique_ptr<Integrator> makeBidirectional(const IntegratorSettings& s) {

@@ -15,12 +15,6 @@ public:
     using Integrator::Integrator;
     std::string name() const override { return "bpm"; }
     StrategySet strategies() const override { return {StrategySet::Kind::PhotonMapping}; }
-    void sample(const Scene& scene, const Pass& pass, int, Vec2 raster, Rng& rng, PathBuffers& paths,
-                ContributionSink& sink) const override {
-        cameraWalk(scene, pass, raster, rng, paths.camera);
-        connectAll(scene, pass, {}, paths.camera, rng, sink);
-        mergeAll(scene, pass, paths.camera, sink);
-    }
 };
 
 std::unique_ptr<Integrator> makeBidirectionalPhotonMapping(const IntegratorSettings& s) {

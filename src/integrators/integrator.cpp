@@ -42,6 +42,13 @@ MisContext Integrator::misContext(const Scene& scene, float radius) const {
     return mis;
 }
 
+void Integrator::sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
+                        ContributionSink& sink) const {
+    cameraWalk(scene, pass, raster, rng, paths.camera);
+    connectAll(scene, pass, pass.light ? pass.light->path(pixel) : std::span<const Vertex>(), paths.camera, rng, sink);
+    if (pass.search) mergeAll(scene, pass, paths.camera, sink);
+}
+
 void Integrator::cameraWalk(const Scene& scene, const Pass& pass, Vec2 raster, Rng& rng, Subpath& camera) const {
     cameraSubpath(scene, raster, rng, settings_.walk, strategies().cameraWalkPdfs(), camera);
     recordRunningSums(camera, false, pass.mis);

@@ -61,9 +61,12 @@ public:
     virtual std::string name() const = 0;
     virtual StrategySet strategies() const = 0;
     // One sample for pixel `pixel` at raster position `raster` (already jittered inside the pixel);
-    // it pairs with the pass's light path number `pixel`.
+    // it pairs with the pass's light path number `pixel`. By default: a camera walk, every enabled
+    // connection with that light path (an empty one without a light phase), and every merge with
+    // the pass's light vertices if the integrator merges. What an integrator estimates is then
+    // its strategy set and its settings; lt, which has no camera walk, overrides this.
     virtual void sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
-                        ContributionSink& sink) const = 0;
+                        ContributionSink& sink) const;
     const IntegratorSettings& settings() const { return settings_; }
 
     // Whether passes trace and store light subpaths first: for any strategy with s ≥ 2 or a merge.

@@ -16,12 +16,6 @@ public:
     explicit ProgressivePhotonMapping(IntegratorSettings s) : Integrator(firstHit(s)) {}
     std::string name() const override { return "ppm"; }
     StrategySet strategies() const override { return {StrategySet::Kind::FirstHitMerging}; }
-    void sample(const Scene& scene, const Pass& pass, int, Vec2 raster, Rng& rng, PathBuffers& paths,
-                ContributionSink& sink) const override {
-        cameraWalk(scene, pass, raster, rng, paths.camera);
-        connectAll(scene, pass, {}, paths.camera, rng, sink);
-        mergeAll(scene, pass, paths.camera, sink);
-    }
 
 private:
     static IntegratorSettings firstHit(IntegratorSettings s) {

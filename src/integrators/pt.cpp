@@ -14,11 +14,6 @@ public:
     using Integrator::Integrator;
     std::string name() const override { return "pt"; }
     StrategySet strategies() const override { return {StrategySet::Kind::PathTracing}; }
-    void sample(const Scene& scene, const Pass& pass, int, Vec2 raster, Rng& rng, PathBuffers& paths,
-                ContributionSink& sink) const override {
-        cameraWalk(scene, pass, raster, rng, paths.camera);
-        connectAll(scene, pass, {}, paths.camera, rng, sink);
-    }
 };
 
 std::unique_ptr<Integrator> makePathTracer(const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }

@@ -17,12 +17,6 @@ public:
     using Integrator::Integrator;
     std::string name() const override { return "vcm"; }
     StrategySet strategies() const override { return {StrategySet::Kind::VertexMerging}; }
-    void sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
-                ContributionSink& sink) const override {
-        cameraWalk(scene, pass, raster, rng, paths.camera);
-        connectAll(scene, pass, pass.light->path(pixel), paths.camera, rng, sink);
-        mergeAll(scene, pass, paths.camera, sink);
-    }
 };
 
 std::unique_ptr<Integrator> makeVertexMerging(const IntegratorSettings& s) {
