@@ -96,9 +96,7 @@ private:
     IntegratorSettings settings_;
 };
 
-// The integrators by name, for --integrator and its help.
-inline constexpr const char* kIntegratorNames[] = {"pt", "lt", "bdpt", "vcm", "bpm", "ppm"};
-// One of kIntegratorNames; throws InputError for anything else.
+// "pt", "lt", "bdpt", "vcm", "bpm" or "ppm"; throws InputError for anything else.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const IntegratorSettings& settings);
 
 }  // namespace tripath
