@@ -77,8 +77,9 @@ void run(const ReferenceCommand& c) {
     o.domain = old ? streamDomain(*old) : StreamDomain::Reference;
     const auto scene = loadScene(o);
     // A merging reference continues its radius schedule from the passes in the file (the pass
-    // index runs on): the schedule must be the same one.
-    if (old) requireSettings(*old, lightPhaseMetadata(o, *scene, *integrator), false);
+    // index runs on): the schedule must be the same one. (Files from before the light phase lack
+    // these keys; they are bdpt or lt references, whose added passes need no schedule.)
+    if (old) requireSettings(*old, lightPhaseMetadata(o, *scene, *integrator), true);
 
     RenderSettings rs = renderSettings(o);
     rs.firstPass = old ? old->spp() : 0;  // fresh sample indices after the ones already in the file
