@@ -141,7 +141,7 @@ Metadata lightPhaseMetadata(const RenderOptions& o, const Scene& scene, const In
     if (integrator.hasLightPhase())
         m.push_back({"tripath:light-paths-per-pass", fmt::format("{:.0f}", lightPathsPerPass(scene.camera()))});
     if (integrator.strategies().merges()) {
-        m.push_back({"tripath:radius", fmt::format("{:.9g}", integrator.mergeRadius(scene, 0))});
+        m.push_back({"tripath:radius", fmt::format("{:.9g}", integrator.firstMergeRadius(scene))});
         m.push_back({"tripath:alpha", fmt::format("{:.9g}", o.merge.alpha)});
     }
     return m;

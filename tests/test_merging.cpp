@@ -60,7 +60,7 @@ TEST(PointGrid, EmptyFindsNothing) {
 
 float defaultRadius(const std::string& scene, int size) {
     const Scene s(builtinScene(scene), size, size);
-    return makeIntegrator("vcm", IntegratorSettings{})->mergeRadius(s, 0);
+    return makeIntegrator("vcm", IntegratorSettings{})->firstMergeRadius(s);
 }
 
 // The default first-pass radius is a number of pixel widths on what the camera sees: half the

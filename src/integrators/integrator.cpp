@@ -24,15 +24,19 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Integr
     throw InputError("unknown integrator '" + name + "' (pt, lt, bdpt, vcm, bpm or ppm)");
 }
 
-float Integrator::mergeRadius(const Scene& scene, uint64_t index) const {
+float Integrator::firstMergeRadius(const Scene& scene) const {
     if (!strategies().merges()) return 0.0f;
     const MergeSettings& m = settings_.merge;
     const float sceneRadius = 0.5f * length(scene.boundsMax() - scene.boundsMin());
-    double r1 = m.radius;
+    float r1 = m.radius;
     if (!(r1 > 0)) r1 = m.radiusFactor * sceneRadius;
     if (!(r1 > 0)) r1 = m.radiusPixels * medianPixelFootprint(scene);
     if (!(r1 > 0)) r1 = kFallbackRadiusFactor * sceneRadius;
-    return static_cast<float>(r1 * std::pow(double(index + 1), 0.5 * (double(m.alpha) - 1.0)));
+    return r1;
+}
+
+float Integrator::mergeRadius(float firstRadius, uint64_t index) const {
+    return static_cast<float>(firstRadius * std::pow(double(index + 1), 0.5 * (double(settings_.merge.alpha) - 1.0)));
 }
 
 MisContext Integrator::misContext(const Scene& scene, float radius) const {

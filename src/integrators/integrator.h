@@ -71,8 +71,11 @@ public:
 
     // Whether passes trace and store light subpaths first: for any strategy with s ≥ 2 or a merge.
     bool hasLightPhase() const { return strategies().merges() || strategies().maxS() >= 2; }
-    // The merge radius of 0-based pass `index` (0 when the integrator does not merge).
-    float mergeRadius(const Scene& scene, uint64_t index) const;
+    // The first pass's merge radius r_1 (0 when the integrator does not merge). It may trace a
+    // few hundred rays (the default measures pixels): compute it once per render.
+    float firstMergeRadius(const Scene& scene) const;
+    // The radius of 0-based pass `index` given r_1: the schedule r_1 · (index + 1)^((α−1)/2).
+    float mergeRadius(float firstRadius, uint64_t index) const;
     // The MIS context of a pass whose merge radius is `radius`.
     MisContext misContext(const Scene& scene, float radius) const;
 

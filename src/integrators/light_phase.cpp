@@ -11,7 +11,8 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
                      StreamDomain cameraDomain) {
     Pass pass;
     pass.index = index;
-    const float radius = integrator.mergeRadius(scene, index);
+    if (!firstRadius_) firstRadius_ = integrator.firstMergeRadius(scene);
+    const float radius = integrator.mergeRadius(*firstRadius_, index);
     pass.mis = integrator.misContext(scene, radius);
     search_.reset();
     if (!integrator.hasLightPhase()) return pass;

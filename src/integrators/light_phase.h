@@ -17,7 +17,8 @@ class LightPhase {
 public:
     // Traces pass `index` for `integrator` (nothing if it has no light phase), in parallel in the
     // calling thread's TBB arena, and returns what the pass's camera samples share. The Pass
-    // points into this object: it stays valid until the next run.
+    // points into this object: it stays valid until the next run. One LightPhase serves one
+    // render (one scene and integrator): the first pass's radius is found once and kept.
     Pass run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed, StreamDomain cameraDomain);
 
     const LightStore& store() const { return store_; }
@@ -25,6 +26,7 @@ public:
 private:
     LightStore store_;
     std::optional<LightVertexSearch> search_;
+    std::optional<float> firstRadius_;
 };
 
 }  // namespace tripath
