@@ -126,7 +126,11 @@ RenderRequest request(const std::string& integrator, int spp, float radiusFactor
 
 // vcm with a small radius agrees with bdpt on every block within statistical error: merges only
 // add strategies, and where connections sample a path well, MIS gives merges little weight (and
-// their bias with it). |Δ| < 5σ per block (16 blocks, 15 degrees of freedom).
+// their bias with it). |Δ| < 5σ per block (16 blocks, 15 degrees of freedom). Catches merges whose
+// weights do not compete with the connections' (a merge weight fixed at 0.5 fails all three) and
+// a vcm that pairs or connects its subpaths otherwise than bdpt. Too weak for the connections
+// ignoring the merges' terms (merges counted twice): at this radius their share is under the
+// noise; the furnace and Merging.BiasShrinksWithTheRadius* catch that one.
 void expectVcmAgreesWithBdpt(const std::string& name) {
     const SceneDesc desc = builtinScene(name);
     const Runs bdpt = renderRuns(desc, request("bdpt", 8, 0, 1), 16);
