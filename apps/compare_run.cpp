@@ -64,7 +64,7 @@ Reference renderReference(const CompareOptions& o, const Scene& scene) {
     const std::string label = "reference " + r.integrator + " " + r.scene;
     rs.progress = progressReporter(rs, r.width, r.height, label);
     const RenderResult result = render(scene, *integrator, rs);
-    printSummary(label, result, r.width, r.height);
+    printSummary(label, result, r);
     writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result));
     return {result.image(), fmt::format("{}, {} spp, {:.0f} s", r.integrator, result.passes, result.seconds), file};
 }
@@ -97,7 +97,7 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
     if (run.checkpoints.empty() || run.checkpoints.back().spp != r.passes)
         run.checkpoints.push_back({kTargets, r.seconds, r.passes, compareImages(image, reference)});
     run.checkpoints.back().target = kTargets;
-    printSummary(label, r, ro.width, ro.height);
+    printSummary(label, r, ro);
     const Checkpoint& f = run.final();
     std::cerr << fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in the worst 0.1% of pixels\n",
                              label, f.error.relMse, f.error.mse, f.error.mae, perSampleRelVariance(f.error.relMse, f.spp),

@@ -87,7 +87,7 @@ void run(const ReferenceCommand& c) {
     const std::string label = fmt::format("reference {} {}", o.integrator, o.scene);
     rs.progress = progressReporter(rs, o.width, o.height, label);
     const RenderResult r = render(*scene, *integrator, rs);
-    printSummary(label, r, o.width, o.height);
+    printSummary(label, r, o);
 
     Metadata meta = renderMetadata(o, *scene, *integrator, r);
     Image image = r.image();

@@ -49,7 +49,7 @@ void run(const RenderCommand& c) {
     rs.progress = progressReporter(rs, o.width, o.height, label);
 
     const RenderResult r = render(*scene, *integrator, rs);
-    printSummary(label, r, o.width, o.height);
+    printSummary(label, r, o);
     const Metadata meta = renderMetadata(o, *scene, *integrator, r);
     writeExr(c.out, r.image(), meta);
     if (!c.png.empty()) writePng(c.png, r.image(), c.exposure);

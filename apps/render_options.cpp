@@ -9,6 +9,7 @@
 #include "geometry/error.h"
 #include "geometry/scene_source.h"
 #include "paths/kernels.h"
+#include "stats_report.h"
 
 namespace tripath::app {
 
@@ -66,6 +67,11 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
         ->capture_default_str();
     cmd.add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+    cmd.add_flag("--stats", o.stats,
+                 "At the end, print what the render did (rays, BSDF calls, connections, splats, merges: in total, per "
+                 "camera sample and per second) and where its CPU time went (ray traversal, BSDFs and emitters, pdfs "
+                 "and MIS, range search, film, the walks' own logic); the phase timers slow the render a few percent, "
+                 "so they run only with this flag");
 }
 
 void validateRenderOptions(const RenderOptions& o) {
@@ -115,6 +121,7 @@ RenderSettings renderSettings(const RenderOptions& o) {
     s.seed = o.seed;
     s.domain = o.domain;
     s.threads = o.threads;
+    s.timing = o.stats;
     return s;
 }
 
@@ -174,12 +181,14 @@ std::function<void(int, double)> progressReporter(const RenderSettings& s, int w
     };
 }
 
-void printSummary(const std::string& label, const RenderResult& r, int width, int height) {
+void printSummary(const std::string& label, const RenderResult& r, const RenderOptions& o) {
+    const int width = o.width, height = o.height;
     if (isatty(STDERR_FILENO)) std::cerr << "\n";
     std::cerr << fmt::format("{}: {} spp in {:.2f} s ({:.2f} Msamples/s), {} NaN/Inf samples dropped, "
                              "{} MIS weights guarded to 0\n",
                              label, r.passes, r.seconds, r.passes * double(width) * height / r.seconds / 1e6,
                              r.droppedSamples, r.guardedWeights);
+    if (o.stats) std::cerr << statsReport(r, uint64_t(width) * height);
 }
 
 }  // namespace tripath::app

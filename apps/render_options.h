@@ -28,6 +28,7 @@ struct RenderOptions {
     MergeSettings merge;     // --radius, --radius-factor, --radius-pixels, --alpha (vcm, bpm, ppm)
     uint64_t seed = 1;
     int threads = 0;
+    bool stats = false;      // --stats: time the phases and print the counts and shares at the end
     // Not a flag: the random streams the samples draw from. Renders use CameraSample; references
     // use Reference, so that a reference and a render with the same --seed are independent.
     // Recorded in the EXR as tripath:streams ("render" or "reference").
@@ -61,7 +62,7 @@ const std::atomic<bool>* installInterruptHandler();
 // A progress line on stderr when it is a terminal (percent, samples/s, time left), updated
 // after each pass; nothing otherwise. Returns the callback for RenderSettings::progress.
 std::function<void(int, double)> progressReporter(const RenderSettings& s, int width, int height, const std::string& label);
-// The one-line summary printed when a render ends.
-void printSummary(const std::string& label, const RenderResult& r, int width, int height);
+// The one-line summary printed when a render ends, and with --stats the report of stats_report.h.
+void printSummary(const std::string& label, const RenderResult& r, const RenderOptions& o);
 
 }  // namespace tripath::app

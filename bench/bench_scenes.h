@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,6 +55,19 @@ inline RayCounts& operator+=(RayCounts& a, RayCounts b) {
     a.occluded += b.occluded;
     return a;
 }
+
+// A ray as the renderer handed it to Embree (rtcIntersect1 or rtcOccluded1).
+struct RecordedRay {
+    RTCSceneTy* scene;
+    Vec3 origin, dir;
+    float tnear, tfar;
+    bool shadow;
+};
+// While set (non-null), the calling thread's rays are appended to `recorder`.
+void setRayRecorder(std::vector<RecordedRay>* recorder);
+// Casts the rays through Embree's own functions alone, in order, on the calling thread; returns
+// the hits (blocked shadow rays count as hits).
+uint64_t replayEmbree(std::span<const RecordedRay> rays);
 
 // A TBB arena of exactly `threads` workers (the caller included), one per thread count, so the
 // 1- and 2-thread variants of a benchmark differ only in that number.

@@ -1,9 +1,11 @@
-// Exact ray counts without touching the renderer. This executable defines rtcIntersect1 and
+// Exact ray counts, and the rays themselves, without touching the renderer. This executable defines rtcIntersect1 and
 // rtcOccluded1 itself; the static linker binds the renderer's calls (libtripath_geometry.a) to
 // these definitions before it ever looks at libembree3.so, and each one forwards to Embree's real
 // function found with dlsym(RTLD_NEXT). The cost is one indirect call and one thread-local
 // increment per ray (about a nanosecond, against hundreds for the ray itself), paid equally by the
 // whole-sample and the ceiling benchmarks, so the ratio between them is unaffected.
+// While a thread has a recorder set (replay.cpp), its rays are also appended there as Embree got
+// them, and replayEmbree casts such a list through the real functions alone.
 //
 // The brief's estimate (vertices + delivered connections) misses rays that leave the scene and
 // shadow rays that turn out blocked; samples.cpp reports both so the README can show the gap.
@@ -21,6 +23,11 @@ using IntersectFn = void (*)(RTCScene, RTCIntersectContext*, RTCRayHit*);
 using OccludedFn = void (*)(RTCScene, RTCIntersectContext*, RTCRay*);
 
 thread_local tripath::bench::RayCounts tCounts;
+thread_local std::vector<tripath::bench::RecordedRay>* tRecorder = nullptr;
+
+tripath::bench::RecordedRay record(RTCScene scene, const RTCRay& ray, bool shadow) {
+    return {scene, {ray.org_x, ray.org_y, ray.org_z}, {ray.dir_x, ray.dir_y, ray.dir_z}, ray.tnear, ray.tfar, shadow};
+}
 
 template <class Fn>
 Fn realEmbree(const char* name) {
@@ -44,11 +51,15 @@ extern "C" {
 
 void rtcIntersect1(RTCScene scene, RTCIntersectContext* context, RTCRayHit* rayhit) {
     ++tCounts.intersect;
+    if (tRecorder) [[unlikely]]
+        tRecorder->push_back(record(scene, rayhit->ray, false));
     gIntersect(scene, context, rayhit);
 }
 
 void rtcOccluded1(RTCScene scene, RTCIntersectContext* context, RTCRay* ray) {
     ++tCounts.occluded;
+    if (tRecorder) [[unlikely]]
+        tRecorder->push_back(record(scene, *ray, true));
     gOccluded(scene, context, ray);
 }
 
@@ -57,5 +68,37 @@ void rtcOccluded1(RTCScene scene, RTCIntersectContext* context, RTCRay* ray) {
 namespace tripath::bench {
 
 RayCounts threadRayCounts() { return tCounts; }
+
+void setRayRecorder(std::vector<RecordedRay>* recorder) { tRecorder = recorder; }
+
+uint64_t replayEmbree(std::span<const RecordedRay> rays) {
+    uint64_t hits = 0;
+    RTCIntersectContext ctx;
+    for (const RecordedRay& r : rays) {
+        rtcInitIntersectContext(&ctx);
+        RTCRayHit rh;
+        RTCRay& ray = rh.ray;
+        ray.org_x = r.origin.x;
+        ray.org_y = r.origin.y;
+        ray.org_z = r.origin.z;
+        ray.dir_x = r.dir.x;
+        ray.dir_y = r.dir.y;
+        ray.dir_z = r.dir.z;
+        ray.tnear = r.tnear;
+        ray.tfar = r.tfar;
+        ray.mask = 0xffffffffu;
+        ray.time = 0.0f;
+        ray.flags = 0;
+        if (r.shadow) {
+            gOccluded(r.scene, &ctx, &ray);
+            hits += ray.tfar < 0.0f;
+        } else {
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            gIntersect(r.scene, &ctx, &rh);
+            hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        }
+    }
+    return hits;
+}
 
 }  // namespace tripath::bench

@@ -91,6 +91,16 @@ TEST_F(Cli, ARenderThatIsFineSucceeds) {
     EXPECT_TRUE(fs::exists(path("out.exr")));
 }
 
+TEST_F(Cli, StatsReportWhatTheRenderDidAndWhereTheTimeWent) {
+    const Outcome o = run(render("--width 32 --height 32 --spp 2 --integrator bdpt --stats " + out()));
+    EXPECT_EQ(o.exitCode, 0) << o.err;
+    for (const char* line : {"closest-hit rays", "shadow rays", "BSDF evaluations", "connections", "splats",
+                             "rays of both kinds"})
+        EXPECT_NE(o.err.find(line), std::string::npos) << line << " missing from:\n" << o.err;
+    const Outcome plain = run(render("--width 32 --height 32 --spp 2 " + out()));
+    EXPECT_EQ(plain.err.find("closest-hit rays"), std::string::npos) << "without --stats, no report:\n" << plain.err;
+}
+
 TEST_F(Cli, HugeResolutionsAreRefused) {
     expectRefused(render("--width 100000 " + out()), "--width");
     expectRefused(render("--height 100000 " + out()), "--height");

@@ -1,6 +1,7 @@
 #include "geometry/emitters.h"
 
 #include "geometry/scene.h"
+#include "geometry/stats.h"
 
 namespace tripath {
 
@@ -33,6 +34,8 @@ Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Mat
 }
 
 EmitterSample Emitters::sample(float uc, Vec2 u, const std::vector<Triangle>& triangles) const {
+    count(Event::EmitterSamples);
+    const PhaseScope scope(Phase::Scattering);
     const size_t i = choice_.sample(uc);
     const Emitter& e = all_[i];
     EmitterSample s;

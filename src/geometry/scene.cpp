@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "geometry/error.h"
+#include "geometry/stats.h"
 
 namespace tripath {
 
@@ -164,6 +165,8 @@ std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) 
     // Debian's Embree asserts on invalid rays; a non-finite ray (which validation should have made
     // impossible) must cost a sample, never the process.
     if (!isFinite(origin) || !isFinite(dir)) return std::nullopt;
+    count(Event::ClosestHitRays);
+    const PhaseScope scope(Phase::Traversal);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
@@ -199,6 +202,8 @@ bool Scene::unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const {
     const Vec3 from = aSurface ? offsetRayOrigin(a, aNormal, b - a) : a;
     const Vec3 to = bSurface ? offsetRayOrigin(b, bNormal, a - b) : b;
     if (!isFinite(from) || !isFinite(to)) return false;
+    count(Event::ShadowRays);
+    const PhaseScope scope(Phase::Traversal);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay ray;

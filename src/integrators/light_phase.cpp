@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/stats.h"
 #include "paths/kernels.h"
 
 namespace tripath {
@@ -24,6 +25,8 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     store_.reset(paths);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, store_.chunks(), 1), [&](const tbb::blocked_range<size_t>& r) {
         thread_local Subpath path;
+        enrolThread();
+        const PhaseScope scope(Phase::Sampling);
         for (size_t c = r.begin(); c < r.end(); ++c) {
             LightStore::Chunk& chunk = store_.chunk(c);
             const uint64_t first = c * LightStore::kPathsPerChunk;
@@ -31,12 +34,14 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
                 Rng rng(seed, domain, index * paths + i);
                 lightSubpath(scene, rng, walk, pdfs, path);
                 recordRunningSums(path, true, pass.mis);
+                count(Event::LightVertices, path.size());
                 chunk.append(path);
             }
         }
     });
     pass.light = &store_;
     if (radius > 0) {
+        const PhaseScope scope(Phase::Search);
         search_.emplace(store_, radius);
         pass.search = &*search_;
     }

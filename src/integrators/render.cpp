@@ -6,6 +6,7 @@
 
 #include <chrono>
 
+#include "geometry/stats.h"
 #include "integrators/light_phase.h"
 #include "paths/kernels.h"
 
@@ -37,6 +38,7 @@ public:
         : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPathsPerPass(camera))) {}
     void setPixel(int pixel) { pixel_ = pixel; }
     void add(Strategy st, const Connection& c) override {
+        const PhaseScope scope(Phase::Film);
         if (c.weightGuarded) ++out_.guardedWeights;
         const Spectrum w = c.weighted();
         if (!isFinite(w) || !isFinite(c.unweighted)) {
@@ -46,6 +48,7 @@ public:
         if (!st.merge && st.t == 1) {
             const int x = std::min(static_cast<int>(c.raster->x), camera_.width() - 1);
             const int y = std::min(static_cast<int>(c.raster->y), camera_.height() - 1);
+            count(Event::Splats);
             out_.splats.push_back({y * camera_.width() + x, st, w * splatShare_, c.unweighted * splatShare_});
         } else {
             film_.add(pixel_, st, w, c.unweighted);
@@ -68,6 +71,8 @@ void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pa
     const uint64_t pixels = uint64_t(cam.width()) * cam.height();
     thread_local PathBuffers paths;
     TileSink sink(film, cam, out);
+    enrolThread();
+    const PhaseScope scope(Phase::Sampling);
     for (int y = y0; y < std::min(y0 + kTileSize, cam.height()); ++y)
         for (int x = x0; x < std::min(x0 + kTileSize, cam.width()); ++x) {
             const int pixel = y * cam.width() + x;
@@ -89,6 +94,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     const int tiles = ((cam.width() + kTileSize - 1) / kTileSize) * ((cam.height() + kTileSize - 1) / kTileSize);
     std::vector<TileOutput> outputs(tiles);
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+    setTiming(settings.timing);
+    enrolThread();
+    const StatsSnapshot statsBefore = statsSnapshot();
     const auto start = std::chrono::steady_clock::now();
     double callbackSeconds = 0;  // spent in onPass: the caller's time, not the render's
     auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
@@ -106,12 +114,15 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                     renderTile(scene, integrator, pass, result.film, tile, settings.seed, settings.domain, outputs[tile]);
             });
         });
-        for (TileOutput& out : outputs) {
-            for (const Splat& sp : out.splats) result.film.add(sp.pixel, sp.strategy, sp.weighted, sp.unweighted);
-            out.splats.clear();
-            result.droppedSamples += out.dropped;
-            result.guardedWeights += out.guardedWeights;
-            out.dropped = out.guardedWeights = 0;
+        {
+            const PhaseScope filing(Phase::Film);
+            for (TileOutput& out : outputs) {
+                for (const Splat& sp : out.splats) result.film.add(sp.pixel, sp.strategy, sp.weighted, sp.unweighted);
+                out.splats.clear();
+                result.droppedSamples += out.dropped;
+                result.guardedWeights += out.guardedWeights;
+                out.dropped = out.guardedWeights = 0;
+            }
         }
         ++result.passes;
         result.seconds = elapsed();
@@ -122,6 +133,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
             callbackSeconds += since(t0);
         }
     }
+    result.stats = statsSnapshot() - statsBefore;
+    setTiming(false);
     return result;
 }
 

@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "geometry/rng.h"
+#include "geometry/stats.h"
 #include "integrators/film.h"
 #include "integrators/integrator.h"
 
@@ -20,6 +21,7 @@ struct RenderSettings {
     StreamDomain domain = StreamDomain::CameraSample;
     uint64_t firstPass = 0;       // sample index of the first pass: lets a reference add fresh samples
     int threads = 0;              // 0: all cores
+    bool timing = false;          // run the phase timers (geometry/stats.h) for RenderResult::stats
     FilmLayers layers;
     // Called after each pass with (passes done, seconds so far); may be empty.
     std::function<void(int, double)> progress;
@@ -37,6 +39,9 @@ struct RenderResult {
     double seconds = 0;
     uint64_t droppedSamples = 0;  // NaN or infinite contributions kept off the film
     uint64_t guardedWeights = 0;  // MIS weights set to 0 because a pdf ratio was not finite (mis.h)
+    // What the render did (geometry/stats.h): its events, and with timing on its cycles per phase.
+    // Taken as the difference of two process-wide snapshots, so renders must not overlap.
+    StatsSnapshot stats;
     Image image() const { return film.image(passes); }
 };
 

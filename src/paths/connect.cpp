@@ -1,5 +1,6 @@
 #include "paths/connect.h"
 
+#include "geometry/stats.h"
 #include "paths/kernels.h"
 
 namespace tripath {
@@ -16,10 +17,15 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
     const Vertex& pt = camera[t - 1];
     const Vertex& ptMinus = camera[t - 2];
     if (pt.emitter < 0) return c;
+    count(Event::EmitterHits);
     const Segment toCamera(pt, ptMinus);
     const LocalScattering at(scene, pt, nullptr, toCamera.towardB());
-    c.unweighted = pt.beta * at.value();  // Le(pt → ptMinus)
+    {
+        const PhaseScope scattering(Phase::Scattering);
+        c.unweighted = pt.beta * at.value();  // Le(pt → ptMinus)
+    }
     if (isBlack(c.unweighted)) return c;
+    const PhaseScope pdfs(Phase::Mis);
     Junction junction;
     if (mis.strategies.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter);
     if (mis.strategies.readsCameraPdfs(t - 2, 0, t)) junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), ptMinus);
@@ -41,6 +47,7 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     const Vertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
     const int k = s + t - 1;
     if (scattersDelta(qs, s - 1, k) || scattersDelta(pt, s, k)) return c;  // no shadow ray joins a delta lobe
+    count(Event::Connections);
     const Segment segment(qs, pt);
     if (t == 1) {
         c.raster = scene.camera().raster(-segment.direction());
@@ -50,12 +57,16 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     const Segment backQ(qs, qsMinus), backP(pt, ptMinus);  // to each endpoint's own predecessor
     const LocalScattering atQ(scene, qs, backQ.towardB(), segment.towardB());
     const LocalScattering atP(scene, pt, &towardQ, backP.towardB());
-    c.unweighted = qs.beta * atQ.value() * segment.G() * atP.value() * pt.beta;
+    {
+        const PhaseScope scattering(Phase::Scattering);
+        c.unweighted = qs.beta * atQ.value() * segment.G() * atP.value() * pt.beta;
+    }
     if (isBlack(c.unweighted)) return c;
     if (!visible(scene, qs, pt)) {
         c.unweighted = Spectrum(0.0f);
         return c;
     }
+    const PhaseScope pdfs(Phase::Mis);
     Junction junction;
     if (mis.strategies.readsCameraPdfs(t - 1, s, t)) junction.cameraEnd = segment.toArea(atQ.pdfTowardCamera(), pt);
     if (mis.strategies.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "geometry/rng.h"
+#include "geometry/stats.h"
 #include "paths/connect.h"
 #include "paths/light_store.h"
 #include "paths/merge.h"
@@ -48,8 +49,12 @@ void evaluateMerges(const Scene& scene, const LightVertexSearch& search, const S
                     const MisContext& mis, Sink&& sink) {
     for (int t = 2; t <= static_cast<int>(camera.size()) && t <= maxDepth; ++t) {
         if (camera[t - 1].delta) continue;
+        count(Event::RangeQueries);
+        const PhaseScope searching(Phase::Search);
         search.forEachWithin(camera[t - 1].p, [&](std::span<const Vertex> light, int s) {
             if (s + t - 2 > maxDepth) return;
+            count(Event::Merges);
+            const PhaseScope merging(Phase::Sampling);
             const Connection c = merge(scene, light, s, camera, t, mis);
             if (!isBlack(c.unweighted)) sink(Strategy{s, t, true}, c);
         });

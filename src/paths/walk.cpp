@@ -1,5 +1,6 @@
 #include "paths/walk.h"
 
+#include "geometry/stats.h"
 #include "paths/kernels.h"
 #include "paths/roulette.h"
 
@@ -31,6 +32,7 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
 // `from` would generate having been reached from v. A camera walk goes against the light's
 // flow, so v lies on `from`'s light side; a light walk goes with it.
 void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode) {
+    const PhaseScope scope(Phase::Mis);
     const Vertex& from = path.back();
     Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
     const Segment ahead(from, v), behind(from, beforeFrom);

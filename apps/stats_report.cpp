@@ -1,0 +1,43 @@
+#include "stats_report.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace tripath::app {
+
+std::string statsReport(const RenderResult& r, uint64_t pixels) {
+    const StatsSnapshot& s = r.stats;
+    const double samples = double(r.passes) * double(pixels);
+    const double seconds = r.seconds > 0 ? r.seconds : 1.0;
+    std::string out = fmt::format("stats: {} passes x {} pixels = {:.4g} camera samples in {:.2f} s\n", r.passes, pixels,
+                                  samples, r.seconds);
+    out += fmt::format("  {:<24}{:>16}{:>14}{:>16}\n", "event", "total", "per sample", "per second");
+    for (int i = 0; i < kEventCount; ++i) {
+        const auto e = static_cast<Event>(i);
+        out += fmt::format("  {:<24}{:>16}{:>14.4g}{:>16.4g}\n", eventName(e), s[e], samples > 0 ? s[e] / samples : 0.0,
+                           s[e] / seconds);
+    }
+    const double rays = double(s[Event::ClosestHitRays] + s[Event::ShadowRays]);
+    out += fmt::format("  rays of both kinds: {:.4g} per sample, {:.4g} M per second\n", samples > 0 ? rays / samples : 0.0,
+                       rays / seconds / 1e6);
+    uint64_t working = 0;
+    for (int i = 0; i < kPhaseCount; ++i)
+        if (static_cast<Phase>(i) != Phase::Idle) working += s.phaseSamples[i];
+    if (working == 0) return out;
+    const uint64_t outside = s.phaseSamples[static_cast<int>(Phase::Idle)];
+    out += fmt::format("  outside the phases below (pass set-up, TBB scheduling and waiting): {:.1f} % of the CPU time\n",
+                       100.0 * double(outside) / double(working + outside));
+    out += fmt::format("  share of the CPU time in each phase ({} profiling samples, 1 per ms of CPU; exclusive: a shadow "
+                       "ray inside a connection is traversal):\n", working);
+    for (int i = 0; i < kPhaseCount; ++i) {
+        const auto p = static_cast<Phase>(i);
+        if (p == Phase::Idle) continue;
+        const double share = double(s.phaseSamples[i]) / double(working);
+        out += fmt::format("    {:<40}{:>6.1f} % ± {:.1f}\n", phaseName(p), 100.0 * share,
+                           100.0 * std::sqrt(share * (1 - share) / double(working)));
+    }
+    return out;
+}
+
+}  // namespace tripath::app

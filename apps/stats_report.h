@@ -1,0 +1,15 @@
+// The report `--stats` prints after a render: what it did and where its time went.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "integrators/render.h"
+
+namespace tripath::app {
+
+// Every event counter in total, per camera sample (passes × pixels) and per second of the render;
+// the rays of both kinds per second; and, if the phases were sampled, each one's share of the CPU
+// time spent in them, with its sampling error. Several lines, each ending in a newline.
+std::string statsReport(const RenderResult& r, uint64_t pixels);
+
+}  // namespace tripath::app

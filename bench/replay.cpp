@@ -1,0 +1,107 @@
+// The ceiling on the renderer's own rays (issue 13 §1). ceiling.cpp casts random rays; a render's
+// rays are not random (they start on surfaces, many are short shadow rays, camera rays are
+// coherent), so "fraction of the ceiling" is only meaningful for the same rays. Here one pass of
+// the production render loop (render(): light phase, camera samples, film) is recorded ray by ray
+// through the Embree interposition of ray_count.cpp, and
+//   replay/<integrator>/<scene>/depth:<d>/threads:<n>/render  times whole passes of render()
+//       (rays_per_s: the passes' rays, from the renderer's own counters, over wall-clock time);
+//   replay/<integrator>/<scene>/depth:<d>/threads:<n>/embree  times the recorded rays cast through
+//       Embree's functions alone, in the order they were cast, in chunks of kChunk rays spread
+//       over the same number of threads.
+// The first's rays_per_s over the second's is the share of the ceiling a render reaches; the
+// rest of a pass's time is everything a renderer does besides tracing rays.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <benchmark/benchmark.h>
+
+#include <atomic>
+#include <memory>
+
+#include "bench_scenes.h"
+#include "integrators/render.h"
+
+namespace tripath::bench {
+
+namespace {
+
+constexpr int kDepth = 8;        // the depth bench/ states its targets at
+constexpr size_t kChunk = 4096;  // rays per task in the replay: a few tiles' worth
+
+std::unique_ptr<Integrator> integratorFor(const std::string& name) {
+    IntegratorSettings settings;
+    settings.walk.maxDepth = kDepth;
+    return makeIntegrator(name, settings);
+}
+
+// Pass `index` of the production loop on `threads` threads (the Film and the arena are set up
+// per call, as a one-pass render does; both are small against a 512² pass).
+RenderResult renderPass(const Scene& scene, const Integrator& integrator, uint64_t index, int threads) {
+    RenderSettings rs;
+    rs.spp = 1;
+    rs.firstPass = index;
+    rs.threads = threads;
+    return render(scene, integrator, rs);
+}
+
+void runRender(benchmark::State& state, const std::string& key, const std::string& name, int threads) {
+    const Scene& scene = cachedScene(key);
+    const auto integrator = integratorFor(name);
+    uint64_t rays = 0, samples = 0, index = 0;
+    for (auto _ : state) {
+        const RenderResult r = renderPass(scene, *integrator, index++, threads);
+        rays += r.stats[Event::ClosestHitRays] + r.stats[Event::ShadowRays];
+        samples += uint64_t(scene.camera().width()) * scene.camera().height();
+    }
+    using C = benchmark::Counter;
+    state.counters["rays_per_s"] = C(double(rays), C::kIsRate);
+    state.counters["samples_per_s"] = C(double(samples), C::kIsRate);
+    state.counters["rays_per_sample"] = double(rays) / double(samples);
+}
+
+void runEmbree(benchmark::State& state, const std::string& key, const std::string& name, int threads) {
+    const Scene& scene = cachedScene(key);
+    const auto integrator = integratorFor(name);
+    std::vector<RecordedRay> rays;
+    setRayRecorder(&rays);
+    renderPass(scene, *integrator, 0, 1);  // one thread: the rays in the order one worker casts them
+    setRayRecorder(nullptr);
+    const size_t chunks = (rays.size() + kChunk - 1) / kChunk;
+    std::atomic<uint64_t> hits{0};
+    tbb::task_arena& arena = arenaFor(threads);
+    for (auto _ : state)
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+                for (size_t c = r.begin(); c < r.end(); ++c) {
+                    const size_t first = c * kChunk, n = std::min(kChunk, rays.size() - first);
+                    hits.fetch_add(replayEmbree(std::span(rays).subspan(first, n)), std::memory_order_relaxed);
+                }
+            });
+        });
+    using C = benchmark::Counter;
+    state.counters["rays_per_s"] = C(double(rays.size()) * double(state.iterations()), C::kIsRate);
+    state.counters["rays_per_pass"] = double(rays.size());
+    state.counters["hit_fraction"] = double(hits.load()) / (double(rays.size()) * double(state.iterations()));
+}
+
+const bool registered = [] {
+    for (const auto& [label, key] : sampleScenes())
+        for (const char* name : {"pt", "bdpt", "vcm"})
+            for (int threads : {1, 2}) {
+                const std::string base = std::string("replay/") + name + "/" + label + "/depth:" +
+                                         std::to_string(kDepth) + "/threads:" + std::to_string(threads);
+                benchmark::RegisterBenchmark((base + "/render").c_str(),
+                                             [key = key, name, threads](benchmark::State& st) { runRender(st, key, name, threads); })
+                    ->UseRealTime()
+                    ->Unit(benchmark::kMillisecond);
+                benchmark::RegisterBenchmark((base + "/embree").c_str(),
+                                             [key = key, name, threads](benchmark::State& st) { runEmbree(st, key, name, threads); })
+                    ->UseRealTime()
+                    ->Unit(benchmark::kMillisecond);
+            }
+    return true;
+}();
+
+}  // namespace
+
+}  // namespace tripath::bench
