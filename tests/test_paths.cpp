@@ -387,6 +387,7 @@ Subpath lightPrefix(const Scene& scene, const Path& x, int s) {
         y[i].pdfFwd = forwardPdf(scene, x, i);
         y[i].pdfRev = reversePdf(scene, x, i);
         y[i].beta = Spectrum(1.0f);
+        if (i > 0) y[i].arrival = normalize(y[i - 1].p - y[i].p);  // as a walk would have traced it
     }
     if (s > 0) {  // x0 as next-event estimation and light subpaths produce it: a point on an emitter
         y[0].kind = Vertex::Kind::Emitter;
@@ -402,6 +403,7 @@ Subpath cameraPrefix(const Scene& scene, const Path& x, int s) {
         z[j].pdfFwd = reversePdf(scene, x, k - j);
         z[j].pdfRev = forwardPdf(scene, x, k - j);
         z[j].beta = Spectrum(1.0f);
+        if (j > 0) z[j].arrival = normalize(z[j - 1].p - z[j].p);
     }
     if (s == 0) {  // x0 reached by the camera walk: a surface that happens to emit
         Vertex& e = z.back();

@@ -28,8 +28,9 @@ std::optional<Vec2> Camera::raster(Vec3 d) const {
     return r;
 }
 
-float Camera::importance(Vec3 d) const {
-    if (!raster(d)) return 0.0f;
+float Camera::importance(Vec3 d) const { return raster(d) ? importanceDensity(d) : 0.0f; }
+
+float Camera::importanceDensity(Vec3 d) const {
     const float c = dot(d, forward_);
     return static_cast<float>(width_) * height_ / (area_ * c * c * c * c);
 }

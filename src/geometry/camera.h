@@ -33,6 +33,8 @@ public:
 
     // Per-pixel importance W_j(ω) for the pixel that d passes through (zero outside the image).
     float importance(Vec3 d) const;
+    // The same formula, N / (A cos⁴θ), without asking whether d crosses the image (see imageDensity).
+    float importanceDensity(Vec3 d) const;
     // Solid-angle density of a direction sampled uniformly over the whole image, 1 / (A cos³θ);
     // over one pixel it is N times that. Zero outside the image.
     float imagePdf(Vec3 d) const;

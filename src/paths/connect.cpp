@@ -22,7 +22,7 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
     const LocalScattering at(scene, pt, nullptr, toCamera.towardB());
     {
         const PhaseScope scattering(Phase::Scattering);
-        c.unweighted = pt.beta * at.value();  // Le(pt → ptMinus)
+        c.unweighted = pt.beta * emittance(at.value(), traced(pt, ptMinus));  // ε(pt → ptMinus)
     }
     if (isBlack(c.unweighted)) return c;
     const PhaseScope pdfs(Phase::Mis);
@@ -34,10 +34,10 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
 }
 
 // s ≥ 1: the endpoints qs (light side) and pt (camera side) joined by a shadow ray. f/p of the
-// joined path is the two prefixes' throughputs times the factors the connecting segment brings:
-// the endpoints' scattering and G between them. The segment and each endpoint's local geometry
-// are computed once, and of the four reverse pdfs the connection defines only those the
-// strategy set's weight reads are computed.
+// joined path is the two prefixes' throughputs times the kernels the connecting segment
+// completes (kernels.h): ε(qs → pt) or ρ(qs−1 → qs → pt), g(qs, pt), and ρ(qs → pt → pt−1) or
+// W(qs → pt). The segment and each endpoint's local geometry are computed once, and of the four
+// reverse pdfs the connection defines only those the strategy set's weight reads are computed.
 Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                 const MisContext& mis) {
     Connection c;
@@ -59,7 +59,9 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     const LocalScattering atP(scene, pt, &towardQ, backP.towardB());
     {
         const PhaseScope scattering(Phase::Scattering);
-        c.unweighted = qs.beta * atQ.value() * segment.G() * atP.value() * pt.beta;
+        const Spectrum kernelQ = s == 1 ? emittance(atQ, segment) : rho(atQ, segment);
+        const Spectrum kernelP = t == 1 ? Spectrum(W(atP)) : rho(atP.value(), traced(pt, *ptMinus));
+        c.unweighted = qs.beta * kernelQ * g(segment) * kernelP * pt.beta;
     }
     if (isBlack(c.unweighted)) return c;
     if (!visible(scene, qs, pt)) {

@@ -2,20 +2,6 @@
 
 namespace tripath {
 
-float cosine(const Vertex& v, Vec3 w) { return v.isDeltaLight() ? 1.0f : absDot(v.ng, w); }
-
-float Segment::G() const {
-    if (!(d2_ > 0)) return 0.0f;  // coincident points carry no transport
-    return cosine(a_, w_) * cosine(*b_, w_) / d2_;
-}
-
-float Segment::toArea(float pdfOmega, const Vertex& to) const {
-    if (!(d2_ > 0)) return 0.0f;
-    return pdfOmega * cosine(to, w_) / d2_;
-}
-
-float Segment::toSolidAngle(float pdfArea, const Vertex& at) const { return pdfArea * d2_ / cosine(at, w_); }
-
 bool visible(const Scene& scene, const Vertex& a, const Vertex& b) {
     return scene.unoccluded(a.p, a.offsetNormal(), b.p, b.offsetNormal());
 }
@@ -59,6 +45,23 @@ float LocalScattering::pdfTowardLight() const {
     }
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
     return pdfBsdf(*v_.material, cameraLocal_, lightLocal_);
+}
+
+float g(const Scene& scene, const Vertex& x, const Vertex& xp) { return visible(scene, x, xp) ? g(Segment(x, xp)) : 0.0f; }
+
+Spectrum emittance(const Scene& scene, const Vertex& x0, const Vertex& x1) {
+    const Segment out(x0, x1);
+    return emittance(LocalScattering(scene, x0, nullptr, out.towardB()), out);
+}
+
+Spectrum rho(const Scene& scene, const Vertex& xpp, const Vertex& xp, const Vertex& x) {
+    const Segment in(xp, xpp), out(xp, x);
+    return rho(LocalScattering(scene, xp, in.towardB(), out.towardB()), out);
+}
+
+float W(const Scene& scene, const Vertex& xkm1, const Vertex& xk) {
+    const Segment in(xk, xkm1);
+    return W(LocalScattering(scene, xk, in.towardB(), nullptr));
 }
 
 }  // namespace tripath

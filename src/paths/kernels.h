@@ -1,18 +1,26 @@
-// The factors of the three-point form (DESIGN.md §1, seeds/000 §2–4) as the walks and
-// connections evaluate them.
+// The kernels of the three-point form (DESIGN.md §1, seeds/000 §2–4), as every walk, connection
+// and merge evaluates them:
 //
-// The kernels g, ε, ρ and W multiply to f(x̄) (paths/oracle.h evaluates them literally). The
-// cosines of a segment are those at its two ends; ρ carries the cosines of its OUTGOING segment
-// (toward the sensor). Regrouping the same product by segment gives
-//   f(x̄) = Π_vertices scatter(x_i) · Π_segments G(x_i, x_{i+1}) V(x_i, x_{i+1}),
-// with G = |cos||cos| / r² and scatter = Le at x0, f_r at interior vertices, W at xk. That is
-// the form the subpath walks accumulate (beta) and `connect` joins: each factor is known as soon
-// as the vertices it touches are. The tests check the two forms agree.
+//   g(x, x')            = V(x, x') / |x − x'|²                              [1/m²]
+//   ε(x0 → x1)          = Le(x0 → x1) |cos θ0| |cos θ1|                     [W/m²]
+//   ρ(x″ → x′ → x)      = f_r(x″ → x′ → x) |cos θ′| |cos θ|                 [1]
+//   W(x_{k−1} → x_k)    = sensor importance of the last segment
+//   f(x̄) = ε(x0→x1) g(x0,x1) · Π_{i=1}^{k−1} ρ(x_{i−1}→x_i→x_{i+1}) g(x_i,x_{i+1}) · W(x_{k−1}→x_k)
+//
+// Every cosine of a segment lives in the ρ or ε of the segment's light-side vertex. A subpath's
+// throughput β (vertex.h) is the product of the kernels whose points it holds over its vertices'
+// pdfs, and a connection multiplies in the ones the joining segment completes: ρ or ε at the
+// light-side endpoint, g between the two, ρ or W at the camera-side endpoint (connect.cpp).
+//
+// Each kernel has two forms: of points (the definition, which the tests use as an oracle), and
+// of what a walk or a connection has already computed: the endpoint's LocalScattering (its frame
+// and local directions) and the Segment (direction and length). The point forms build those and
+// call the fast ones, so there is one implementation of each kernel.
 //
 // Shading normals: f_r is evaluated in the shading frame, and the cosine at the receiving end of
 // the incoming (light-side) segment becomes the SHADING cosine, as radiance scattering demands.
-// Writing it as the factor |ns·ℓ| / |ng·ℓ| on f_r (ℓ: toward the light side) keeps G purely
-// geometric and symmetric, and makes light subpaths use Veach's adjoint BSDF (thesis §5.3)
+// Writing it as the factor |ns·ℓ| / |ng·ℓ| on f_r (ℓ: toward the light side) keeps the cosines in
+// ρ purely geometric, and makes light subpaths use Veach's adjoint BSDF (thesis §5.3)
 // automatically, so light tracing and path tracing agree on smooth-normal meshes.
 #pragma once
 #include <cmath>
@@ -23,10 +31,10 @@ namespace tripath {
 
 // |cos θ| at vertex v for the unit direction w: geometric normal, or the sensor's axis;
 // 1 at a point light (it has no surface to foreshorten).
-float cosine(const Vertex& v, Vec3 w);
+inline float cosine(const Vertex& v, Vec3 w) { return v.isDeltaLight() ? 1.0f : absDot(v.ng, w); }
 
 // The segment between two vertices, its direction and length computed once for the kernels
-// that share it (G, and the area pdfs at either end).
+// that share it (g, the cosines of ρ or ε, and the area pdfs at either end).
 class Segment {
 public:
     Segment(const Vertex& a, const Vertex& b) : Segment(a, &b) {}
@@ -36,15 +44,25 @@ public:
         d2_ = lengthSquared(b->p - a.p);
         w_ = (b->p - a.p) / std::sqrt(d2_);
     }
+    // A segment a walk traced from a to b along the unit direction w (or from b to a along −w):
+    // its cosines are those of the ray itself, which an offset origin and rounded hit points make
+    // differ slightly from the direction between the points (kernels that end up beside the
+    // sampler's pdf of that ray must use its direction, or their ratio drifts: see `traced`).
+    Segment(const Vertex& a, const Vertex& b, Vec3 w) : a_(a), b_(&b), d2_(lengthSquared(b.p - a.p)), w_(w) {}
     Vec3 direction() const { return w_; }  // unit, a → b
     // The direction as LocalScattering takes a neighbour: null where there is no b.
     const Vec3* towardB() const { return b_ ? &w_ : nullptr; }
-    // G(a,b) = |cos θa| |cos θb| / |a − b|², without visibility; 0 for coincident points.
-    float G() const;
+    // 1 / |a − b|²: g(a, b) without its visibility; 0 for coincident points (no transport).
+    float inverseSquaredLength() const { return d2_ > 0 ? 1.0f / d2_ : 0.0f; }
+    // |cos θa| |cos θb|: the cosines of the segment at both ends.
+    float cosines() const { return cosine(a_, w_) * cosine(*b_, w_); }
     // Solid-angle pdf at one end → area pdf at the other end, `to`: p_A = p_ω |cos θ_to| / r².
-    float toArea(float pdfOmega, const Vertex& to) const;
+    float toArea(float pdfOmega, const Vertex& to) const { return d2_ > 0 ? pdfOmega * cosine(to, w_) / d2_ : 0.0f; }
     // The inverse: an area pdf at `at` (one end) → the solid-angle pdf at the other end.
-    float toSolidAngle(float pdfArea, const Vertex& at) const;
+    float toSolidAngle(float pdfArea, const Vertex& at) const { return pdfArea * d2_ / cosine(at, w_); }
+    // g(a, b) / p_A(b) for b generated from a with solid-angle pdf p_ω: the r² cancels, leaving
+    // 1 / (p_ω |cos θ_b|) (a walk's step: one division where the two factors would take two).
+    float gOverArea(float pdfOmega, const Vertex& b) const { return d2_ > 0 ? 1.0f / (pdfOmega * cosine(b, w_)) : 0.0f; }
 
 private:
     const Vertex& a_;
@@ -99,8 +117,8 @@ public:
             cameraLocal_ = frame.toLocal(camera_);
         }
     }
-    // scatter(v): Le toward the camera side at an emitter end, f_r × shading correction at a
-    // surface, W toward the light side at the sensor.
+    // What v contributes besides cosines: Le toward the camera side at an emitter end, f_r ×
+    // shading correction at a surface, W toward the light side at the sensor.
     Spectrum value() const;
     // Solid-angle pdf with which v, reached from its light side, generates the camera-side
     // direction: its BSDF's, or an emitter's emission distribution.
@@ -118,5 +136,36 @@ private:
     Vec3 light_, camera_;
     Vec3 lightLocal_, cameraLocal_;  // in v's shading frame (surfaces between two neighbours)
 };
+
+// The segment from a camera or light subpath's vertex v back to its predecessor, along the
+// direction the walk traced it. Where a kernel's cosines meet the walk's sampling pdf of that
+// segment (the camera side of a connection, a merge or an emitter hit, and the camera walk's
+// own next step), this keeps f/p what the sampler made it: at the coordinates of a scene far from
+// the origin, hit points are rounded to a fair fraction of a small object's size, and cosines
+// between the points would bias the image (DegenerateFar).
+inline Segment traced(const Vertex& v, const Vertex& predecessor) { return Segment(v, predecessor, v.arrival); }
+
+// ρ(x″ → x′ → x) with x′'s f_r × shading correction already evaluated (LocalScattering::value,
+// or the BSDF sample a walk drew) and `out` the segment x′ → x.
+inline Spectrum rho(Spectrum scatter, const Segment& out) { return scatter * out.cosines(); }
+inline Spectrum rho(const LocalScattering& at, const Segment& out) { return rho(at.value(), out); }
+// ε(x0 → x1) with Le(x0 → x1) already evaluated, `out` the segment x0 → x1.
+inline Spectrum emittance(Spectrum Le, const Segment& out) { return Le * out.cosines(); }
+inline Spectrum emittance(const LocalScattering& at, const Segment& out) { return emittance(at.value(), out); }
+// W(x_{k−1} → x_k) at the sensor's LocalScattering (its light side toward x_{k−1}).
+inline float W(const LocalScattering& atSensor) { return atSensor.value().x; }
+// g(x, x') of a segment whose visibility is known: its shadow ray came back unoccluded, or a walk
+// traced it.
+inline float g(const Segment& s) { return s.inverseSquaredLength(); }
+
+// The point forms, the definitions.
+// g(x, x') = V / r², with its shadow ray.
+float g(const Scene& scene, const Vertex& x, const Vertex& xp);
+// ε(x0 → x1) = Le(x0 → x1) |cos θ0| |cos θ1|.
+Spectrum emittance(const Scene& scene, const Vertex& x0, const Vertex& x1);
+// ρ(x″ → x′ → x) = f_r · |cos θ′| |cos θ| (outgoing segment x′–x), with the shading correction.
+Spectrum rho(const Scene& scene, const Vertex& xpp, const Vertex& xp, const Vertex& x);
+// W(x_{k−1} → x_k): the sensor importance of the pixel the segment passes through.
+float W(const Scene& scene, const Vertex& xkm1, const Vertex& xk);
 
 }  // namespace tripath

@@ -19,7 +19,7 @@ Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::
     const LocalScattering at(scene, z, incoming.towardB(), toCamera.towardB());
     {
         const PhaseScope scattering(Phase::Scattering);
-        c.unweighted = z.beta * at.value() * y.beta * (1.0f / mis.mergeEta);
+        c.unweighted = z.beta * rho(at.value(), traced(z, zBefore)) * y.beta * (1.0f / mis.mergeEta);
     }
     if (isBlack(c.unweighted)) return c;
     const PhaseScope pdfs(Phase::Mis);

@@ -2,7 +2,6 @@
 
 #include <limits>
 
-#include "paths/kernels.h"
 
 namespace tripath {
 
@@ -15,24 +14,9 @@ float inverseSquaredDistance(const Vertex& a, const Vertex& b) {
     return d2 > 0 ? 1.0f / d2 : std::numeric_limits<float>::infinity();
 }
 
-float geometricFactor(const Vertex& a, const Vertex& b) { return Segment(a, b).G(); }
-
-float g(const Scene& scene, const Vertex& x, const Vertex& xp) {
-    return visible(scene, x, xp) ? inverseSquaredDistance(x, xp) : 0.0f;
-}
-
-Spectrum emittance(const Scene& scene, const Vertex& x0, const Vertex& x1) {
-    const Vec3 w = unitDirection(x0, x1);
-    return scatter(scene, x0, nullptr, &x1) * (cosine(x0, w) * cosine(x1, w));
-}
-
-Spectrum rho(const Scene& scene, const Vertex& xpp, const Vertex& xp, const Vertex& x) {
-    const Vec3 w = unitDirection(xp, x);
-    return scatter(scene, xp, &xpp, &x) * (cosine(xp, w) * cosine(x, w));
-}
-
-float W(const Scene& scene, const Vertex& xkm1, const Vertex& xk) {
-    return scene.camera().importance(unitDirection(xk, xkm1));
+float geometricFactor(const Vertex& a, const Vertex& b) {
+    const Segment s(a, b);
+    return s.cosines() * g(s);
 }
 
 Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera) {

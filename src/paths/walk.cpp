@@ -46,15 +46,38 @@ void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode
     }
 }
 
-// Extends `path` from its last vertex along `dir`, sampled there with solid-angle pdf
-// `pdfOmega`; `beta` is the throughput the next vertex receives. Each step multiplies beta by
-//     scatter(x_i) · G(x_i, x_{i+1}) / p_A(x_{i+1}) = f · correction · |cos θ_i| / p_ω,
-// the r² and the far cosine cancelling between G and the area pdf. The vertices' pdfs for MIS
-// are recomputed from the points (LocalScattering) rather than taken from the sampler: the ray
-// leaves from an offset origin, and on short segments the direction between the vertices is
-// not quite the sampled one; connections see only the points, so the walks must too. Only the
-// pdfs `pdfs` asks for are computed.
-void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, TransportMode mode,
+// What scattering at the walk's last vertex `from` (factor `scatter`: f_r × shading correction,
+// Le at an emitter, W at the sensor) into the direction it drew with solid-angle pdf `pdf`
+// contributes to the throughput of the vertex v it reached:
+//     light walk    β(y_j) = β(y_{j−1}) · ρ(y_{j−2} → y_{j−1} → y_j) · g(y_{j−1}, y_j) / p_A(y_j)
+//                   (ε(y0 → y1) for the first step);
+//     camera walk   β(z_j) = β(z_{j−1}) · ρ(z_j → z_{j−1} → z_{j−2}) · g(z_j, z_{j−1}) / p_A(z_j)
+//                   (W(z1 → z0) for the first step),
+// with p_A(v) = p_ω |cos θ_v| / r². A light walk's ρ carries the cosines of the segment just
+// traced; a camera walk's those of the segment behind `from`, toward the sensor, which the light's
+// flow leaves next: the cosines of the camera walk's newest segment belong to the kernel of the
+// vertex it reached, known only when a connection or an emitter decides it.
+// All cosines are of the rays the walk traced (kernels.h: traced).
+Spectrum stepFactor(const Subpath& path, const Vertex& v, Spectrum scatter, float pdf, TransportMode mode) {
+    const Vertex& from = path.back();
+    const Segment step(from, v, -v.arrival);
+    Spectrum kernel;
+    if (mode == TransportMode::Importance)
+        kernel = from.kind == Vertex::Kind::Emitter ? emittance(scatter, step) : rho(scatter, step);
+    else
+        kernel = from.kind == Vertex::Kind::Sensor ? scatter : rho(scatter, traced(from, path[path.size() - 2]));
+    return kernel * step.gOverArea(pdf, v);
+}
+
+// Extends `path` from its last vertex, which scattered with factor `scatter` into `dir` with
+// solid-angle pdf `pdf`; `beta` is that vertex's throughput divided by its roulette survival
+// probability. The directions are the sampler's and the kernels evaluated with its f_r (a delta
+// lobe's f_r and pdf cancel in the ratio); the vertices' pdfs for MIS are recomputed from the
+// points (LocalScattering) rather than taken from the sampler: the ray leaves from an offset
+// origin, and on short segments the direction between the vertices is not quite the sampled one;
+// connections see only the points, so the walks must too. Only the pdfs `pdfs` asks for are
+// computed.
+void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, float pdf, Vec3 dir, TransportMode mode,
                 const WalkSettings& settings, WalkPdfs pdfs, size_t maxVertices, Subpath& path) {
     while (path.size() < maxVertices) {
         const Vertex& from = path.back();
@@ -62,7 +85,9 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
         const auto hit = scene.intersect(origin, dir);
         if (!hit) return;
         Vertex v = surfaceVertex(scene, *hit);
-        v.beta = beta;
+        v.arrival = -dir;
+        v.beta = beta * stepFactor(path, v, scatter, pdf, mode);
+        if (!isFinite(v.beta) || isBlack(v.beta)) return;  // a grazing hit (p_A = 0) or coincident points
         if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0))
             recordPdfs(scene, path, v, mode);
         path.push_back(v);
@@ -81,13 +106,15 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Vec3 dir, Transport
         if (!sidesAgree(v, wi)) return;
         // Radiance flows against a camera walk (light arrives along wi) and with a light walk.
         const Vec3 towardLight = mode == TransportMode::Radiance ? wi : wo;
-        beta *= bs->f * (shadingCorrection(v, towardLight) * absDot(v.ng, wi) / bs->pdf);
+        scatter = bs->f * shadingCorrection(v, towardLight);
+        pdf = bs->pdf;
+        beta = path.back().beta;
         const float q = Roulette{settings.rrDepth}.continuation(v, static_cast<int>(path.size()) - 1);
         if (q < 1.0f) {
             if (!(rng.uniform() < q)) return;
             beta = beta / q;
         }
-        if (!isFinite(beta) || isBlack(beta)) return;
+        if (isBlack(scatter)) return;
         dir = wi;
     }
 }
@@ -124,9 +151,13 @@ void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings
     path.push_back(sensorVertex(scene));
     const Camera& cam = scene.camera();
     const Vec3 dir = cam.direction(raster);
-    // beta = W_j cos θ / p_pixel = 1 exactly (camera.h); MIS sees p_pixel / N_L (kernels.h).
-    randomWalk(scene, rng, Spectrum(1.0f), dir, TransportMode::Radiance, settings, pdfs,
-               static_cast<size_t>(settings.maxDepth) + 1, path);
+    // The pinhole draws a point of the pixel uniformly: the direction's per-pixel density is the
+    // pixel count times the whole image's, and W the pixel's importance (camera.h), both of a
+    // direction the camera made (however it rounds at the image's edge). MIS sees the per-pixel
+    // pdf over N_L (kernels.h).
+    const float pixels = float(cam.width()) * float(cam.height());
+    randomWalk(scene, rng, Spectrum(1.0f), Spectrum(cam.importanceDensity(dir)), pixels * cam.imageDensity(dir), dir,
+               TransportMode::Radiance, settings, pdfs, static_cast<size_t>(settings.maxDepth) + 1, path);
 }
 
 void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {
@@ -138,9 +169,9 @@ void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Wa
     const Vec3 dir = scene.emitters().sampleDirection(y0.emitter, y0.ng, uniform2(rng), uc);
     const float pdfDir = scene.emitters().directionPdf(y0.emitter, y0.ng, dir);
     if (!(pdfDir > 0)) return;
-    const Spectrum beta = y0.beta * scene.emitters().Le(y0.emitter, y0.ng, dir) * (cosine(y0, dir) / pdfDir);
-    if (isBlack(beta)) return;
-    randomWalk(scene, rng, beta, dir, TransportMode::Importance, settings, pdfs,
+    const Spectrum Le = scene.emitters().Le(y0.emitter, y0.ng, dir);
+    if (isBlack(Le)) return;
+    randomWalk(scene, rng, y0.beta, Le, pdfDir, dir, TransportMode::Importance, settings, pdfs,
                static_cast<size_t>(settings.maxDepth), path);
 }
 
