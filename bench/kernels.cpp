@@ -1,5 +1,6 @@
-// The kernels one at a time, single-threaded: BSDFs per material type, the three-point kernels
-// (ε, ρ, W, G, g with and without its shadow ray, toAreaPdf), the MIS weight against path length,
+// The kernels one at a time, single-threaded: BSDFs per material type, the three-point kernels as
+// production calls them (ε, ρ, W and g of points, which build the frame and segment and call the
+// fast overloads; ρ given its frame; a segment and its g; the area-pdf conversion), the MIS weight against path length,
 // and one connect() per strategy (s, t). Inputs are precomputed pools cycled through, so each
 // iteration is one call on fresh data and the loop costs a load and an increment.
 #include <benchmark/benchmark.h>
@@ -13,7 +14,6 @@
 #include "paths/connect.h"
 #include "paths/kernels.h"
 #include "paths/mis.h"
-#include "paths/oracle.h"
 #include "paths/walk.h"
 
 namespace tripath::bench {
@@ -162,15 +162,11 @@ void registerPathKernels() {
             benchmark::DoNotOptimize(w);
         });
     });
-    reg("kernel/inverseSquaredDistance", [](benchmark::State& st, const Scene&, const VertexPools& p) {
+    // What every connection builds first: the joining segment (direction, length), and g of it.
+    reg("kernel/segment_g", [](benchmark::State& st, const Scene&, const VertexPools& p) {
         cycle(st, kPool, [&](size_t i) {
-            float v = inverseSquaredDistance(p.surfacePairs[i].first, p.surfacePairs[i].second);
-            benchmark::DoNotOptimize(v);
-        });
-    });
-    reg("kernel/geometricFactor", [](benchmark::State& st, const Scene&, const VertexPools& p) {
-        cycle(st, kPool, [&](size_t i) {
-            float v = geometricFactor(p.surfacePairs[i].first, p.surfacePairs[i].second);
+            const Segment s(p.surfacePairs[i].first, p.surfacePairs[i].second);
+            float v = g(s);
             benchmark::DoNotOptimize(v);
         });
     });
@@ -196,9 +192,30 @@ void registerPathKernels() {
             benchmark::DoNotOptimize(pdfs);
         });
     });
-    reg("kernel/toAreaPdf", [](benchmark::State& st, const Scene&, const VertexPools& p) {
+    // The fast overload a connection calls at an endpoint whose frame it has built (the point
+    // form above builds the frame and the segment, then calls this).
+    reg("kernel/rho_given_frame", [](benchmark::State& st, const Scene& scene, const VertexPools& p) {
+        std::vector<Vec3> toLight, toCamera;
+        for (const auto& [light, v, camera] : p.triples) {
+            toLight.push_back(normalize(light.p - v.p));
+            toCamera.push_back(normalize(camera.p - v.p));
+        }
+        std::vector<LocalScattering> at;
+        std::vector<Segment> out;
+        for (size_t i = 0; i < kPool; ++i) {
+            at.emplace_back(scene, p.triples[i][1], &toLight[i], &toCamera[i]);
+            out.emplace_back(p.triples[i][1], p.triples[i][2]);
+        }
         cycle(st, kPool, [&](size_t i) {
-            float v = toAreaPdf(0.3f, p.surfacePairs[i].first, p.surfacePairs[i].second);
+            Spectrum r = rho(at[i], out[i]);
+            benchmark::DoNotOptimize(r);
+        });
+    });
+    reg("kernel/toArea", [](benchmark::State& st, const Scene&, const VertexPools& p) {
+        std::vector<Segment> s;
+        for (const auto& [a, b] : p.surfacePairs) s.emplace_back(a, b);
+        cycle(st, kPool, [&](size_t i) {
+            float v = s[i].toArea(0.3f, p.surfacePairs[i].second);
             benchmark::DoNotOptimize(v);
         });
     });
