@@ -43,6 +43,7 @@ struct Run {
     int index;  // 0..runs-1
     uint64_t seed;
     std::vector<Checkpoint> checkpoints;  // the last one is the finished render
+    StatsSnapshot stats;                  // what the finished render did (rays, BSDF calls, …)
     const Checkpoint& final() const { return checkpoints.back(); }
 };
 
@@ -97,6 +98,8 @@ struct Report {
     Region inset;
 };
 void writeCsv(const Report& r, const std::string& path);
+// counters.csv: one row per run, every event counter of geometry/stats.h in total.
+void writeCountersCsv(const Report& r, const std::string& path);
 void writeChart(const Report& r, const std::string& svgPath, const std::string& pngPath);
 void writeSideBySide(const Report& r, const std::string& path);
 void writeSummary(const Report& r, const std::string& path);

@@ -109,6 +109,7 @@ void writeReport(Report& report, const std::string& dir) {
     report.summaries = summarize(report.runs, report.curves);
     report.inset = insetRegion(report.options, report.reference, report.images);
     writeCsv(report, path("error.csv"));
+    writeCountersCsv(report, path("counters.csv"));
     writeChart(report, path("error-vs-time.svg"), path("error-vs-time.png"));
     writeSideBySide(report, path("side-by-side.png"));
     writeSummary(report, path("summary.md"));

@@ -130,7 +130,7 @@ void writeIndexHtml(const Report& r, const std::string& path) {
          "or the space bar, to see the reference in its place.</p>\n" + viewer(r);
     s += "<h2>Side by side</h2>\n<p>The outlined region is magnified below each image.</p>\n"
          "<img id=\"side-by-side\" src=\"side-by-side.png\" alt=\"reference and each method side by side\">\n";
-    s += "<p>Data: <a href=\"error.csv\">error.csv</a>, <a href=\"summary.md\">summary.md</a>, "
+    s += "<p>Data: <a href=\"error.csv\">error.csv</a>, <a href=\"counters.csv\">counters.csv</a>, <a href=\"summary.md\">summary.md</a>, "
          "<a href=\"error-vs-time.png\">chart as PNG</a>.</p>\n<pre id=\"console-errors\"></pre>\n";
     s += kViewerScript;
     s += "</body>\n</html>\n";

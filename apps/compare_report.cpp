@@ -72,6 +72,23 @@ void writeCsv(const Report& r, const std::string& path) {
     writeText(path, s);
 }
 
+void writeCountersCsv(const Report& r, const std::string& path) {
+    std::string s = "integrator,run,seconds,spp";
+    for (int i = 0; i < kEventCount; ++i) {
+        std::string key(eventName(static_cast<Event>(i)));
+        std::replace_if(key.begin(), key.end(), [](char c) { return c == ' ' || c == '-'; }, '_');
+        s += "," + key;
+    }
+    s += "\n";
+    for (const Run& run : r.runs) {
+        const Checkpoint& f = run.final();
+        s += fmt::format("{},{},{:.6f},{}", run.method, run.index, f.seconds, f.spp);
+        for (int i = 0; i < kEventCount; ++i) s += fmt::format(",{}", run.stats.events[i]);
+        s += "\n";
+    }
+    writeText(path, s);
+}
+
 void writeChart(const Report& r, const std::string& svgPath, const std::string& pngPath) {
     LogLogChart chart;
     chart.title = r.options.runs > 1
@@ -130,7 +147,8 @@ void writeSummary(const Report& r, const std::string& path) {
         "largest relative squared error: near 100 %, a few fireflies make the error. Time spent "
         "measuring the error at the checkpoints is not counted in the render time.\n",
         best.method, many ? ", means over runs (± one standard deviation)" : "");
-    s += "\nFiles: `error.csv` (every checkpoint), `error-vs-time.svg`/`.png`, `side-by-side.png`, "
+    s += "\nFiles: `error.csv` (every checkpoint), `counters.csv` (per run: rays, BSDF calls, connections, splats, "
+         "merges; as `tripath render --stats` counts them), `error-vs-time.svg`/`.png`, `side-by-side.png`, "
          "`<method>.exr`/`.png` (run 0), `index.html`.\n";
     writeText(path, s);
 }

@@ -97,6 +97,7 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
     if (run.checkpoints.empty() || run.checkpoints.back().spp != r.passes)
         run.checkpoints.push_back({kTargets, r.seconds, r.passes, compareImages(image, reference)});
     run.checkpoints.back().target = kTargets;
+    run.stats = r.stats;
     printSummary(label, r, ro);
     const Checkpoint& f = run.final();
     std::cerr << fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in the worst 0.1% of pixels\n",

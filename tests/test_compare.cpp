@@ -314,7 +314,7 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
     ASSERT_EQ(o.exitCode, 0) << o.err;
 
     for (const char* f : {"pt.exr", "pt.png", "lt.exr", "lt.png", "bdpt.exr", "bdpt.png", "reference.png",
-                          "side-by-side.png", "error.csv", "error-vs-time.svg", "error-vs-time.png", "summary.md",
+                          "side-by-side.png", "error.csv", "counters.csv", "error-vs-time.svg", "error-vs-time.png", "summary.md",
                           "index.html"})
         EXPECT_TRUE(fs::is_regular_file(out + "/" + f)) << f;
     EXPECT_EQ(readImage(out + "/error-vs-time.png").width, 800);
@@ -322,6 +322,25 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
     Metadata meta;
     EXPECT_EQ(readExr(out + "/lt.exr", &meta).width, 32);
     EXPECT_EQ(metaValue(meta, "tripath:integrator"), "lt");
+
+    // counters.csv: a row per run; every sample of every method casts at least one closest-hit
+    // ray (a camera ray, or a light path's first), so the column cannot be below spp x pixels.
+    {
+        std::istringstream in(readFile(out + "/counters.csv"));
+        std::string header, line;
+        std::getline(in, header);
+        EXPECT_EQ(header.rfind("integrator,run,seconds,spp,closest_hit_rays,shadow_rays,", 0), 0u) << header;
+        int rows = 0;
+        while (std::getline(in, line)) {
+            std::vector<std::string> cells;
+            std::istringstream fields(line);
+            for (std::string c; std::getline(fields, c, ',');) cells.push_back(c);
+            ASSERT_GE(cells.size(), 6u) << line;
+            EXPECT_GE(std::stod(cells[4]), std::stod(cells[3]) * 32 * 32) << line;
+            ++rows;
+        }
+        EXPECT_EQ(rows, 6);
+    }
 
     std::map<std::pair<std::string, int>, std::vector<CsvRow>> byRun;
     for (const CsvRow& r : parseCsv(readFile(out + "/error.csv"))) byRun[{r.integrator, r.run}].push_back(r);

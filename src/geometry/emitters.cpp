@@ -35,7 +35,6 @@ Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Mat
 
 EmitterSample Emitters::sample(float uc, Vec2 u, const std::vector<Triangle>& triangles) const {
     count(Event::EmitterSamples);
-    const PhaseScope scope(Phase::Scattering);
     const size_t i = choice_.sample(uc);
     const Emitter& e = all_[i];
     EmitterSample s;

@@ -6,12 +6,6 @@ bool visible(const Scene& scene, const Vertex& a, const Vertex& b) {
     return scene.unoccluded(a.p, a.offsetNormal(), b.p, b.offsetNormal());
 }
 
-float shadingCorrection(const Vertex& v, Vec3 towardLight) {
-    if (v.kind != Vertex::Kind::Surface) return 1.0f;
-    const float cosG = absDot(v.ng, towardLight);
-    return cosG > 0 ? absDot(v.ns, towardLight) / cosG : 0.0f;
-}
-
 bool LocalScattering::emits() const {
     return v_.kind == Vertex::Kind::Emitter || (v_.kind == Vertex::Kind::Surface && !hasLight_);
 }

@@ -75,7 +75,11 @@ private:
 bool visible(const Scene& scene, const Vertex& a, const Vertex& b);
 
 // Shading-normal factor |ns·ℓ| / |ng·ℓ| for a surface vertex, ℓ toward the light side (1 elsewhere).
-float shadingCorrection(const Vertex& v, Vec3 towardLight);
+inline float shadingCorrection(const Vertex& v, Vec3 towardLight) {
+    if (v.kind != Vertex::Kind::Surface) return 1.0f;
+    const float cosG = absDot(v.ng, towardLight);
+    return cosG > 0 ? absDot(v.ns, towardLight) / cosG : 0.0f;
+}
 
 // Leak mask: whether unit w lies on the same side of a surface vertex under its shading normal
 // as under its geometric one. Near the silhouettes of coarse smooth meshes the two disagree, and a

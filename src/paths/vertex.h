@@ -16,20 +16,22 @@ namespace tripath {
 
 struct Vertex {
     enum class Kind : uint8_t { Sensor, Emitter, Surface };
-    Kind kind = Kind::Surface;
+    // Widest fields first and the two bytes last: no padding inside (96 bytes; the light store
+    // holds millions and every walk step copies one).
+    const Material* material = nullptr;
     Vec3 p;
     Vec3 ng;               // geometric normal; camera forward for the sensor; zero for a point light
     Vec3 ns;               // shading normal (surfaces)
     Vec3 arrival;          // unit direction back along the ray its walk reached it by (kernels.h: traced)
-    uint32_t triangle = 0;
-    const Material* material = nullptr;
-    int emitter = -1;      // the emitter this vertex lies on, or -1
-    bool delta = false;    // scatters through a delta lobe: nothing can connect to it
     Spectrum beta{0.0f};
+    uint32_t triangle = 0;
+    int emitter = -1;      // the emitter this vertex lies on, or -1
     float pdfFwd = 0;      // area pdf from the vertex before it in its own subpath
     float pdfRev = 0;      // area pdf from the vertex after it (a walk from the other end)
     float continuation = 1;  // Russian roulette's q for a walk going on from here (roulette.h)
     float misSum = 0;      // running sum of MIS terms from the subpath's start to here (mis.h)
+    Kind kind = Kind::Surface;
+    bool delta = false;    // scatters through a delta lobe: nothing can connect to it
     // Point light: a delta in position, so no path can hit it (strategy s = 0 is impossible).
     bool isDeltaLight() const { return kind == Kind::Emitter && lengthSquared(ng) == 0; }
     // Has an area (a surface, an area emitter), so shadow rays start off it.
@@ -40,5 +42,7 @@ struct Vertex {
 
 // A subpath: vertex 0 is the emitter (light subpath) or the sensor (camera subpath).
 using Subpath = std::vector<Vertex>;
+
+static_assert(sizeof(Vertex) == 96, "Vertex gained padding or a field: see its layout");
 
 }  // namespace tripath
