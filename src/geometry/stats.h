@@ -46,7 +46,7 @@ enum class Phase : int {
     Idle,        // outside any scope: not working on a render
     Sampling,    // the walks' and connections' own logic: everything not below
     Traversal,   // Embree: closest-hit and shadow rays
-    Scattering,  // BSDF and emitter evaluation and sampling
+    Scattering,  // BSDF sampling and evaluation; Le at connections (emitter points: Sampling)
     Mis,         // area pdfs from points and MIS weights
     Search,      // light phase: storing and indexing; merges: range queries
     Film,        // adding contributions to the film
