@@ -68,6 +68,8 @@ void setRayRecorder(std::vector<RecordedRay>* recorder);
 // Casts the rays through Embree's own functions alone, in order, on the calling thread; returns
 // the hits (blocked shadow rays count as hits).
 uint64_t replayEmbree(std::span<const RecordedRay> rays);
+// Casts shadow rays `width` at a time (1, or 8 through rtcOccluded8), in order; returns the blocked ones.
+uint64_t replayShadowPackets(std::span<const RecordedRay> rays, int width);
 
 // A TBB arena of exactly `threads` workers (the caller included), one per thread count, so the
 // 1- and 2-thread variants of a benchmark differ only in that number.

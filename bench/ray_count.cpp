@@ -101,4 +101,44 @@ uint64_t replayEmbree(std::span<const RecordedRay> rays) {
     return hits;
 }
 
+uint64_t replayShadowPackets(std::span<const RecordedRay> rays, int width) {
+    uint64_t hits = 0;
+    RTCIntersectContext ctx;
+    alignas(32) RTCRay8 packet;
+    alignas(32) int valid[8];
+    for (size_t first = 0; first < rays.size(); first += size_t(width)) {
+        const size_t n = std::min(rays.size() - first, size_t(width));
+        rtcInitIntersectContext(&ctx);
+        for (int i = 0; i < 8; ++i) {
+            valid[i] = size_t(i) < n ? -1 : 0;
+            const RecordedRay& r = rays[first + std::min(size_t(i), n - 1)];
+            packet.org_x[i] = r.origin.x;
+            packet.org_y[i] = r.origin.y;
+            packet.org_z[i] = r.origin.z;
+            packet.dir_x[i] = r.dir.x;
+            packet.dir_y[i] = r.dir.y;
+            packet.dir_z[i] = r.dir.z;
+            packet.tnear[i] = r.tnear;
+            packet.tfar[i] = r.tfar;
+            packet.mask[i] = 0xffffffffu;
+            packet.time[i] = 0.0f;
+            packet.flags[i] = 0;
+            packet.id[i] = 0;
+        }
+        if (width == 1) {
+            RTCRay ray{};
+            const RecordedRay& r = rays[first];
+            ray.org_x = r.origin.x, ray.org_y = r.origin.y, ray.org_z = r.origin.z;
+            ray.dir_x = r.dir.x, ray.dir_y = r.dir.y, ray.dir_z = r.dir.z;
+            ray.tnear = r.tnear, ray.tfar = r.tfar, ray.mask = 0xffffffffu;
+            gOccluded(r.scene, &ctx, &ray);
+            hits += ray.tfar < 0.0f;
+            continue;
+        }
+        rtcOccluded8(valid, rays[first].scene, &ctx, &packet);
+        for (size_t i = 0; i < n; ++i) hits += packet.tfar[i] < 0.0f;
+    }
+    return hits;
+}
+
 }  // namespace tripath::bench

@@ -84,7 +84,32 @@ void runEmbree(benchmark::State& state, const std::string& key, const std::strin
     state.counters["hit_fraction"] = double(hits.load()) / (double(rays.size()) * double(state.iterations()));
 }
 
+// The shadow rays of a pass alone, cast one at a time or in packets of 8 consecutive ones (a
+// sample's connections, mostly): what batching a sample's shadow rays could save in Embree.
+void runShadowPackets(benchmark::State& state, const std::string& key, const std::string& name, int width) {
+    const Scene& scene = cachedScene(key);
+    const auto integrator = integratorFor(name);
+    std::vector<RecordedRay> rays, shadow;
+    setRayRecorder(&rays);
+    renderPass(scene, *integrator, 0, 1);
+    setRayRecorder(nullptr);
+    for (const RecordedRay& r : rays)
+        if (r.shadow) shadow.push_back(r);
+    uint64_t blocked = 0;
+    for (auto _ : state) blocked += replayShadowPackets(shadow, width);
+    using C = benchmark::Counter;
+    state.counters["rays_per_s"] = C(double(shadow.size()) * double(state.iterations()), C::kIsRate);
+    state.counters["blocked_fraction"] = double(blocked) / (double(shadow.size()) * double(state.iterations()));
+}
+
 const bool registered = [] {
+    for (const auto& [label, key] : sampleScenes())
+        for (int width : {1, 8})
+            benchmark::RegisterBenchmark(
+                (std::string("replay_shadow/bdpt/") + label + "/packet:" + std::to_string(width)).c_str(),
+                [key = key, width](benchmark::State& st) { runShadowPackets(st, key, "bdpt", width); })
+                ->UseRealTime()
+                ->Unit(benchmark::kMillisecond);
     for (const auto& [label, key] : sampleScenes())
         for (const char* name : {"pt", "bdpt", "vcm"})
             for (int threads : {1, 2}) {
