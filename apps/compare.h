@@ -43,7 +43,7 @@ struct Run {
     int index;  // 0..runs-1
     uint64_t seed;
     std::vector<Checkpoint> checkpoints;  // the last one is the finished render
-    StatsSnapshot stats;                  // what the finished render did (rays, BSDF calls, …)
+    StatsSnapshot stats{};                // what the finished render did (rays, BSDF calls, …)
     const Checkpoint& final() const { return checkpoints.back(); }
 };
 

@@ -174,8 +174,9 @@ void expectBiasShrinksWithTheRadius(const std::string& scene) {
             blockBias2.push_back(b2);
             std::cout << scene << ", " << integrator << " radius factor " << factor << ": " << m.mean << " ± " << m.stderr_ << " vs bdpt "
                       << whole.mean << " ± " << whole.stderr_ << "; blocks' squared bias " << b2 << "\n";
-            if (factor == 0.2f)
+            if (factor == 0.2f) {
                 EXPECT_GT(std::abs(bias.back()), 5 * std::hypot(m.stderr_, whole.stderr_)) << scene << " " << integrator << ": the bias must show";
+            }
         }
         EXPECT_LT(std::abs(bias[1]), 0.5 * std::abs(bias[0])) << scene << " " << integrator;
         EXPECT_LT(blockBias2[1], 0.25 * blockBias2[0]) << scene << " " << integrator;

@@ -217,7 +217,9 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
                     // The photon-mapping sets connect only s = 0: camera walks that hit an emitter, rarer
                     // (none at all under a point light); their merges are checked below.
                     const auto paths = samplePaths(scene, set.maxS() == 0 ? 1000 : 150, mis);
-                    if (set.maxS() > 0) ASSERT_GT(paths.size(), 20u) << name << " set=" << int(set.kind);
+                    if (set.maxS() > 0) {
+                        ASSERT_GT(paths.size(), 20u) << name << " set=" << int(set.kind);
+                    }
                     for (const SampledPath& p : paths) {
                         const double expected = bruteForceWeight(scene, p.x, {p.s, false}, mis);
                         ASSERT_NEAR(p.c.weight, expected, 2e-3 * std::max(1.0, expected))

@@ -41,7 +41,7 @@ struct RenderResult {
     uint64_t guardedWeights = 0;  // MIS weights set to 0 because a pdf ratio was not finite (mis.h)
     // What the render did (geometry/stats.h): its events, and with timing on its cycles per phase.
     // Taken as the difference of two process-wide snapshots, so renders must not overlap.
-    StatsSnapshot stats;
+    StatsSnapshot stats{};
     Image image() const { return film.image(passes); }
 };
 
