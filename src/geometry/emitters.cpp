@@ -31,6 +31,10 @@ Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Mat
         power.push_back(e.power);
     }
     choice_ = Distribution1D(power);
+    for (size_t i = 0; i < all_.size(); ++i) {
+        const float pick = choice_.probability(i);
+        pdfA_.push_back(all_[i].kind == Emitter::Kind::Point ? pick : pick / all_[i].area);
+    }
 }
 
 EmitterSample Emitters::sample(float uc, Vec2 u, const std::vector<Triangle>& triangles) const {
@@ -41,20 +45,15 @@ EmitterSample Emitters::sample(float uc, Vec2 u, const std::vector<Triangle>& tr
     s.emitter = static_cast<uint32_t>(i);
     if (e.kind == Emitter::Kind::Point) {
         s.p = e.position;
-        s.pdfA = choice_.probability(i);
+        s.pdfA = pdfA_[i];
         return s;
     }
     const Triangle& tri = triangles[e.triangle];
     const Vec2 b = sampleUniformTriangle(u);
     s.p = tri.p[0] * (1.0f - b.x - b.y) + tri.p[1] * b.x + tri.p[2] * b.y;
     s.n = tri.geometricNormal();
-    s.pdfA = choice_.probability(i) / e.area;
+    s.pdfA = pdfA_[i];
     return s;
-}
-
-float Emitters::pdfA(int e) const {
-    const float pick = choice_.probability(static_cast<size_t>(e));
-    return all_[e].kind == Emitter::Kind::Point ? pick : pick / all_[e].area;
 }
 
 Vec3 Emitters::sampleDirection(int e, Vec3 frontNormal, Vec2 u, float uc) const {

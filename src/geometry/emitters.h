@@ -45,7 +45,7 @@ public:
     // Samples an emitter by power, then a point on it uniformly by area. u in [0,1)², uc in [0,1).
     EmitterSample sample(float uc, Vec2 u, const std::vector<Triangle>& triangles) const;
     // The area pdf with which sample() produces a given point on emitter e.
-    float pdfA(int e) const;
+    float pdfA(int e) const { return pdfA_[e]; }
 
     // A direction for light to leave a point of emitter e (front normal n): cosine-weighted over
     // the emitting hemisphere(s) of a triangle, uniform over the sphere for a point light.
@@ -60,6 +60,7 @@ private:
     std::vector<Emitter> all_;
     std::vector<int> byTriangle_;
     Distribution1D choice_;
+    std::vector<float> pdfA_;  // per emitter, found once: next-event estimation asks at every vertex
 };
 
 }  // namespace tripath

@@ -48,8 +48,12 @@ MisContext Integrator::misContext(const Scene& scene, float radius) const {
 
 void Integrator::sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
                         ContributionSink& sink) const {
+    const std::span<const Vertex> light = pass.light ? pass.light->path(pixel) : std::span<const Vertex>();
+    // The light path was traced by another task, likely on another core: ask for its cache lines
+    // now, so that they arrive while the camera walk runs rather than stall the first connection.
+    for (size_t i = 0; i < light.size_bytes(); i += 64) __builtin_prefetch(reinterpret_cast<const char*>(light.data()) + i);
     cameraWalk(scene, pass, raster, rng, paths.camera);
-    connectAll(scene, pass, pass.light ? pass.light->path(pixel) : std::span<const Vertex>(), paths.camera, rng, sink);
+    connectAll(scene, pass, light, paths.camera, rng, sink);
     if (pass.search) mergeAll(scene, pass, paths.camera, sink);
 }
 
