@@ -203,6 +203,43 @@ int subTriangle(double b1, double b2) {
 // non-emitting triangle, sampling a triangle non-uniformly (e.g. barycentrics u, v without the
 // square root or fold, which crowd a corner or leave the triangle), and a pdfA that is not
 // share / area (not divided by the area, or divided by another triangle's).
+// The branchless search must give std::upper_bound's index for every u, zero-weight entries
+// (never returned) and the cdf's exact steps included: an off-by-one would pick a neighbour.
+TEST(Distribution1D, PicksTheFirstEntryWhoseCdfExceedsU) {
+    Rng rng(3, static_cast<uint64_t>(StreamDomain::Test), 0);
+    for (size_t n : {1, 2, 3, 5, 8, 13, 64}) {
+        std::vector<double> w(n);
+        for (size_t i = 0; i < n; ++i) w[i] = i % 3 == 1 ? 0.0 : 0.5 + rng.uniform();
+        const Distribution1D d(w);
+        std::vector<double> cdf(n + 1, 0.0);
+        for (size_t i = 0; i < n; ++i) cdf[i + 1] = cdf[i] + w[i];
+        for (double& c : cdf) c /= cdf.back();
+        std::vector<float> us{0.0f, std::nextafter(1.0f, 0.0f)};
+        for (int k = 0; k < 2000; ++k) us.push_back(rng.uniform());
+        for (float u : us) {
+            const auto it = std::upper_bound(cdf.begin() + 1, cdf.end(), double(u));
+            const size_t expected = std::min(static_cast<size_t>(it - cdf.begin()) - 1, n - 1);
+            ASSERT_EQ(d.sample(u), expected) << "n=" << n << " u=" << u;
+            EXPECT_GT(w[d.sample(u)], 0.0) << "n=" << n << " u=" << u;
+        }
+    }
+    // Exactly on a step, which only weights summing to a power of two make representable: u =
+    // cdf[i] belongs to the entry after it (and past a zero-weight entry, to the next non-zero one).
+    const std::vector<std::pair<std::vector<double>, std::vector<size_t>>> exact{
+        {{1, 1, 1, 1}, {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3}},
+        {{1, 0, 1, 2}, {0, 0, 0, 0, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3}},
+        {{2, 0, 0, 1, 1, 4, 0, 8}, {0, 0, 3, 4, 5, 5, 5, 5, 7, 7, 7, 7, 7, 7, 7, 7}}};
+    for (const auto& [w, expected] : exact) {
+        const Distribution1D d(w);
+        double total = 0;
+        for (double x : w) total += x;
+        for (size_t k = 0; k < expected.size(); ++k) {
+            const float u = static_cast<float>(double(k) * total / double(expected.size()) / total);
+            EXPECT_EQ(d.sample(u), expected[k]) << "u=" << u;
+        }
+    }
+}
+
 TEST(Emitters, SampledPointsFollowPowerShareTimesAreaAndReportTheirDensity) {
     const Scene scene(emitterTestScene(), 4, 4, [](const std::string&) {});
     const Emitters& emitters = scene.emitters();

@@ -13,9 +13,18 @@ Distribution1D::Distribution1D(const std::vector<double>& weights) : cdf_(weight
 }
 
 size_t Distribution1D::sample(float u) const {
-    // First entry whose cdf exceeds u; zero-weight entries are never returned.
-    const auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), static_cast<double>(u));
-    const size_t i = static_cast<size_t>(it - cdf_.begin()) - 1;
+    // The first entry whose cdf exceeds u (std::upper_bound's answer), so zero-weight entries are
+    // never returned; searched without branches: which way a random u goes is a coin toss the
+    // branch predictor loses, and next-event estimation asks at every vertex (bench/README.md).
+    const double x = u;
+    const double* base = cdf_.data() + 1;
+    size_t n = cdf_.size() - 1;
+    while (n > 1) {
+        const size_t half = n / 2;
+        base = base[half] <= x ? base + half : base;
+        n -= half;
+    }
+    const size_t i = static_cast<size_t>(base + (*base <= x) - cdf_.data()) - 1;
     return std::min(i, size() - 1);
 }
 
