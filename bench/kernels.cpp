@@ -120,7 +120,7 @@ const VertexPools& vertexPools() {
         for (uint64_t i = 0; p.triples.size() < kPool || p.emitterEdges.size() < kPool || surfaces.size() < 2 * kPool; ++i) {
             Rng rng = testRng(1000 + i);
             const float x = rng.uniform() * kWidth, y = rng.uniform() * kHeight;
-            cameraSubpath(scene, {x, y}, rng, walk, WalkPdfs::All, cam);
+            cameraSubpath(scene, Vec2{x, y}, rng, walk, WalkPdfs::All, cam);
             lightSubpath(scene, rng, walk, WalkPdfs::All, light);
             if (cam.size() >= 2 && p.sensorEdges.size() < kPool) p.sensorEdges.push_back({cam[1], cam[0]});
             if (light.size() >= 2 && p.emitterEdges.size() < kPool) p.emitterEdges.push_back({light[0], light[1]});
@@ -311,7 +311,7 @@ void runConnect(benchmark::State& state, int s, int t) {
         Rng rng = testRng(1'000'000 + i);
         SubpathPair p;
         const float x = rng.uniform() * kWidth, y = rng.uniform() * kHeight;
-        cameraSubpath(scene, {x, y}, rng, walk, WalkPdfs::All, p.camera);
+        cameraSubpath(scene, Vec2{x, y}, rng, walk, WalkPdfs::All, p.camera);
         lightSubpath(scene, rng, walk, WalkPdfs::All, p.light);
         if (static_cast<int>(p.camera.size()) < t || static_cast<int>(p.light.size()) < s) continue;
         if (s == 0 && p.camera[t - 1].emitter < 0) continue;

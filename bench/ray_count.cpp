@@ -101,6 +101,42 @@ uint64_t replayEmbree(std::span<const RecordedRay> rays) {
     return hits;
 }
 
+uint64_t replayClosestHitPackets(std::span<const RecordedRay> rays, int width) {
+    uint64_t hits = 0;
+    RTCIntersectContext ctx;
+    alignas(32) RTCRayHit8 packet;
+    alignas(32) int valid[8];
+    for (size_t first = 0; first < rays.size(); first += size_t(width)) {
+        const size_t n = std::min(rays.size() - first, size_t(width));
+        rtcInitIntersectContext(&ctx);
+        if (width == 1) {
+            hits += replayEmbree(rays.subspan(first, 1));
+            continue;
+        }
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        for (int i = 0; i < 8; ++i) {
+            valid[i] = size_t(i) < n ? -1 : 0;
+            const RecordedRay& r = rays[first + std::min(size_t(i), n - 1)];
+            packet.ray.org_x[i] = r.origin.x;
+            packet.ray.org_y[i] = r.origin.y;
+            packet.ray.org_z[i] = r.origin.z;
+            packet.ray.dir_x[i] = r.dir.x;
+            packet.ray.dir_y[i] = r.dir.y;
+            packet.ray.dir_z[i] = r.dir.z;
+            packet.ray.tnear[i] = r.tnear;
+            packet.ray.tfar[i] = r.tfar;
+            packet.ray.mask[i] = 0xffffffffu;
+            packet.ray.time[i] = 0.0f;
+            packet.ray.flags[i] = 0;
+            packet.ray.id[i] = 0;
+            packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect8(valid, rays[first].scene, &ctx, &packet);
+        for (size_t i = 0; i < n; ++i) hits += packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+    }
+    return hits;
+}
+
 uint64_t replayShadowPackets(std::span<const RecordedRay> rays, int width) {
     uint64_t hits = 0;
     RTCIntersectContext ctx;

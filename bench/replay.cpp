@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "bench_scenes.h"
+#include "geometry/rng.h"
 #include "integrators/render.h"
 
 namespace tripath::bench {
@@ -102,7 +103,41 @@ void runShadowPackets(benchmark::State& state, const std::string& key, const std
     state.counters["blocked_fraction"] = double(blocked) / (double(shadow.size()) * double(state.iterations()));
 }
 
+// The camera rays of one pass, in the render loop's order (tile by tile, row by row), cast one at a
+// time or in packets of 8 neighbouring pixels: what tracing a camera subpath's first segment in
+// coherent packets could save in Embree.
+void runCameraPackets(benchmark::State& state, const std::string& key, int width) {
+    const Scene& scene = cachedScene(key);
+    const Camera& cam = scene.camera();
+    // The scene's Embree handle, as the interposition sees it on one recorded ray.
+    std::vector<RecordedRay> probe;
+    setRayRecorder(&probe);
+    scene.intersect(cam.position(), cam.forward());
+    setRayRecorder(nullptr);
+    std::vector<RecordedRay> rays;
+    constexpr int kTile = 16;
+    for (int ty = 0; ty < cam.height(); ty += kTile)
+        for (int tx = 0; tx < cam.width(); tx += kTile)
+            for (int y = ty; y < std::min(ty + kTile, cam.height()); ++y)
+                for (int x = tx; x < std::min(tx + kTile, cam.width()); ++x) {
+                    Rng rng(1, static_cast<uint64_t>(StreamDomain::CameraSample), uint64_t(y) * cam.width() + x);
+                    const float jx = rng.uniform(), jy = rng.uniform();
+                    rays.push_back({probe.at(0).scene, cam.position(), cam.direction({x + jx, y + jy}), 0.0f, 3.0e38f, false});
+                }
+    uint64_t hits = 0;
+    for (auto _ : state) hits += replayClosestHitPackets(rays, width);
+    using C = benchmark::Counter;
+    state.counters["rays_per_s"] = C(double(rays.size()) * double(state.iterations()), C::kIsRate);
+    state.counters["hit_fraction"] = double(hits) / (double(rays.size()) * double(state.iterations()));
+}
+
 const bool registered = [] {
+    for (const auto& [label, key] : sampleScenes())
+        for (int width : {1, 8})
+            benchmark::RegisterBenchmark((std::string("replay_camera/") + label + "/packet:" + std::to_string(width)).c_str(),
+                                         [key = key, width](benchmark::State& st) { runCameraPackets(st, key, width); })
+                ->UseRealTime()
+                ->Unit(benchmark::kMillisecond);
     for (const auto& [label, key] : sampleScenes())
         for (int width : {1, 8})
             benchmark::RegisterBenchmark(

@@ -163,7 +163,7 @@ std::vector<SampledPath> samplePaths(const Scene& scene, int samples, const MisC
     for (int i = 0; i < samples; ++i) {
         Rng rng(11, static_cast<uint64_t>(StreamDomain::Test), i);
         const float rx = rng.uniform() * scene.camera().width(), ry = rng.uniform() * scene.camera().height();
-        cameraSubpath(scene, {rx, ry}, rng, ws, set.cameraWalkPdfs(), camera);
+        cameraSubpath(scene, Vec2{rx, ry}, rng, ws, set.cameraWalkPdfs(), camera);
         lightSubpath(scene, rng, ws, set.lightWalkPdfs(), light);
         for (int t = 1; t <= static_cast<int>(camera.size()); ++t)
             for (int s = 0; s <= static_cast<int>(light.size()); ++s) {

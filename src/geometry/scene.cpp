@@ -184,16 +184,57 @@ std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) 
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(rtcScene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    return surfacePoint(rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar);
+}
+
+void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::optional<SurfacePoint>> hits) const {
+    alignas(32) RTCRayHit8 packet;
+    alignas(32) int valid[8];
+    int lanes = 0;
+    for (size_t i = 0; i < 8; ++i) {
+        valid[i] = i < dirs.size() && isFinite(origin) && isFinite(dirs[i]) ? -1 : 0;
+        if (!valid[i]) continue;
+        ++lanes;
+        packet.ray.org_x[i] = origin.x;
+        packet.ray.org_y[i] = origin.y;
+        packet.ray.org_z[i] = origin.z;
+        packet.ray.dir_x[i] = dirs[i].x;
+        packet.ray.dir_y[i] = dirs[i].y;
+        packet.ray.dir_z[i] = dirs[i].z;
+        packet.ray.tnear[i] = 0.0f;
+        packet.ray.tfar[i] = 3.0e38f;
+        packet.ray.mask[i] = 0xffffffffu;
+        packet.ray.time[i] = 0.0f;
+        packet.ray.flags[i] = 0;
+        packet.ray.id[i] = 0;
+        packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    count(Event::ClosestHitRays, uint64_t(lanes));
+    if (lanes > 0) {
+        const PhaseScope scope(Phase::Traversal);
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        rtcIntersect8(valid, rtcScene_, &ctx, &packet);
+    }
+    for (size_t i = 0; i < dirs.size(); ++i) {
+        if (valid[i] && packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID)
+            hits[i] = surfacePoint(packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i], packet.ray.tfar[i]);
+        else
+            hits[i].reset();
+    }
+}
+
+SurfacePoint Scene::surfacePoint(uint32_t triangle, float u, float v, float tHit) const {
     SurfacePoint sp;
-    sp.triangle = rh.hit.primID;
-    sp.t = rh.ray.tfar;
-    const Triangle& t = triangles_[sp.triangle];
-    const float u = rh.hit.u, v = rh.hit.v;
+    sp.triangle = triangle;
+    sp.t = tHit;
+    const Triangle& t = triangles_[triangle];
     // From barycentrics rather than origin + t·dir: the point lies on the triangle's plane to
     // within rounding of its own coordinates, whatever the ray's length.
     sp.p = t.p[0] * (1.0f - u - v) + t.p[1] * u + t.p[2] * v;
     sp.ng = t.geometricNormal();
-    sp.ns = shadingNormal(sp.triangle, u, v);
+    sp.ns = shadingNormal(triangle, u, v);
     return sp;
 }
 

@@ -46,19 +46,19 @@ MisContext Integrator::misContext(const Scene& scene, float radius) const {
     return mis;
 }
 
-void Integrator::sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
+void Integrator::sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
                         ContributionSink& sink) const {
     const std::span<const Vertex> light = pass.light ? pass.light->path(pixel) : std::span<const Vertex>();
     // The light path was traced by another task, likely on another core: ask for its cache lines
     // now, so that they arrive while the camera walk runs rather than stall the first connection.
     for (size_t i = 0; i < light.size_bytes(); i += 64) __builtin_prefetch(reinterpret_cast<const char*>(light.data()) + i);
-    cameraWalk(scene, pass, raster, rng, paths.camera);
+    cameraWalk(scene, pass, ray, rng, paths.camera);
     connectAll(scene, pass, light, paths.camera, rng, sink);
     if (pass.search) mergeAll(scene, pass, paths.camera, sink);
 }
 
-void Integrator::cameraWalk(const Scene& scene, const Pass& pass, Vec2 raster, Rng& rng, Subpath& camera) const {
-    cameraSubpath(scene, raster, rng, settings_.walk, strategies().cameraWalkPdfs(), camera);
+void Integrator::cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng, Subpath& camera) const {
+    cameraSubpath(scene, ray, rng, settings_.walk, strategies().cameraWalkPdfs(), camera);
     recordRunningSums(camera, false, pass.mis);
 }
 

@@ -65,8 +65,11 @@ public:
     // connection with that light path (an empty one without a light phase), and every merge with
     // the pass's light vertices if the integrator merges. What an integrator estimates is then
     // its strategy set and its settings; lt, which has no camera walk, overrides this.
-    virtual void sample(const Scene& scene, const Pass& pass, int pixel, Vec2 raster, Rng& rng, PathBuffers& paths,
+    virtual void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
                         ContributionSink& sink) const;
+    // Whether sample() traces the camera ray it is given (lt does not): the render loop then traces
+    // neighbouring pixels' camera rays together.
+    virtual bool tracesCameraRays() const { return true; }
     const IntegratorSettings& settings() const { return settings_; }
 
     // Whether passes trace and store light subpaths first: for any strategy with s ≥ 2 or a merge.
@@ -82,7 +85,7 @@ public:
 protected:
     // The sample's camera subpath through raster position `raster`, with the MIS running sums of
     // the pass's context where it keeps them.
-    void cameraWalk(const Scene& scene, const Pass& pass, Vec2 raster, Rng& rng, Subpath& camera) const;
+    void cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng, Subpath& camera) const;
     // Runs every enabled connection over the two subpaths into the sink.
     void connectAll(const Scene& scene, const Pass& pass, std::span<const Vertex> light, const Subpath& camera,
                     Rng& rng, ContributionSink& sink) const {

@@ -14,7 +14,8 @@ public:
     using Integrator::Integrator;
     std::string name() const override { return "lt"; }
     StrategySet strategies() const override { return {StrategySet::Kind::LightTracing}; }
-    void sample(const Scene& scene, const Pass& pass, int pixel, Vec2, Rng& rng, PathBuffers& paths,
+    bool tracesCameraRays() const override { return false; }
+    void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay&, Rng& rng, PathBuffers& paths,
                 ContributionSink& sink) const override {
         paths.camera.assign(1, sensorVertex(scene));
         connectAll(scene, pass, pass.light->path(pixel), paths.camera, rng, sink);

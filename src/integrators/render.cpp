@@ -4,7 +4,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <array>
 #include <chrono>
+#include <optional>
 
 #include "geometry/stats.h"
 #include "integrators/light_phase.h"
@@ -73,13 +75,31 @@ void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pa
     TileSink sink(film, cam, out);
     enrolThread();
     const PhaseScope scope(Phase::Sampling);
+    const bool packets = integrator.tracesCameraRays();
+    // Runs of up to 8 pixels of a row: their camera rays are traced together (Scene::intersect8),
+    // then each sample goes on with its own stream. The runs depend on the tile alone.
+    constexpr int kRun = 8;
+    std::array<std::optional<Rng>, kRun> rngs;
+    std::array<Vec2, kRun> rasters;
+    std::array<Vec3, kRun> dirs;
+    std::array<std::optional<SurfacePoint>, kRun> hits;
+    const int xEnd = std::min(x0 + kTileSize, cam.width());
     for (int y = y0; y < std::min(y0 + kTileSize, cam.height()); ++y)
-        for (int x = x0; x < std::min(x0 + kTileSize, cam.width()); ++x) {
-            const int pixel = y * cam.width() + x;
-            Rng rng(seed, static_cast<uint64_t>(domain), pass.index * pixels + pixel);
-            const float jx = rng.uniform(), jy = rng.uniform();
-            sink.setPixel(pixel);
-            integrator.sample(scene, pass, pixel, {x + jx, y + jy}, rng, paths, sink);
+        for (int xRun = x0; xRun < xEnd; xRun += kRun) {
+            const int n = std::min(kRun, xEnd - xRun);
+            for (int i = 0; i < n; ++i) {
+                Rng& rng = rngs[i].emplace(seed, static_cast<uint64_t>(domain), pass.index * pixels + y * cam.width() + xRun + i);
+                const float jx = rng.uniform(), jy = rng.uniform();
+                rasters[i] = {xRun + i + jx, y + jy};
+                dirs[i] = cam.direction(rasters[i]);
+            }
+            if (packets) scene.intersect8(cam.position(), std::span(dirs.data(), n), std::span(hits.data(), n));
+            for (int i = 0; i < n; ++i) {
+                const int pixel = y * cam.width() + xRun + i;
+                sink.setPixel(pixel);
+                const CameraRay ray = packets ? CameraRay(rasters[i], dirs[i], &hits[i]) : CameraRay(rasters[i]);
+                integrator.sample(scene, pass, pixel, ray, *rngs[i], paths, sink);
+            }
         }
 }
 

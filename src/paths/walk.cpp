@@ -77,12 +77,15 @@ Spectrum stepFactor(const Subpath& path, const Vertex& v, Spectrum scatter, floa
 // origin, and on short segments the direction between the vertices is not quite the sampled one;
 // connections see only the points, so the walks must too. Only the pdfs `pdfs` asks for are
 // computed.
+// `firstHit`, if set, is what the first ray hits, traced already.
 void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, float pdf, Vec3 dir, TransportMode mode,
-                const WalkSettings& settings, WalkPdfs pdfs, size_t maxVertices, Subpath& path) {
+                const WalkSettings& settings, WalkPdfs pdfs, size_t maxVertices, Subpath& path,
+                const std::optional<SurfacePoint>* firstHit = nullptr) {
     while (path.size() < maxVertices) {
         const Vertex& from = path.back();
         const Vec3 origin = from.onSurface() ? offsetRayOrigin(from.p, from.ng, dir) : from.p;
-        const auto hit = scene.intersect(origin, dir);
+        const auto hit = firstHit ? *firstHit : scene.intersect(origin, dir);
+        firstHit = nullptr;
         if (!hit) return;
         Vertex v = surfaceVertex(scene, *hit);
         v.arrival = -dir;
@@ -145,19 +148,19 @@ Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
     return y0;
 }
 
-void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
+void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
                    Subpath& path) {
     path.clear();
     path.push_back(sensorVertex(scene));
     const Camera& cam = scene.camera();
-    const Vec3 dir = cam.direction(raster);
+    const Vec3 dir = ray.hit ? ray.direction : cam.direction(ray.raster);
     // The pinhole draws a point of the pixel uniformly: the direction's per-pixel density is the
     // pixel count times the whole image's, and W the pixel's importance (camera.h), both of a
     // direction the camera made (however it rounds at the image's edge). MIS sees the per-pixel
     // pdf over N_L (kernels.h).
     const float pixels = float(cam.width()) * float(cam.height());
     randomWalk(scene, rng, Spectrum(1.0f), Spectrum(cam.importanceDensity(dir)), pixels * cam.imageDensity(dir), dir,
-               TransportMode::Radiance, settings, pdfs, static_cast<size_t>(settings.maxDepth) + 1, path);
+               TransportMode::Radiance, settings, pdfs, static_cast<size_t>(settings.maxDepth) + 1, path, ray.hit);
 }
 
 void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {

@@ -20,8 +20,18 @@ Vertex sensorVertex(const Scene& scene);
 // pdfFwd = its area pdf, beta = 1 / pdfFwd.
 Vertex sampleEmitterVertex(const Scene& scene, Rng& rng);
 
-// Fills `path` with a camera subpath whose first segment passes through raster position `raster`.
-void cameraSubpath(const Scene& scene, Vec2 raster, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
+// A camera subpath's first ray: through raster position `raster`, and, when the render loop has
+// traced it already (with its neighbours, in one packet: Scene::intersect8), its direction and hit.
+struct CameraRay {
+    CameraRay(Vec2 r) : raster(r) {}  // NOLINT: a raster position alone is a ray still to trace
+    CameraRay(Vec2 r, Vec3 d, const std::optional<SurfacePoint>* h) : raster(r), direction(d), hit(h) {}
+    Vec2 raster;
+    Vec3 direction;                                // camera.direction(raster), when hit is set
+    const std::optional<SurfacePoint>* hit = nullptr;
+};
+
+// Fills `path` with a camera subpath whose first segment is `ray`.
+void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
                    Subpath& path);
 // Fills `path` with a light subpath starting from a power-sampled emitter point.
 void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path);
