@@ -28,7 +28,7 @@ std::string statsReport(const RenderResult& r, uint64_t pixels) {
     const uint64_t outside = s.phaseSamples[static_cast<int>(Phase::Idle)];
     out += fmt::format("  outside the phases below (pass set-up, TBB scheduling and waiting): {:.1f} % of the CPU time\n",
                        100.0 * double(outside) / double(working + outside));
-    out += fmt::format("  share of the CPU time in each phase ({} profiling samples, 1 per ms of CPU; exclusive: a shadow "
+    out += fmt::format("  share of the CPU time in each phase ({} profiling samples, at most one per ms of CPU; exclusive: a shadow "
                        "ray inside a connection is traversal):\n", working);
     for (int i = 0; i < kPhaseCount; ++i) {
         const auto p = static_cast<Phase>(i);
