@@ -101,80 +101,70 @@ uint64_t replayEmbree(std::span<const RecordedRay> rays) {
     return hits;
 }
 
-uint64_t replayClosestHitPackets(std::span<const RecordedRay> rays, int width) {
+namespace {
+
+// Lane i of a packet: recorded ray r (lanes past the last ray repeat it and stay invalid).
+void fillLane(RTCRay8& packet, int i, const RecordedRay& r) {
+    packet.org_x[i] = r.origin.x;
+    packet.org_y[i] = r.origin.y;
+    packet.org_z[i] = r.origin.z;
+    packet.dir_x[i] = r.dir.x;
+    packet.dir_y[i] = r.dir.y;
+    packet.dir_z[i] = r.dir.z;
+    packet.tnear[i] = r.tnear;
+    packet.tfar[i] = r.tfar;
+    packet.mask[i] = 0xffffffffu;
+    packet.time[i] = 0.0f;
+    packet.flags[i] = 0;
+    packet.id[i] = 0;
+}
+
+// Casts `rays` in packets of 8 consecutive ones (width 8) or one at a time (width 1);
+// cast(valid, ctx, first, n) traces one packet of n rays and returns its hits.
+template <class Cast>
+uint64_t replayInPackets(std::span<const RecordedRay> rays, int width, Cast&& cast) {
     uint64_t hits = 0;
-    RTCIntersectContext ctx;
-    alignas(32) RTCRayHit8 packet;
     alignas(32) int valid[8];
     for (size_t first = 0; first < rays.size(); first += size_t(width)) {
-        const size_t n = std::min(rays.size() - first, size_t(width));
-        rtcInitIntersectContext(&ctx);
         if (width == 1) {
             hits += replayEmbree(rays.subspan(first, 1));
             continue;
         }
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        for (int i = 0; i < 8; ++i) {
-            valid[i] = size_t(i) < n ? -1 : 0;
-            const RecordedRay& r = rays[first + std::min(size_t(i), n - 1)];
-            packet.ray.org_x[i] = r.origin.x;
-            packet.ray.org_y[i] = r.origin.y;
-            packet.ray.org_z[i] = r.origin.z;
-            packet.ray.dir_x[i] = r.dir.x;
-            packet.ray.dir_y[i] = r.dir.y;
-            packet.ray.dir_z[i] = r.dir.z;
-            packet.ray.tnear[i] = r.tnear;
-            packet.ray.tfar[i] = r.tfar;
-            packet.ray.mask[i] = 0xffffffffu;
-            packet.ray.time[i] = 0.0f;
-            packet.ray.flags[i] = 0;
-            packet.ray.id[i] = 0;
-            packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        }
-        rtcIntersect8(valid, rays[first].scene, &ctx, &packet);
-        for (size_t i = 0; i < n; ++i) hits += packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        const size_t n = std::min(rays.size() - first, size_t(width));
+        for (size_t i = 0; i < 8; ++i) valid[i] = i < n ? -1 : 0;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        hits += cast(valid, ctx, first, n);
     }
     return hits;
 }
 
-uint64_t replayShadowPackets(std::span<const RecordedRay> rays, int width) {
-    uint64_t hits = 0;
-    RTCIntersectContext ctx;
-    alignas(32) RTCRay8 packet;
-    alignas(32) int valid[8];
-    for (size_t first = 0; first < rays.size(); first += size_t(width)) {
-        const size_t n = std::min(rays.size() - first, size_t(width));
-        rtcInitIntersectContext(&ctx);
+}  // namespace
+
+uint64_t replayClosestHitPackets(std::span<const RecordedRay> rays, int width) {
+    alignas(32) RTCRayHit8 packet;
+    return replayInPackets(rays, width, [&](const int* valid, RTCIntersectContext& ctx, size_t first, size_t n) {
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         for (int i = 0; i < 8; ++i) {
-            valid[i] = size_t(i) < n ? -1 : 0;
-            const RecordedRay& r = rays[first + std::min(size_t(i), n - 1)];
-            packet.org_x[i] = r.origin.x;
-            packet.org_y[i] = r.origin.y;
-            packet.org_z[i] = r.origin.z;
-            packet.dir_x[i] = r.dir.x;
-            packet.dir_y[i] = r.dir.y;
-            packet.dir_z[i] = r.dir.z;
-            packet.tnear[i] = r.tnear;
-            packet.tfar[i] = r.tfar;
-            packet.mask[i] = 0xffffffffu;
-            packet.time[i] = 0.0f;
-            packet.flags[i] = 0;
-            packet.id[i] = 0;
+            fillLane(packet.ray, i, rays[first + std::min(size_t(i), n - 1)]);
+            packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         }
-        if (width == 1) {
-            RTCRay ray{};
-            const RecordedRay& r = rays[first];
-            ray.org_x = r.origin.x, ray.org_y = r.origin.y, ray.org_z = r.origin.z;
-            ray.dir_x = r.dir.x, ray.dir_y = r.dir.y, ray.dir_z = r.dir.z;
-            ray.tnear = r.tnear, ray.tfar = r.tfar, ray.mask = 0xffffffffu;
-            gOccluded(r.scene, &ctx, &ray);
-            hits += ray.tfar < 0.0f;
-            continue;
-        }
+        rtcIntersect8(valid, rays[first].scene, &ctx, &packet);
+        uint64_t hits = 0;
+        for (size_t i = 0; i < n; ++i) hits += packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        return hits;
+    });
+}
+
+uint64_t replayShadowPackets(std::span<const RecordedRay> rays, int width) {
+    alignas(32) RTCRay8 packet;
+    return replayInPackets(rays, width, [&](const int* valid, RTCIntersectContext& ctx, size_t first, size_t n) {
+        for (int i = 0; i < 8; ++i) fillLane(packet, i, rays[first + std::min(size_t(i), n - 1)]);
         rtcOccluded8(valid, rays[first].scene, &ctx, &packet);
+        uint64_t hits = 0;
         for (size_t i = 0; i < n; ++i) hits += packet.tfar[i] < 0.0f;
-    }
-    return hits;
+        return hits;
+    });
 }
 
 }  // namespace tripath::bench
