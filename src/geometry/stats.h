@@ -1,5 +1,5 @@
 // Where a render's work and time go (issue 13 §1): event counters that are always on, and phase
-// timers that run only when asked for (`tripath render --stats`).
+// sampling that runs only when asked for (`tripath render --stats`).
 //
 // Counters. Each thread counts into its own thread-local array (an increment is one instruction:
 // no sharing, no atomics, no check on the hot path), and a thread that enrols once (the render
@@ -8,6 +8,7 @@
 // (rays, BSDF calls, connections), so they are the same for any number of threads. A snapshot
 // reads other threads' arrays without synchronisation of its own: take it when the work it
 // measures has been joined (render() does), never while another render runs.
+//
 // Phases. With timing on, each thread keeps a tag of the phase it is in (a PhaseScope sets it and
 // puts the outer one back, so phases are exclusive: a shadow ray cast inside a connection is
 // traversal, not connection), and a profiling timer (SIGPROF every millisecond of the process's

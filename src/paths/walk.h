@@ -23,7 +23,7 @@ Vertex sampleEmitterVertex(const Scene& scene, Rng& rng);
 // A camera subpath's first ray: through raster position `raster`, and, when the render loop has
 // traced it already (with its neighbours, in one packet: Scene::intersect8), its direction and hit.
 struct CameraRay {
-    CameraRay(Vec2 r) : raster(r) {}  // NOLINT: a raster position alone is a ray still to trace
+    CameraRay(Vec2 r) : raster(r) {}  // implicit: a raster position alone is a ray still to trace
     CameraRay(Vec2 r, Vec3 d, const std::optional<SurfacePoint>* h) : raster(r), direction(d), hit(h) {}
     Vec2 raster;
     Vec3 direction;                                // camera.direction(raster), when hit is set
