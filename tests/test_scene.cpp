@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -74,6 +76,45 @@ void expectNoSelfHits(float offset, float size) {
     }
     EXPECT_GT(trials, 3000);
     EXPECT_EQ(selfHits, 0);
+}
+
+// Camera rays traced as one packet (the render loop's runs of up to 8 pixels) must hit, lane by
+// lane, what each ray hits alone: a lane mix-up, a lane past the run's end left valid, or a
+// non-finite ray not masked out would show here. Directions from the camera through random
+// pixels of cornell-spheres (spheres, walls, the open front where rays miss).
+TEST(SceneQueries, PacketsOfCameraRaysHitWhatSingleRaysHit) {
+    const Scene scene(builtinScene("cornell-spheres"), 32, 32);
+    const Camera& cam = scene.camera();
+    Rng rng = testRng(42);
+    int hits = 0, misses = 0;
+    for (int packet = 0; packet < 200; ++packet) {
+        const size_t n = 1 + packet % 8;
+        std::vector<Vec3> dirs;
+        for (size_t i = 0; i < n; ++i) {
+            const float x = rng.uniform() * 40.0f - 4.0f, y = rng.uniform() * 40.0f - 4.0f;  // some outside the image
+            dirs.push_back(cam.direction({x, y}));
+        }
+        if (packet % 17 == 0) dirs[n / 2] = Vec3(std::nanf(""), 0, 1);
+        std::vector<std::optional<SurfacePoint>> packed(n);
+        scene.intersect8(cam.position(), dirs, packed);
+        for (size_t i = 0; i < n; ++i) {
+            const auto alone = scene.intersect(cam.position(), dirs[i]);
+            ASSERT_EQ(packed[i].has_value(), alone.has_value()) << "packet " << packet << " lane " << i;
+            if (!alone) {
+                ++misses;
+                continue;
+            }
+            ++hits;
+            EXPECT_EQ(packed[i]->triangle, alone->triangle) << "packet " << packet << " lane " << i;
+            EXPECT_NEAR(packed[i]->t, alone->t, 1e-5f * alone->t);
+            EXPECT_NEAR(length(packed[i]->p - alone->p), 0.0f, 1e-5f);
+        }
+    }
+    EXPECT_GT(hits, 200);
+    EXPECT_GT(misses, 10);  // the open front and the directions outside the box are in the test
+    std::vector<Vec3> nine(9, cam.forward());
+    std::vector<std::optional<SurfacePoint>> out(9);
+    EXPECT_THROW(scene.intersect8(cam.position(), nine, out), std::logic_error);
 }
 
 TEST(SceneQueries, NoSelfHitsAtGrazingAnglesNearTheOrigin) { expectNoSelfHits(0.0f, 1.0f); }

@@ -41,6 +41,9 @@ public:
     // The same formula for any d in front of the camera, without asking whether d crosses the
     // image: for directions the camera generated, which rounding may put just outside it.
     float imageDensity(Vec3 d) const;
+    // The density of d when the camera samples a point of one pixel uniformly (as it does for
+    // every camera subpath): the whole image's density times the pixel count N, unchecked as above.
+    float pixelDensity(Vec3 d) const { return float(width_) * float(height_) * imageDensity(d); }
 
 private:
     int width_, height_;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "geometry/error.h"
 #include "geometry/stats.h"
@@ -188,6 +189,7 @@ std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) 
 }
 
 void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::optional<SurfacePoint>> hits) const {
+    if (dirs.size() > 8 || hits.size() < dirs.size()) throw std::logic_error("Scene::intersect8: at most 8 rays, a hit each");
     alignas(32) RTCRayHit8 packet;
     alignas(32) int valid[8];
     int lanes = 0;

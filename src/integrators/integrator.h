@@ -60,8 +60,9 @@ public:
     virtual ~Integrator() = default;
     virtual std::string name() const = 0;
     virtual StrategySet strategies() const = 0;
-    // One sample for pixel `pixel` at raster position `raster` (already jittered inside the pixel);
-    // it pairs with the pass's light path number `pixel`. By default: a camera walk, every enabled
+    // One sample for pixel `pixel` whose camera ray is `ray` (its raster position already jittered
+    // inside the pixel, and its hit found when the render loop traced it in a packet); it pairs
+    // with the pass's light path number `pixel`. By default: a camera walk, every enabled
     // connection with that light path (an empty one without a light phase), and every merge with
     // the pass's light vertices if the integrator merges. What an integrator estimates is then
     // its strategy set and its settings; lt, which has no camera walk, overrides this.
@@ -83,7 +84,7 @@ public:
     MisContext misContext(const Scene& scene, float radius) const;
 
 protected:
-    // The sample's camera subpath through raster position `raster`, with the MIS running sums of
+    // The sample's camera subpath along `ray`, with the MIS running sums of
     // the pass's context where it keeps them.
     void cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng, Subpath& camera) const;
     // Runs every enabled connection over the two subpaths into the sink.

@@ -34,8 +34,7 @@ float LocalScattering::pdfTowardLight() const {
         // would make the camera's own strategy impossible. A direction truly outside has W = 0.
         const Camera& cam = scene_.camera();
         if (!hasLight_ || !(dot(light_, v_.ng) > 0)) return 0.0f;  // v_.ng: the optical axis
-        const float pixelsOverPaths = static_cast<float>(double(cam.width()) * cam.height() / lightPathsPerPass(cam));
-        return cam.imageDensity(light_) * pixelsOverPaths;
+        return cam.pixelDensity(light_) / static_cast<float>(lightPathsPerPass(cam));
     }
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
     return pdfBsdf(*v_.material, cameraLocal_, lightLocal_);

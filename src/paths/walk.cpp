@@ -154,12 +154,10 @@ void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const Wal
     path.push_back(sensorVertex(scene));
     const Camera& cam = scene.camera();
     const Vec3 dir = ray.hit ? ray.direction : cam.direction(ray.raster);
-    // The pinhole draws a point of the pixel uniformly: the direction's per-pixel density is the
-    // pixel count times the whole image's, and W the pixel's importance (camera.h), both of a
-    // direction the camera made (however it rounds at the image's edge). MIS sees the per-pixel
-    // pdf over N_L (kernels.h).
-    const float pixels = float(cam.width()) * float(cam.height());
-    randomWalk(scene, rng, Spectrum(1.0f), Spectrum(cam.importanceDensity(dir)), pixels * cam.imageDensity(dir), dir,
+    // The pinhole draws a point of the pixel uniformly: W is the pixel's importance and the pdf the
+    // per-pixel density (camera.h), both of a direction the camera made (however it rounds at the
+    // image's edge). MIS sees the per-pixel pdf over N_L (kernels.h).
+    randomWalk(scene, rng, Spectrum(1.0f), Spectrum(cam.importanceDensity(dir)), cam.pixelDensity(dir), dir,
                TransportMode::Radiance, settings, pdfs, static_cast<size_t>(settings.maxDepth) + 1, path, ray.hit);
 }
 
