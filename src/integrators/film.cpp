@@ -1,20 +1,25 @@
 #include "integrators/film.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cassert>
+
 namespace tripath {
 
 Film::Film(int width, int height, FilmLayers layers)
-    : width_(width), height_(height), layers_(layers), main_(3 * size_t(width) * height, 0.0) {
+    : width_(width), height_(height), layers_(layers), main_(3 * size_t(width) * height) {
     depth_.assign(std::max(0, layers.depthImages), main_);
     for (int k = 1; k <= layers.strategyLength; ++k) {
         for (int s = 0; s <= k; ++s) order_.push_back({s, k + 1 - s});  // connections: t ≥ 1
         if (layers.merges)
             for (int s = 2; s <= k; ++s) order_.push_back({s, k + 2 - s, true});  // merges: s, t ≥ 2
     }
-    for (const Strategy& st : order_) strategy_[st] = {main_, main_};
+    for (const Strategy& st : order_) strategy_.emplace(st, std::make_pair(main_, main_));
 }
 
 void Film::addTo(Sums& sums, int pixel, Spectrum v) {
-    double* p = sums.data() + 3 * size_t(pixel);
+    double* p = sums.block.data() + 3 * size_t(pixel);
     p[0] += v.x;
     p[1] += v.y;
     p[2] += v.z;
@@ -30,10 +35,46 @@ void Film::add(int pixel, Strategy strategy, Spectrum weighted, Spectrum unweigh
     }
 }
 
+void Film::endBlock() {
+    std::vector<Sums*> all{&main_};
+    for (Sums& d : depth_) all.push_back(&d);
+    for (auto& [st, pair] : strategy_) all.insert(all.end(), {&pair.first, &pair.second});
+    const size_t n = main_.block.size();
+    constexpr size_t kChunk = 1 << 14;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + kChunk - 1) / kChunk), [&](const tbb::blocked_range<size_t>& r) {
+        const size_t begin = r.begin() * kChunk, end = std::min(n, r.end() * kChunk);
+        for (Sums* s : all) {
+            s->total.add(s->block, begin, end);
+            std::fill(s->block.begin() + begin, s->block.begin() + end, 0.0);
+        }
+    });
+}
+
+std::vector<ExactSums*> Film::totals() {
+    std::vector<ExactSums*> out{&main_.total};
+    for (Sums& d : depth_) out.push_back(&d.total);
+    for (const Strategy& st : order_) out.insert(out.end(), {&strategy_.at(st).first.total, &strategy_.at(st).second.total});
+    return out;
+}
+
+std::vector<const ExactSums*> Film::totals() const {
+    std::vector<const ExactSums*> out;
+    for (ExactSums* t : const_cast<Film*>(this)->totals()) out.push_back(t);
+    return out;
+}
+
+void Film::add(const Film& other) {
+    assert(width_ == other.width_ && height_ == other.height_ && order_ == other.order_);
+    const std::vector<ExactSums*> mine = totals();
+    const std::vector<const ExactSums*> theirs = other.totals();
+    for (size_t i = 0; i < mine.size(); ++i) mine[i]->add(*theirs[i]);
+}
+
 Image Film::toImage(const Sums& sums, int passes) const {
     Image img(width_, height_);
     const double scale = passes > 0 ? 1.0 / passes : 0.0;
-    for (size_t i = 0; i < sums.size(); ++i) img.rgb[i] = static_cast<float>(sums[i] * scale);
+    for (size_t i = 0; i < sums.block.size(); ++i)
+        img.rgb[i] = static_cast<float>((sums.total.value(i) + sums.block[i]) * scale);
     return img;
 }
 

@@ -1,12 +1,18 @@
-// The film: sums of contributions per pixel, in double, with optional per-path-length (Neumann
-// series term) and per-strategy layers. A pixel's value is its sum over the number of passes: a
-// camera sample and a splat are both estimates over one sample per pixel per pass (a pass traces
-// one light path per pixel), so one accumulator serves both.
+// The film: sums of contributions per pixel, with optional per-path-length (Neumann series term)
+// and per-strategy layers. A pixel's value is its sum over the number of passes: a camera sample
+// and a splat are both estimates over one sample per pixel per pass (a pass traces one light path
+// per pixel), so one accumulator serves both.
+//
+// Each sum has two parts: the current block of passes, added in double in the render loop's fixed
+// order, and the exact total of the finished blocks (exact_sum.h), to which endBlock() moves it.
+// Totals add exactly, so films rendered by different processes combine (add) into the film one
+// process would have made, whatever the grouping.
 #pragma once
 #include <map>
 #include <vector>
 
 #include "geometry/vec.h"
+#include "integrators/exact_sum.h"
 #include "image/image.h"
 #include "paths/connect.h"
 
@@ -28,7 +34,17 @@ public:
     // render loop gives each pixel to one thread per pass and merges splats in a fixed order.
     void add(int pixel, Strategy strategy, Spectrum weighted, Spectrum unweighted);
 
-    // Sums divided by `passes`.
+    // Adds the current block's sums to the exact totals and clears them (the block's values are
+    // already rounded to double; from here on they add exactly). Threads split the work.
+    void endBlock();
+    // Adds another film's totals (same size and layers, blocks ended) to this one's.
+    void add(const Film& other);
+    // Every exact total, in a fixed order (main, depth layers, strategy layers): what processes
+    // reduce and checkpoints store. The blocks must have been ended.
+    std::vector<ExactSums*> totals();
+    std::vector<const ExactSums*> totals() const;
+
+    // Sums divided by `passes` (finished blocks and the current one).
     Image image(int passes) const;
     Image depthImage(int k, int passes) const;
     Image strategyImage(Strategy strategy, bool weighted, int passes) const;
@@ -37,7 +53,11 @@ public:
     std::vector<Strategy> strategies() const;
 
 private:
-    using Sums = std::vector<double>;
+    struct Sums {
+        std::vector<double> block;
+        ExactSums total;
+        explicit Sums(size_t n) : block(n, 0.0), total(n) {}
+    };
     static void addTo(Sums& sums, int pixel, Spectrum v);
     Image toImage(const Sums& sums, int passes) const;
     int width_, height_;

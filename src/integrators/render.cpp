@@ -103,56 +103,142 @@ void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pa
         }
 }
 
+
+// One pass: the light phase, the tiles in parallel, then the splats in tile order.
+class PassRenderer {
+public:
+    PassRenderer(const Scene& scene, const Integrator& integrator, const RenderSettings& settings)
+        : scene_(scene), integrator_(integrator), settings_(settings),
+          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {
+        const Camera& cam = scene.camera();
+        tiles_ = ((cam.width() + kTileSize - 1) / kTileSize) * ((cam.height() + kTileSize - 1) / kTileSize);
+        outputs_.resize(tiles_);
+    }
+
+    void run(uint64_t passIndex, RenderResult& result) {
+        arena_.execute([&] {
+            const Pass pass = lightPhase_.run(scene_, integrator_, passIndex, settings_.seed, settings_.domain);
+            tbb::parallel_for(tbb::blocked_range<int>(0, tiles_, 1), [&](const tbb::blocked_range<int>& r) {
+                for (int tile = r.begin(); tile < r.end(); ++tile)
+                    renderTile(scene_, integrator_, pass, result.film, tile, settings_.seed, settings_.domain, outputs_[tile]);
+            });
+        });
+        const PhaseScope filing(Phase::Film);
+        for (TileOutput& out : outputs_) {
+            for (const Splat& sp : out.splats) result.film.add(sp.pixel, sp.strategy, sp.weighted, sp.unweighted);
+            out.splats.clear();
+            result.droppedSamples += out.dropped;
+            result.guardedWeights += out.guardedWeights;
+            out.dropped = out.guardedWeights = 0;
+        }
+    }
+
+    void endBlock(Film& film) {
+        const PhaseScope filing(Phase::Film);
+        arena_.execute([&] { film.endBlock(); });
+    }
+
+private:
+    const Scene& scene_;
+    const Integrator& integrator_;
+    const RenderSettings& settings_;
+    tbb::task_arena arena_;
+    LightPhase lightPhase_;
+    int tiles_ = 0;
+    std::vector<TileOutput> outputs_;
+};
+
+// What the team's ranks add up at the end (and at checkpoints): every rank's own counts.
+void addUpOverTeam(Team& team, RenderResult& r, int localPasses, uint64_t localNext) {
+    std::array<uint64_t, 3> sums{uint64_t(localPasses), r.droppedSamples, r.guardedWeights};
+    team.sum(sums);
+    std::array<uint64_t, 2> maxima{localNext, static_cast<uint64_t>(r.seconds * 1e6)};
+    team.max(maxima);
+    r.passes = static_cast<int>(sums[0]);
+    r.droppedSamples = sums[1];
+    r.guardedWeights = sums[2];
+    r.nextPass = maxima[0];
+    r.seconds = maxima[1] / 1e6;
+}
+
+// Rank 0's result gains the render it resumed (films add exactly, so where a render was cut does
+// not show in its bits).
+RenderResult& addResumed(RenderResult& r, const RenderResult* resume) {
+    if (!resume) return r;
+    r.film.add(resume->film);
+    r.passes += resume->passes;
+    r.seconds += resume->seconds;
+    r.droppedSamples += resume->droppedSamples;
+    r.guardedWeights += resume->guardedWeights;
+    return r;
+}
+
 }  // namespace
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
     const Camera& cam = scene.camera();
+    Team& team = settings.team ? *settings.team : solo();
     FilmLayers layers = settings.layers;
     layers.merges = integrator.strategies().merges();
     RenderResult result{Film(cam.width(), cam.height(), layers)};
-    LightPhase lightPhase;
-    const int tiles = ((cam.width() + kTileSize - 1) / kTileSize) * ((cam.height() + kTileSize - 1) / kTileSize);
-    std::vector<TileOutput> outputs(tiles);
-    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+    const RenderResult* resume = settings.resume;
+    const uint64_t firstPass = resume ? resume->nextPass : settings.firstPass;
+    PassRenderer passes(scene, integrator, settings);
     setTiming(settings.timing);
     enrolThread();
     const StatsSnapshot statsBefore = statsSnapshot();
     const auto start = std::chrono::steady_clock::now();
-    double callbackSeconds = 0;  // spent in onPass: the caller's time, not the render's
+    double callbackSeconds = 0;  // spent in onPass and onCheckpoint: the caller's time, not the render's
     auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     auto elapsed = [&] { return since(start) - callbackSeconds; };
+    double lastCheckpoint = 0;
 
-    while (true) {
-        if (settings.spp > 0 && result.passes >= settings.spp) break;
-        if (settings.seconds > 0 && result.passes > 0 && elapsed() >= settings.seconds) break;
-        if (settings.stop && settings.stop->load() && result.passes > 0) break;
-        const uint64_t passIndex = settings.firstPass + static_cast<uint64_t>(result.passes);
-        arena.execute([&] {
-            const Pass pass = lightPhase.run(scene, integrator, passIndex, settings.seed, settings.domain);
-            tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
-                for (int tile = r.begin(); tile < r.end(); ++tile)
-                    renderTile(scene, integrator, pass, result.film, tile, settings.seed, settings.domain, outputs[tile]);
-            });
-        });
-        {
-            const PhaseScope filing(Phase::Film);
-            for (TileOutput& out : outputs) {
-                for (const Splat& sp : out.splats) result.film.add(sp.pixel, sp.strategy, sp.weighted, sp.unweighted);
-                out.splats.clear();
-                result.droppedSamples += out.dropped;
-                result.guardedWeights += out.guardedWeights;
-                out.dropped = out.guardedWeights = 0;
+    int local = 0;                  // passes this rank rendered
+    uint64_t localNext = firstPass; // one past the highest pass index this rank used
+    const uint64_t budget = settings.spp > 0 ? uint64_t(settings.spp) : UINT64_MAX;
+    const uint64_t ranks = uint64_t(team.size());
+    for (uint64_t round = 0;; ++round) {
+        // This rank's block of the round, clipped to the budget.
+        const uint64_t block = round * ranks + uint64_t(team.rank());
+        const uint64_t begin = block * kPassesPerBlock;
+        const uint64_t end = std::min(budget, begin + kPassesPerBlock);
+        bool halted = false;  // by the clock or by a stop request, before the block's end
+        for (uint64_t p = begin; p < end; ++p) {
+            const bool timeUp = settings.seconds > 0 && elapsed() >= settings.seconds;
+            const bool stopped = settings.stop && settings.stop->load();
+            if ((timeUp || stopped) && local > 0) {
+                halted = true;
+                break;
+            }
+            passes.run(firstPass + p, result);
+            ++local;
+            localNext = firstPass + p + 1;
+            result.seconds = elapsed();
+            if (settings.progress) settings.progress(int(local * ranks), result.seconds);
+            if (settings.onPass) {
+                const auto t0 = std::chrono::steady_clock::now();
+                settings.onPass(result.film, local, result.seconds);
+                callbackSeconds += since(t0);
             }
         }
-        ++result.passes;
-        result.seconds = elapsed();
-        if (settings.progress) settings.progress(result.passes, result.seconds);
-        if (settings.onPass) {
+        passes.endBlock(result.film);
+        const bool budgetDone = (round + 1) * ranks * kPassesPerBlock >= budget;
+        const bool timeUp = settings.seconds > 0 && elapsed() >= settings.seconds;
+        if (team.any(halted || timeUp || (settings.stop && settings.stop->load())) || budgetDone) break;
+        if (settings.checkpointSeconds > 0 && team.any(elapsed() - lastCheckpoint >= settings.checkpointSeconds)) {
             const auto t0 = std::chrono::steady_clock::now();
-            settings.onPass(result.film, result.passes, result.seconds);
+            RenderResult sofar{result.film, 0, 0, result.seconds, result.droppedSamples, result.guardedWeights};
+            addUpOverTeam(team, sofar, local, localNext);  // every block up to here is done: nextPass ends a round
+            team.reduce(sofar.film);
+            if (team.rank() == 0) settings.onCheckpoint(addResumed(sofar, resume));
             callbackSeconds += since(t0);
+            lastCheckpoint = elapsed();
         }
     }
+    result.seconds = elapsed();
+    addUpOverTeam(team, result, local, localNext);
+    team.reduce(result.film);
+    if (team.rank() == 0) addResumed(result, resume);
     result.stats = statsSnapshot() - statsBefore;
     setTiming(false);
     return result;

@@ -1,5 +1,11 @@
 // The one render loop every integrator runs in: progressive passes of one sample per pixel,
-// parallel over tiles, reproducible whatever the number of threads.
+// parallel over tiles, reproducible whatever the number of threads and of processes.
+//
+// Passes are grouped in canonical blocks of kPassesPerBlock, counted from the first pass. A block
+// is summed in double in pass order, then added exactly into the film's totals (film.h). A team of
+// N processes (team.h) renders in rounds: in round j, rank r renders block j·N + r; at the round's
+// end the team decides together whether to go on. Since each block's sums do not depend on who
+// renders it and blocks add exactly, a --spp render is bit-identical for any N and thread count.
 #pragma once
 #include <atomic>
 #include <cstdint>
@@ -9,11 +15,19 @@
 #include "geometry/stats.h"
 #include "integrators/film.h"
 #include "integrators/integrator.h"
+#include "integrators/team.h"
 
 namespace tripath {
 
+// Passes per canonical block. Small enough that a pass-count budget spreads over a few ranks and a
+// checkpoint comes soon after its interval; large enough that ending blocks costs nothing
+// measurable (bench/distributed.cpp: folding a 512² film into its totals).
+constexpr int kPassesPerBlock = 4;
+
+struct RenderResult;
+
 struct RenderSettings {
-    int spp = 16;                 // passes to render; with `seconds` > 0, an upper bound (0: none)
+    int spp = 16;                 // passes this run renders; with `seconds` > 0, an upper bound (0: none)
     double seconds = 0;           // > 0: stop at the first pass boundary after this much time
     uint64_t seed = 1;
     // The streams the per-pixel samples draw from: CameraSample for renders, Reference for
@@ -29,13 +43,24 @@ struct RenderSettings {
     // Time spent inside it belongs to the caller (e.g. measuring error against a reference), so it
     // counts neither towards `seconds` nor towards RenderResult::seconds.
     std::function<void(const Film&, int passes, double seconds)> onPass;
-    // Set from elsewhere (a signal handler) to stop at the next pass boundary.
+    // Set from elsewhere (a signal handler) to stop at the next pass boundary: every rank stops at
+    // its next pass, so the passes used need not be contiguous then (RenderResult::nextPass).
     const std::atomic<bool>* stop = nullptr;
+    // The processes sharing the render; nullptr: this one alone.
+    Team* team = nullptr;
+    // A checkpointed render to go on from (its film's blocks ended; it counts towards nothing
+    // but the result's totals): the render starts at its nextPass, and rank 0 adds its film.
+    const RenderResult* resume = nullptr;
+    // > 0: at the first round boundary after each such interval, rank 0 is handed the whole
+    // render so far (reduced over the team) through onCheckpoint.
+    double checkpointSeconds = 0;
+    std::function<void(const RenderResult&)> onCheckpoint;
 };
 
 struct RenderResult {
-    Film film;
-    int passes = 0;
+    Film film;                    // on rank 0 of a team, every rank's passes; on the others, their own
+    int passes = 0;               // passes in the film, over the whole team (and the resumed render)
+    uint64_t nextPass = 0;        // the first pass index that no pass in the film used
     double seconds = 0;
     uint64_t droppedSamples = 0;  // NaN or infinite contributions kept off the film
     uint64_t guardedWeights = 0;  // MIS weights set to 0 because a pdf ratio was not finite (mis.h)
