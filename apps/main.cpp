@@ -4,9 +4,11 @@
 #include <iostream>
 
 #include "commands.h"
+#include "processes.h"
 #include "geometry/error.h"
 
 int main(int argc, char** argv) {
+    tripath::app::Processes processes(argc, argv);  // under mpirun: one of N ranks (processes.h)
     CLI::App app{"tripath " TRIPATH_VERSION " — path tracing, light tracing and bidirectional path tracing with MIS "
                  "on one three-point (area-measure) path core."};
     app.set_version_flag("--version", "tripath " TRIPATH_VERSION);
@@ -27,6 +29,7 @@ int main(int argc, char** argv) {
         std::cerr << "error: " << e.what() << "\n";
         return 1;
     } catch (const std::exception& e) {
+        processes.fail(e.what(), 2);  // a rank's own failure ends the job (others may wait for it)
         std::cerr << "error: " << e.what() << "\n";
         return 2;
     }

@@ -4,8 +4,10 @@
 #include <filesystem>
 #include <iostream>
 
+#include "checkpoint.h"
 #include "commands.h"
 #include "geometry/error.h"
+#include "processes.h"
 #include "render_options.h"
 
 namespace tripath::app {
@@ -26,7 +28,7 @@ std::string sibling(const std::string& out, const std::string& suffix) {
     return (p.parent_path() / (p.stem().string() + suffix + ".exr")).string();
 }
 
-void run(const RenderCommand& c) {
+void validate(const RenderCommand& c) {
     const RenderOptions& o = c.options;
     validateRenderOptions(o);
     if (std::filesystem::path(c.out).extension() != ".exr") throw InputError("--out must name an .exr file: " + c.out);
@@ -36,21 +38,12 @@ void run(const RenderCommand& c) {
         throw InputError(fmt::format("--strategy-images must be between 1 and 16 (got {})", c.strategyImages));
     if (c.strategyImages > 0 && (o.integrator == "pt" || o.integrator == "lt"))
         throw InputError("--strategy-images needs --integrator bdpt, vcm, bpm or ppm (pt and lt have no (s,t) to separate)");
+    if (!isRankZero()) return;  // only rank 0 writes
     checkWritable(c.out);
     if (!c.png.empty()) checkWritable(c.png);
+}
 
-    const auto scene = loadScene(o);
-    const auto integrator = makeIntegrator(o.integrator, integratorSettings(o));
-    RenderSettings rs = renderSettings(o);
-    if (c.depthImages) rs.layers.depthImages = o.maxDepth;
-    rs.layers.strategyLength = c.strategyImages;
-    rs.stop = installInterruptHandler();
-    const std::string label = fmt::format("{} {}", o.integrator, o.scene);
-    rs.progress = progressReporter(rs, o.width, o.height, label);
-
-    const RenderResult r = render(*scene, *integrator, rs);
-    printSummary(label, r, o);
-    const Metadata meta = renderMetadata(o, *scene, *integrator, r);
+void write(const RenderCommand& c, const RenderSettings& rs, const Metadata& meta, const RenderResult& r) {
     writeExr(c.out, r.image(), meta);
     if (!c.png.empty()) writePng(c.png, r.image(), c.exposure);
     for (int k = 1; k <= rs.layers.depthImages; ++k) writeExr(sibling(c.out, fmt::format("-k{}", k)), r.film.depthImage(k, r.passes), meta);
@@ -59,6 +52,29 @@ void run(const RenderCommand& c) {
         writeExr(sibling(c.out, name + "-weighted"), r.film.strategyImage(st, true, r.passes), meta);
         writeExr(sibling(c.out, name + "-unweighted"), r.film.strategyImage(st, false, r.passes), meta);
     }
+}
+
+void run(const RenderCommand& c) {
+    const RenderOptions& o = c.options;
+    std::unique_ptr<Scene> scene;
+    together([&] {
+        validate(c);
+        scene = loadScene(o);
+    });
+    const auto integrator = makeIntegrator(o.integrator, integratorSettings(o));
+    RenderSettings rs = renderSettings(o);
+    if (c.depthImages) rs.layers.depthImages = o.maxDepth;
+    rs.layers.strategyLength = c.strategyImages;
+    rs.stop = installInterruptHandler();
+    const std::string label = fmt::format("{} {}", o.integrator, o.scene);
+    rs.progress = progressReporter(rs, o.width, o.height, label);
+
+    Resumable how{c.out, checkpointSettings(o, *scene, *integrator, rs.layers), true, false, {}};
+    how.writeImage = [&](const RenderResult& sofar) { write(c, rs, renderMetadata(o, *scene, *integrator, sofar), sofar); };
+    const RenderResult r = renderResumable(*scene, *integrator, rs, o, how);
+    if (!isRankZero()) return;
+    printSummary(label, r, o);
+    write(c, rs, renderMetadata(o, *scene, *integrator, r), r);
     std::cerr << "wrote " << c.out << (c.png.empty() ? "" : " and " + c.png) << "\n";
 }
 

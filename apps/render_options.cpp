@@ -6,9 +6,11 @@
 #include <csignal>
 #include <iostream>
 
+#include "geometry/embree_isa.h"
 #include "geometry/error.h"
 #include "geometry/scene_source.h"
 #include "paths/kernels.h"
+#include "processes.h"
 #include "stats_report.h"
 
 namespace tripath::app {
@@ -66,7 +68,14 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
         ->capture_default_str();
     cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
         ->capture_default_str();
-    cmd.add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+    cmd.add_option("--threads", o.threads, "Worker threads per process (0: all cores; under mpirun give each rank its share)")
+        ->capture_default_str();
+    cmd.add_option("--checkpoint", o.checkpointSeconds,
+                   "Every this many seconds (at the next round of passes), write the image so far to --out and the "
+                   "state to go on from to <out>.checkpoint, atomically; a render or reference started again with "
+                   "the same settings and --out continues from it (a --spp render then ends bit-identical to an "
+                   "uninterrupted one). Also written when the render is interrupted; 0: none")
+        ->capture_default_str();
     cmd.add_flag("--stats", o.stats,
                  "At the end, print what the render did (rays, BSDF calls, connections, splats, merges: in total, per "
                  "camera sample and per second) and where its CPU time went (ray traversal, BSDFs and emitters, pdfs "
@@ -76,7 +85,8 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
 
 void validateRenderOptions(const RenderOptions& o) {
     auto fail = [](const std::string& m) { throw InputError(m); };
-    // The film keeps 24 bytes a pixel (double RGB) plus the output image: 8192² is ~2.4 GiB.
+    // The film keeps 96 bytes a pixel (the block's double RGB and the exact 192-bit totals) plus the
+    // output image: 8192² is ~6.7 GiB.
     if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384 || double(o.width) * o.height > 8192.0 * 8192.0)
         fail(fmt::format("--width/--height must be at least 1 and at most 16384, with at most 8192x8192 pixels (got {}x{})",
                          o.width, o.height));
@@ -86,6 +96,8 @@ void validateRenderOptions(const RenderOptions& o) {
         fail(fmt::format("--time must be a number of seconds above 0 and at most 1e7 (got {})", o.seconds));
     if (o.maxDepth < 1 || o.maxDepth > 1024) fail(fmt::format("--max-depth must be between 1 and 1024 (got {})", o.maxDepth));
     if (o.rrDepth < 1) fail(fmt::format("--rr-depth must be at least 1 (got {})", o.rrDepth));
+    if (!(o.checkpointSeconds >= 0 && o.checkpointSeconds <= 1e7))
+        fail(fmt::format("--checkpoint must be a number of seconds, at least 0 and at most 1e7 (got {})", o.checkpointSeconds));
     if (o.threads < 0 || o.threads > 4096) fail(fmt::format("--threads must be between 0 and 4096 (got {})", o.threads));
     if (o.radiusGiven && !(o.merge.radius > 0 && o.merge.radius < 1e30f))
         fail(fmt::format("--radius must be a length in world units above 0 (got {})", o.merge.radius));
@@ -122,6 +134,7 @@ RenderSettings renderSettings(const RenderOptions& o) {
     s.domain = o.domain;
     s.threads = o.threads;
     s.timing = o.stats;
+    s.team = &team();
     return s;
 }
 
@@ -137,7 +150,9 @@ Metadata renderMetadata(const RenderOptions& o, const Scene& scene, const Integr
             {"tripath:mis", o.mis},
             {"tripath:dropped-samples", std::to_string(r.droppedSamples)},
             {"tripath:guarded-weights", std::to_string(r.guardedWeights)},
-            {"tripath:version", TRIPATH_VERSION}};
+            {"tripath:version", TRIPATH_VERSION},
+            {"tripath:embree", embreeDescription()},
+            {"tripath:ranks", std::to_string(team().size())}};
     const Metadata light = lightPhaseMetadata(o, scene, integrator);
     m.insert(m.end(), light.begin(), light.end());
     return m;
@@ -169,7 +184,7 @@ const std::atomic<bool>* installInterruptHandler() {
 
 std::function<void(int, double)> progressReporter(const RenderSettings& s, int width, int height,
                                                   const std::string& label) {
-    if (!isatty(STDERR_FILENO)) return {};
+    if (!isatty(STDERR_FILENO) || !isRankZero()) return {};
     const double pixels = double(width) * height;
     return [s, pixels, label](int passes, double seconds) {
         const double fraction = s.seconds > 0 ? std::min(1.0, seconds / s.seconds) : double(passes) / s.spp;

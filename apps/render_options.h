@@ -28,6 +28,7 @@ struct RenderOptions {
     MergeSettings merge;     // --radius, --radius-factor, --radius-pixels, --alpha (vcm, bpm, ppm)
     uint64_t seed = 1;
     int threads = 0;
+    double checkpointSeconds = 0;  // --checkpoint: interval; 0 writes none (checkpoint.h)
     bool stats = false;      // --stats: time the phases and print the counts and shares at the end
     // Not a flag: the random streams the samples draw from. Renders use CameraSample; references
     // use Reference, so that a reference and a render with the same --seed are independent.

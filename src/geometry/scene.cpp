@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/embree_isa.h"
 #include "geometry/error.h"
 #include "geometry/stats.h"
 
@@ -125,7 +126,8 @@ void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
 }
 
 void Scene::buildBvh() {
-    device_ = rtcNewDevice(nullptr);
+    const std::string config = std::string("isa=") + kEmbreeIsas[embreeIsaLevel()];  // pinned: embree_isa.h
+    device_ = rtcNewDevice(config.c_str());
     if (!device_) throw std::runtime_error("Embree: could not create a device");
     rtcScene_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(rtcScene_, RTC_BUILD_QUALITY_HIGH);

@@ -1,0 +1,47 @@
+// Checkpoints: the state a render needs to go on exactly where it was cut, written beside its EXR
+// as <out>.checkpoint. It holds the settings that must match to continue (as EXR metadata pairs),
+// the pass counts, and the film's exact totals (film.h) word for word, so that a resumed --spp
+// render equals the uninterrupted one bit for bit: totals add exactly, and checkpoints are taken
+// at round boundaries, where every canonical block before nextPass is finished (render.h).
+//
+// Format: the line "tripath-checkpoint 1", then "key=value" lines (the settings, then passes,
+// next-pass, seconds, dropped-samples, guarded-weights, values), a blank line, and the totals as
+// little-endian 64-bit words. Written to a temporary file and renamed over the target, so a job
+// killed at any moment leaves the previous checkpoint whole.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "image/image.h"
+#include "integrators/render.h"
+#include "render_options.h"
+
+namespace tripath::app {
+
+std::string checkpointPath(const std::string& out);
+
+void writeCheckpoint(const std::string& path, const Metadata& settings, const RenderResult& r);
+
+// The render saved at `path`, into a film shaped like `shape` (its size and layers); nullopt if
+// there is no such file. Throws InputError (one line naming the file) if it is not a checkpoint,
+// is cut short, or was made with other settings (naming the first that differs).
+std::optional<RenderResult> readCheckpoint(const std::string& path, const Metadata& settings, const Film& shape);
+
+// What must match for a checkpoint to be continued: the scene, integrator, size, depths, MIS,
+// seed, streams, Embree's version and ISA, the film's layers and the light phase's schedule.
+Metadata checkpointSettings(const RenderOptions& o, const Scene& scene, const Integrator& integrator,
+                            const FilmLayers& layers);
+
+// A render that continues from <out>.checkpoint when that exists (on any rank count), writes one
+// every --checkpoint seconds (with the image so far, through `writeImage`), and on interruption.
+struct Resumable {
+    std::string out;
+    Metadata settings;          // checkpointSettings(...)
+    bool budgetIsTotal = true;  // render: --spp/--time include the resumed part; reference: they add to it
+    bool keepState = false;     // keep <out>.checkpoint when the render completes (reference: to add more later)
+    std::function<void(const RenderResult&)> writeImage;  // rank 0: write the image of a render so far
+};
+RenderResult renderResumable(const Scene& scene, const Integrator& integrator, RenderSettings rs,
+                             const RenderOptions& o, const Resumable& how);
+
+}  // namespace tripath::app

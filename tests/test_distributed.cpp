@@ -1,0 +1,218 @@
+// Distributed rendering, end to end through the built binary under Open MPI's mpirun
+// (apps/processes.h, render.h): N ranks give the EXR one process gives, bit for bit; a checkpointed
+// render cut off and resumed (on another rank count) gives the uninterrupted one; a rank that
+// cannot read the scene or that is killed ends the job with a non-zero exit, and the last
+// checkpoint stays loadable. Ranks are oversubscribed on CI's two cores.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "image/image.h"
+
+namespace tripath {
+namespace {
+
+namespace fs = std::filesystem;
+
+// mpirun refuses root unless told; CI runs as root.
+const std::string kMpirun = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 '" TRIPATH_MPIEXEC
+                            "' --oversubscribe";
+const std::string kTripath = std::string("'") + TRIPATH_BINARY + "'";
+
+class Distributed : public testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("tripath-mpi-" + std::to_string(getpid()) + "-" +
+                                            testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    struct Outcome {
+        int exitCode;
+        std::string err;
+    };
+    Outcome shell(const std::string& cmd) const {
+        const std::string err = path("stderr.txt");
+        const int status = std::system((cmd + " > /dev/null 2> '" + err + "'").c_str());
+        std::ifstream in(err);
+        std::stringstream s;
+        s << in.rdbuf();
+        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
+    }
+    // `tripath <args>` alone (ranks == 0) or under mpirun with that many ranks.
+    Outcome tripath(const std::string& args, int ranks = 0) const {
+        return shell((ranks > 0 ? kMpirun + " -np " + std::to_string(ranks) + " " : std::string()) + kTripath + " " + args);
+    }
+
+    fs::path dir_;
+};
+
+struct Rendered {
+    Image image;
+    Metadata meta;
+};
+
+Rendered load(const std::string& file) {
+    Rendered r;
+    r.image = readExr(file, &r.meta);
+    return r;
+}
+
+// Bit for bit in every pixel, and equal in every metadata key but the time taken and the number
+// of ranks (tripath:ranks), which must say `ranks`.
+void expectSameRender(const Rendered& a, const Rendered& b, int ranks, const std::string& what) {
+    ASSERT_EQ(a.image.rgb.size(), b.image.rgb.size()) << what;
+    size_t differing = 0;
+    for (size_t i = 0; i < a.image.rgb.size(); ++i)
+        differing += std::memcmp(&a.image.rgb[i], &b.image.rgb[i], sizeof(float)) != 0;
+    EXPECT_EQ(differing, 0u) << what << ": values differing in their bits";
+    auto strip = [](Metadata m, int* r) {
+        std::erase_if(m, [&](const auto& kv) {
+            if (kv.first == "tripath:ranks") *r = std::stoi(kv.second);
+            return kv.first == "tripath:seconds" || kv.first == "tripath:ranks";
+        });
+        return m;
+    };
+    int ranksA = -1, ranksB = -1;
+    EXPECT_EQ(strip(a.meta, &ranksA), strip(b.meta, &ranksB)) << what;
+    EXPECT_EQ(ranksA, 1) << what;
+    EXPECT_EQ(ranksB, ranks) << what;
+}
+
+// Ranks 1, 2 and 3 against one process with two threads, every integrator, on a built-in. 10
+// passes are blocks of 4, 4 and 2: with three ranks, each renders one block, one of them short.
+TEST_F(Distributed, EveryRankCountGivesTheImageOfOneProcess) {
+    for (const std::string integrator : {"pt", "lt", "bdpt", "vcm", "bpm", "ppm"}) {
+        const std::string args = "render --scene cornell-spheres --integrator " + integrator +
+                                 " --width 24 --height 20 --spp 10 --seed 3 --out ";
+        ASSERT_EQ(tripath(args + path("one.exr") + " --threads 2").exitCode, 0) << integrator;
+        const Rendered one = load(path("one.exr"));
+        for (int ranks = 1; ranks <= 3; ++ranks) {
+            const std::string out = path("n" + std::to_string(ranks) + ".exr");
+            const Outcome o = tripath(args + out + " --threads 1", ranks);
+            ASSERT_EQ(o.exitCode, 0) << integrator << " on " << ranks << " ranks: " << o.err;
+            expectSameRender(one, load(out), ranks, integrator + " on " + std::to_string(ranks) + " ranks");
+        }
+    }
+}
+
+// The same on a glTF scene, with depth images (every film layer goes through the reduction).
+TEST_F(Distributed, AGltfSceneAndItsDepthImagesToo) {
+    ASSERT_EQ(tripath("export --scene cornell --out " + path("box.gltf")).exitCode, 0);
+    for (const std::string integrator : {"pt", "lt", "bdpt"}) {
+        const std::string args = "render --scene " + path("box.gltf") + " --integrator " + integrator +
+                                 " --width 20 --height 20 --spp 9 --max-depth 4 --depth-images --threads 1 --out ";
+        ASSERT_EQ(tripath(args + path("one.exr")).exitCode, 0) << integrator;
+        ASSERT_EQ(tripath(args + path("two.exr"), 2).exitCode, 0) << integrator;
+        expectSameRender(load(path("one.exr")), load(path("two.exr")), 2, integrator);
+        for (int k = 1; k <= 4; ++k) {
+            const std::string layer = "-k" + std::to_string(k) + ".exr";
+            expectSameRender(load(path("one" + layer)), load(path("two" + layer)), 2, integrator + " k=" + std::to_string(k));
+        }
+    }
+}
+
+// Starts `cmd` in the background and kills it (SIGKILL to `victim`: "job" for the whole
+// command, or a rank of it) as soon as `file` exists. Returns the command's exit status.
+int killWhenWritten(const std::string& cmd, const std::string& file, const std::string& victimPattern, const fs::path& dir) {
+    const std::string pidFile = (dir / "pid").string();
+    std::system(("(" + cmd + " > /dev/null 2>&1; echo $? > '" + (dir / "status").string() + "') & echo $! > '" + pidFile + "'").c_str());
+    const auto start = std::chrono::steady_clock::now();
+    while (!fs::exists(file) && std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    // The newest process whose command line matches: the render itself, or the last rank mpirun
+    // started. (The pattern is anchored at the binary's path, so that no shell matches it.)
+    std::system(("pkill -9 -n -f '" + victimPattern + "'").c_str());
+    const auto waitStart = std::chrono::steady_clock::now();
+    while (!fs::exists(dir / "status") && std::chrono::steady_clock::now() - waitStart < std::chrono::seconds(120))
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // the status line written in full
+    std::ifstream in(dir / "status");
+    int status = -1;
+    in >> status;
+    return status;
+}
+
+// A --spp render killed (SIGKILL) after its first checkpoint and started again, on two ranks
+// this time, ends bit-identical to an uninterrupted one-process render, and leaves no checkpoint.
+TEST_F(Distributed, AResumedCheckpointedRenderEqualsAnUninterruptedOne) {
+    const std::string args = "render --scene cornell --integrator bdpt --width 64 --height 64 --spp 120 --threads 1 --out ";
+    ASSERT_EQ(tripath(args + path("whole.exr")).exitCode, 0);
+    const std::string out = path("cut.exr"), checkpoint = out + ".checkpoint";
+    const std::string cmd = kTripath + " " + args + out + " --checkpoint 0.05";
+    const int status = killWhenWritten(cmd, checkpoint, "^" + std::string(TRIPATH_BINARY) + ".* --out " + out, dir_);
+    ASSERT_NE(status, 0) << "the render finished before it was killed: make it longer";
+    ASSERT_TRUE(fs::exists(checkpoint));
+    const Outcome o = tripath(args + out + " --checkpoint 0.05", 2);
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    EXPECT_NE(o.err.find("continuing from"), std::string::npos) << o.err;
+    expectSameRender(load(path("whole.exr")), load(out), 2, "resumed");
+    EXPECT_FALSE(fs::exists(checkpoint)) << "a finished render keeps no checkpoint";
+}
+
+// A rank killed mid-render ends the whole job with a non-zero exit; the last checkpoint is whole
+// and a render continues from it.
+TEST_F(Distributed, AKilledRankEndsTheJobAndTheLastCheckpointStaysLoadable) {
+    const std::string out = path("job.exr"), checkpoint = out + ".checkpoint";
+    const std::string args = "render --scene cornell --integrator pt --width 64 --height 64 --threads 1 --checkpoint 0.05 --out " + out;
+    const int status = killWhenWritten(kMpirun + " -np 2 " + kTripath + " " + args + " --spp 100000", checkpoint,
+                                       "^" + std::string(TRIPATH_BINARY) + ".* --out " + out, dir_);
+    EXPECT_NE(status, 0);
+    ASSERT_TRUE(fs::exists(checkpoint));
+    std::ifstream in(checkpoint);
+    int passes = 0;
+    for (std::string line; std::getline(in, line) && !line.empty();)
+        if (line.rfind("passes=", 0) == 0) passes = std::stoi(line.substr(7));
+    ASSERT_GT(passes, 0);
+    const Outcome o = tripath(args + " --spp " + std::to_string(passes + 4));
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    const Rendered r = load(out);
+    EXPECT_NE(std::find(r.meta.begin(), r.meta.end(), std::make_pair(std::string("tripath:spp"), std::to_string(passes + 4))),
+              r.meta.end());
+}
+
+// A rank that cannot read the scene (here: rank 1 starts in a folder without it, as a node without
+// the file would) ends the job: one error line from rank 0 naming rank 1 and the reason, a
+// non-zero exit, no image, no hang.
+TEST_F(Distributed, ARankThatCannotReadTheSceneEndsTheJobWithItsReason) {
+    fs::create_directories(dir_ / "has");
+    fs::create_directories(dir_ / "lacks");
+    ASSERT_EQ(tripath("export --scene cornell --out " + path("has/scene.gltf")).exitCode, 0);
+    const std::string render = kTripath + " render --scene scene.gltf --spp 2 --width 16 --height 16 --out " + path("out.exr");
+    const Outcome o = shell(kMpirun + " -np 1 --wdir '" + path("has") + "' " + render + " : -np 1 --wdir '" +
+                            path("lacks") + "' " + render);
+    EXPECT_NE(o.exitCode, 0);
+    EXPECT_FALSE(fs::exists(path("out.exr")));
+    std::istringstream lines(o.err);
+    int ours = 0;
+    for (std::string l; std::getline(lines, l);)
+        if (l.rfind("error: ", 0) == 0) {
+            ++ours;
+            EXPECT_NE(l.find("rank 1"), std::string::npos) << l;
+            EXPECT_NE(l.find("scene.gltf"), std::string::npos) << l;
+        }
+    EXPECT_EQ(ours, 1) << o.err;
+}
+
+// Bad input under mpirun: every rank finds it, rank 0 alone says it, the job exits non-zero.
+TEST_F(Distributed, BadInputGivesOneErrorLineFromRankZero) {
+    const Outcome o = tripath("render --scene cornell --spp 0 --out " + path("out.exr"), 2);
+    EXPECT_NE(o.exitCode, 0);
+    EXPECT_EQ(o.err.rfind("error: --spp", 0), 0u) << o.err;
+    EXPECT_EQ(o.err.find("error:", 1), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(path("out.exr")));
+}
+
+}  // namespace
+}  // namespace tripath
