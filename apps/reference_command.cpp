@@ -8,12 +8,16 @@
 // defaults work together and compare need not refuse them.
 #include <fmt/format.h>
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
+#include "checkpoint.h"
 #include "commands.h"
+#include "geometry/embree_isa.h"
 #include "geometry/error.h"
+#include "processes.h"
 #include "reference_file.h"
 #include "render_options.h"
 
@@ -43,6 +47,8 @@ std::optional<ReferenceFile> previous(const ReferenceCommand& c, const std::stri
     if (!std::filesystem::exists(c.out)) return std::nullopt;
     ReferenceFile ref = readReference(c.out);
     requireSettings(ref, settingsToMatch(c.options, integrator), false);
+    // Samples from another Embree version or ISA may hit differently (embree_isa.h): never mixed.
+    requireSettings(ref, {{"tripath:embree", embreeDescription()}}, true);
     requireSize(ref, c.options.width, c.options.height);
     if (ref.spp() < 1) throw InputError(fmt::format("'{}' records {} spp: nothing to add to", c.out, ref.spp()));
     return ref;
@@ -63,35 +69,60 @@ void validate(const ReferenceCommand& c) {
     if (std::filesystem::path(c.out).extension() != ".exr") throw InputError("--out must name an .exr file: " + c.out);
     if (!c.png.empty() && std::filesystem::path(c.png).extension() != ".png")
         throw InputError("--png must name a .png file: " + c.png);
+    if (!isRankZero()) return;  // only rank 0 writes
     checkWritable(c.out);
     if (!c.png.empty()) checkWritable(c.png);
 }
 
+// The first pass index the file's samples left unused (tripath:next-pass; files from before it
+// used passes 0 .. spp−1).
+uint64_t nextPass(const ReferenceFile& ref) {
+    const auto v = ref.value("tripath:next-pass");
+    return v ? std::strtoull(v->c_str(), nullptr, 10) : uint64_t(ref.spp());
+}
+
 void run(const ReferenceCommand& c) {
-    validate(c);
     RenderOptions o = c.options;
     const auto integrator = makeIntegrator(o.integrator, integratorSettings(o));
-    const std::optional<ReferenceFile> old = previous(c, integrator->name());
+    // Rank 0 reads what is already at --out; a checkpoint beside it is continued exactly
+    // (renderResumable), a reference without one by averaging in the new passes.
+    std::optional<ReferenceFile> old;
+    bool exact = false;
+    std::unique_ptr<Scene> scene;
+    together([&] {
+        validate(c);
+        if (isRankZero()) old = previous(c, integrator->name());
+        exact = old && std::filesystem::exists(checkpointPath(c.out));
+    });
+    // The others learn the streams and the pass to start from.
+    std::array<uint64_t, 3> shared{old ? 1u : 0u, old ? uint64_t(streamDomain(*old)) : 0, old ? nextPass(*old) : 0};
+    team().max(shared);
+    const bool continuing = shared[0] != 0;
     // New files use the reference streams; added samples continue in the streams of the file
     // (a reference written before tripath:streams existed drew from the render streams).
-    o.domain = old ? streamDomain(*old) : StreamDomain::Reference;
-    const auto scene = loadScene(o);
-    // A merging reference continues its radius schedule from the passes in the file (the pass
-    // index runs on): the schedule must be the same one. (Files from before the light phase lack
-    // these keys; they are bdpt or lt references, whose added passes need no schedule.)
-    if (old) requireSettings(*old, lightPhaseMetadata(o, *scene, *integrator), true);
+    o.domain = continuing ? static_cast<StreamDomain>(shared[1]) : StreamDomain::Reference;
+    together([&] {
+        scene = loadScene(o);
+        // A merging reference continues its radius schedule from the passes in the file (the pass
+        // index runs on): the schedule must be the same one. (Files from before the light phase
+        // lack these keys; they are bdpt or lt references, whose added passes need no schedule.)
+        if (old) requireSettings(*old, lightPhaseMetadata(o, *scene, *integrator), true);
+    });
 
     RenderSettings rs = renderSettings(o);
-    rs.firstPass = old ? old->spp() : 0;  // fresh sample indices after the ones already in the file
+    rs.firstPass = continuing ? shared[2] : 0;  // fresh sample indices after the ones already in the file
     rs.stop = installInterruptHandler();
     const std::string label = fmt::format("reference {} {}", o.integrator, o.scene);
     rs.progress = progressReporter(rs, o.width, o.height, label);
-    const RenderResult r = render(*scene, *integrator, rs);
+    Resumable how{c.out, checkpointSettings(o, *scene, *integrator, rs.layers), false, true, {}};
+    how.writeImage = [&](const RenderResult& sofar) { writeExr(c.out, sofar.image(), renderMetadata(o, *scene, *integrator, sofar)); };
+    const RenderResult r = renderResumable(*scene, *integrator, rs, o, how);
+    if (!isRankZero()) return;
     printSummary(label, r, o);
 
     Metadata meta = renderMetadata(o, *scene, *integrator, r);
     Image image = r.image();
-    if (old) {
+    if (old && !exact) {
         image = combine(old->image, old->spp(), image, r.passes);
         const int spp = old->spp() + r.passes;
         const double seconds = old->seconds() + r.seconds;

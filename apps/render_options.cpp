@@ -142,6 +142,7 @@ Metadata renderMetadata(const RenderOptions& o, const Scene& scene, const Integr
     Metadata m{{"tripath:scene", o.scene},
             {"tripath:integrator", integrator.name()},
             {"tripath:spp", std::to_string(r.passes)},
+            {"tripath:next-pass", std::to_string(r.nextPass)},
             {"tripath:seconds", fmt::format("{:.3f}", r.seconds)},
             {"tripath:seed", std::to_string(o.seed)},
             {"tripath:streams", streamsName(o.domain)},

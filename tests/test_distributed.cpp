@@ -107,6 +107,35 @@ TEST_F(Distributed, EveryRankCountGivesTheImageOfOneProcess) {
     }
 }
 
+// The film's exact totals (film.h), word for word: the EXR's floats would hide a sum reduced in
+// double in another order (its rounding error is 2^-29 of a float's), so this compares the totals
+// that a reference's checkpoint keeps.
+TEST_F(Distributed, TheFilmsExactTotalsAgreeWordForWord) {
+    auto totals = [](const std::string& file) {
+        std::ifstream in(file, std::ios::binary);
+        std::string line, passes;
+        while (std::getline(in, line) && !line.empty())
+            if (line.rfind("passes=", 0) == 0) passes = line;
+        std::stringstream words;
+        words << in.rdbuf();
+        return passes + "|" + words.str();
+    };
+    for (const std::string integrator : {"lt", "bdpt"}) {
+        std::string one;
+        for (int ranks = 0; ranks <= 3; ++ranks) {
+            const std::string out = path(integrator + std::to_string(ranks) + ".exr");
+            const std::string args = "reference --scene cornell-spheres --integrator " + integrator +
+                                     " --width 24 --height 20 --spp 10 --threads 1 --checkpoint 1000 --out " + out;
+            const Outcome o = tripath(args, ranks);
+            ASSERT_EQ(o.exitCode, 0) << o.err;
+            const std::string mine = totals(out + ".checkpoint");
+            ASSERT_GT(mine.size(), 24u * 20 * 3 * 24) << integrator;
+            if (ranks == 0) one = mine;
+            EXPECT_TRUE(mine == one) << integrator << " on " << ranks << " ranks";
+        }
+    }
+}
+
 // The same on a glTF scene, with depth images (every film layer goes through the reduction).
 TEST_F(Distributed, AGltfSceneAndItsDepthImagesToo) {
     ASSERT_EQ(tripath("export --scene cornell --out " + path("box.gltf")).exitCode, 0);
