@@ -80,6 +80,12 @@ struct RunOutput {
 // Runs one method once (run `index`, seed + index) and measures it against the reference.
 RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::string& method, int index,
                     const Image& reference);
+// Every run of every method, spread over the ranks (compare_ranks.cpp), each alone on its rank;
+// on rank 0 all of them in run-major order (images of run 0 only), nothing on the others.
+std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene, const Image& reference);
+// The reference as rank 0 sends it to the others.
+std::string packReference(const Reference& ref);
+Reference unpackReference(const std::string& bytes);
 
 // compare_stats.cpp
 Curve curveOf(const std::vector<Run>& runs, const std::string& method);

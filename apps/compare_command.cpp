@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "compare.h"
+#include "processes.h"
 #include "geometry/error.h"
 #include "image/inset.h"
 #include "image/text.h"
@@ -87,6 +88,7 @@ void validate(CompareCommand& c) {
     o.methods = parseMethods(c.integrators);
     makeIntegrator(o.referenceIntegrator, {});  // an unknown name is refused before anything renders
     o.crop = parseCrop(c.crop, o.render.width, o.render.height);
+    if (!isRankZero()) return;  // rank 0 alone reads the reference file and writes the report
     if (!o.referencePath.empty() && !fs::exists(o.referencePath))
         throw InputError(fmt::format("cannot read reference '{}': file does not exist", o.referencePath));
     requireFont();
@@ -117,25 +119,36 @@ void writeReport(Report& report, const std::string& dir) {
 }
 
 void run(CompareCommand& c) {
-    validate(c);
+    std::unique_ptr<Scene> scene;
+    together([&] {
+        validate(c);
+        scene = loadScene(c.options.render);
+    });
     const CompareOptions& o = c.options;
-    const auto scene = loadScene(o.render);
-    const Reference ref = obtainReference(o, *scene);
-    writePng((fs::path(o.outDir) / "reference.png").string(), ref.image);
+    // A reference to render is rendered by every rank together; a given one is read by rank 0.
+    // Either way rank 0 then sends it to the others.
+    Reference ref;
+    together([&] {
+        if (o.referencePath.empty() || isRankZero()) ref = obtainReference(o, *scene);
+    });
+    std::string packed = isRankZero() ? packReference(ref) : std::string();
+    broadcast(packed);
+    if (!isRankZero()) ref = unpackReference(packed);
 
-    // Run-major order: a change in machine load during the comparison hits every method alike.
+    std::vector<RunOutput> outputs = runEverywhere(o, *scene, ref.image);
+    if (!isRankZero()) return;
+    writePng((fs::path(o.outDir) / "reference.png").string(), ref.image);
     std::vector<Run> runs;
     std::map<std::string, Image> images;
-    for (int r = 0; r < o.runs; ++r)
-        for (const std::string& m : o.methods) {
-            RunOutput out = runMethod(o, *scene, m, r, ref.image);
-            if (r == 0) {
-                writeExr((fs::path(o.outDir) / (m + ".exr")).string(), out.image, out.meta);
-                writePng((fs::path(o.outDir) / (m + ".png")).string(), out.image);
-                images[m] = std::move(out.image);
-            }
-            runs.push_back(std::move(out.run));
+    for (RunOutput& out : outputs) {
+        const std::string& m = out.run.method;
+        if (out.run.index == 0) {
+            writeExr((fs::path(o.outDir) / (m + ".exr")).string(), out.image, out.meta);
+            writePng((fs::path(o.outDir) / (m + ".png")).string(), out.image);
+            images[m] = std::move(out.image);
         }
+        runs.push_back(std::move(out.run));
+    }
     Report report{o, ref, runs, images, {}, {}, {}};
     writeReport(report, o.outDir);
     const MethodSummary& best = report.summaries[bestMethod(report.summaries)];

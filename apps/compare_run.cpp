@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "compare.h"
+#include "processes.h"
 #include "geometry/error.h"
 
 namespace tripath::app {
@@ -63,9 +64,11 @@ Reference renderReference(const CompareOptions& o, const Scene& scene) {
     RenderSettings rs = renderSettings(r);
     const std::string label = "reference " + r.integrator + " " + r.scene;
     rs.progress = progressReporter(rs, r.width, r.height, label);
-    const RenderResult result = render(scene, *integrator, rs);
-    printSummary(label, result, r);
-    writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result));
+    const RenderResult result = render(scene, *integrator, rs);  // by every rank together
+    if (isRankZero()) {
+        printSummary(label, result, r);
+        writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result));
+    }
     return {result.image(), fmt::format("{}, {} spp, {:.0f} s", r.integrator, result.passes, result.seconds), file};
 }
 
@@ -83,6 +86,7 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
     Run run{method, index, ro.seed, {}};
     const auto integrator = makeIntegrator(method, integratorSettings(ro));
     RenderSettings rs = renderSettings(ro);
+    rs.team = &solo();  // a run is timed alone on its rank: compare_ranks.cpp deals the runs out
     const std::string label = fmt::format("{} run {}/{}", method, index + 1, o.runs);
     rs.progress = progressReporter(rs, ro.width, ro.height, label);
     // Measuring happens inside onPass, whose time the render loop leaves out of the budget.

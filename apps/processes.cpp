@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -118,6 +119,46 @@ void Processes::fail(const std::string& message, int exitCode) {
 
 Team& team() { return gTeam ? static_cast<Team&>(*gTeam) : solo(); }
 bool isRankZero() { return team().rank() == 0; }
+
+namespace {
+// MPI counts are ints: long messages go in pieces.
+constexpr size_t kPieceBytes = size_t(1) << 30;
+void sendBytes(const std::string& bytes, int to) {
+    uint64_t n = bytes.size();
+    MPI_Send(&n, 1, MPI_UINT64_T, to, 0, MPI_COMM_WORLD);
+    for (size_t at = 0; at < bytes.size(); at += kPieceBytes)
+        MPI_Send(bytes.data() + at, int(std::min(kPieceBytes, bytes.size() - at)), MPI_CHAR, to, 0, MPI_COMM_WORLD);
+}
+std::string receiveBytes(int from) {
+    uint64_t n = 0;
+    MPI_Recv(&n, 1, MPI_UINT64_T, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    std::string bytes(n, '\0');
+    for (size_t at = 0; at < bytes.size(); at += kPieceBytes)
+        MPI_Recv(bytes.data() + at, int(std::min(kPieceBytes, bytes.size() - at)), MPI_CHAR, from, 0, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+    return bytes;
+}
+}  // namespace
+
+void broadcast(std::string& bytes) {
+    if (!gTeam) return;
+    uint64_t n = bytes.size();
+    MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    bytes.resize(n);
+    for (size_t at = 0; at < bytes.size(); at += kPieceBytes)
+        MPI_Bcast(bytes.data() + at, int(std::min(kPieceBytes, bytes.size() - at)), MPI_CHAR, 0, MPI_COMM_WORLD);
+}
+
+std::vector<std::string> gather(const std::string& mine) {
+    if (!gTeam) return {mine};
+    if (gTeam->rank() != 0) {
+        sendBytes(mine, 0);
+        return {};
+    }
+    std::vector<std::string> all{mine};
+    for (int r = 1; r < gTeam->size(); ++r) all.push_back(receiveBytes(r));
+    return all;
+}
 
 void together(const std::function<void()>& step) {
     std::string error;

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "integrators/team.h"
 
@@ -32,6 +33,11 @@ public:
 // The team of this command's processes (solo() without a launcher).
 Team& team();
 bool isRankZero();
+
+// Collective: rank 0's bytes, on every rank.
+void broadcast(std::string& bytes);
+// Collective: every rank's bytes in rank order, on rank 0 (nothing on the others).
+std::vector<std::string> gather(const std::string& mine);
 
 // Runs `step` on every rank; if it throws InputError on any, every rank throws one InputError
 // saying which rank failed and why (the lowest failing rank's message).

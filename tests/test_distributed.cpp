@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "image/image.h"
 
@@ -232,6 +233,22 @@ TEST_F(Distributed, ARankThatCannotReadTheSceneEndsTheJobWithItsReason) {
             EXPECT_NE(l.find("scene.gltf"), std::string::npos) << l;
         }
     EXPECT_EQ(ours, 1) << o.err;
+}
+
+// compare on two ranks: the reference rendered by both together, the four runs dealt out and
+// gathered into one report on rank 0 with every run of every method.
+TEST_F(Distributed, CompareGathersEveryRunFromEveryRank) {
+    const Outcome o = tripath("compare --scene cornell --integrators pt,lt --runs 2 --time 0.2 --width 16 --height 16 "
+                              "--threads 1 --out " + path("cmp"), 2);
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    std::ifstream in(path("cmp/counters.csv"));
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(in, line);) rows.push_back(line.substr(0, line.find(',', line.find(',') + 1)));
+    EXPECT_EQ(rows, (std::vector<std::string>{"integrator,run", "pt,0", "lt,0", "pt,1", "lt,1"}));
+    for (const char* file : {"pt.exr", "lt.exr", "reference.exr", "index.html"}) EXPECT_TRUE(fs::exists(path(std::string("cmp/") + file))) << file;
+    const Rendered ref = load(path("cmp/reference.exr"));
+    EXPECT_NE(std::find(ref.meta.begin(), ref.meta.end(), std::make_pair(std::string("tripath:ranks"), std::string("2"))),
+              ref.meta.end());
 }
 
 // Bad input under mpirun: every rank finds it, rank 0 alone says it, the job exits non-zero.

@@ -1,0 +1,85 @@
+// `compare` on N ranks: the runs (run-major: run 0 of every method, then run 1, ...) are dealt out
+// round-robin, each rendered on one rank alone, and gathered on rank 0, which writes the report.
+// Equal-time runs must not share cores: start one rank per core set (docs/distributed.md).
+#include "compare.h"
+#include "processes.h"
+#include "wire.h"
+
+namespace tripath::app {
+
+namespace {
+
+void put(WireWriter& w, const Image& image) { w.put(image.width).put(image.height).put(image.rgb); }
+void get(WireReader& r, Image& image) {
+    r.get(image.width);
+    r.get(image.height);
+    r.get(image.rgb);
+}
+
+std::string pack(const RunOutput& out) {
+    WireWriter w;
+    w.put(out.run.method).put(out.run.index).put(out.run.seed).put(out.run.checkpoints).put(out.run.stats);
+    put(w, out.image);
+    w.put(uint64_t(out.meta.size()));
+    for (const auto& [key, value] : out.meta) w.put(key).put(value);
+    return w.bytes();
+}
+
+RunOutput unpack(WireReader& r) {
+    RunOutput out;
+    r.get(out.run.method);
+    r.get(out.run.index);
+    r.get(out.run.seed);
+    r.get(out.run.checkpoints);
+    r.get(out.run.stats);
+    get(r, out.image);
+    uint64_t n = 0;
+    r.get(n);
+    out.meta.resize(n);
+    for (auto& [key, value] : out.meta) r.get(key), r.get(value);
+    return out;
+}
+
+}  // namespace
+
+std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene, const Image& reference) {
+    const int ranks = team().size(), me = team().rank();
+    const int jobs = o.runs * int(o.methods.size());
+    WireWriter mine;
+    for (int j = me; j < jobs; j += ranks) {
+        RunOutput out = runMethod(o, scene, o.methods[j % o.methods.size()], j / int(o.methods.size()), reference);
+        if (out.run.index > 0) out.image = Image{};  // only run 0's images are written; keep messages small
+        mine.put(j).put(pack(out));
+    }
+    std::vector<RunOutput> all(jobs);
+    for (const std::string& bytes : gather(mine.bytes())) {
+        WireReader r(bytes);
+        while (!r.done()) {
+            int j = 0;
+            std::string packed;
+            r.get(j);
+            r.get(packed);
+            WireReader inner(packed);
+            all[j] = unpack(inner);
+        }
+    }
+    return all;
+}
+
+std::string packReference(const Reference& ref) {
+    WireWriter w;
+    put(w, ref.image);
+    w.put(ref.description).put(ref.file);
+    return w.bytes();
+}
+
+Reference unpackReference(const std::string& bytes) {
+    WireReader r(bytes);
+    Reference ref;
+    get(r, ref.image);
+    r.get(ref.description);
+    r.get(ref.file);
+    return ref;
+}
+
+}  // namespace tripath::app
