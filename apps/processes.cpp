@@ -117,6 +117,7 @@ void Processes::fail(const std::string& message, int exitCode) {
     MPI_Abort(MPI_COMM_WORLD, exitCode);
 }
 
+bool launched() { return gTeam != nullptr; }
 Team& team() { return gTeam ? static_cast<Team&>(*gTeam) : solo(); }
 bool isRankZero() { return team().rank() == 0; }
 

@@ -30,6 +30,8 @@ public:
     void fail(const std::string& message, int exitCode);
 };
 
+// True under mpirun/srun, even with one rank.
+bool launched();
 // The team of this command's processes (solo() without a launcher).
 Team& team();
 bool isRankZero();

@@ -187,6 +187,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     setTiming(settings.timing);
     enrolThread();
     const StatsSnapshot statsBefore = statsSnapshot();
+    team.any(false);  // start together: --time counts from the same moment on every rank
     const auto start = std::chrono::steady_clock::now();
     double callbackSeconds = 0;  // spent in onPass and onCheckpoint: the caller's time, not the render's
     auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
@@ -237,7 +238,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     }
     result.seconds = elapsed();
     addUpOverTeam(team, result, local, localNext);
+    const auto reduceStart = std::chrono::steady_clock::now();
     team.reduce(result.film);
+    result.reduceSeconds = since(reduceStart);
     if (team.rank() == 0) addResumed(result, resume);
     result.stats = statsSnapshot() - statsBefore;
     setTiming(false);

@@ -64,6 +64,7 @@ struct RenderResult {
     double seconds = 0;
     uint64_t droppedSamples = 0;  // NaN or infinite contributions kept off the film
     uint64_t guardedWeights = 0;  // MIS weights set to 0 because a pdf ratio was not finite (mis.h)
+    double reduceSeconds = 0;     // spent adding the team's films into rank 0's at the end
     // What the render did (geometry/stats.h): its events, and with timing on its cycles per phase.
     // Taken as the difference of two process-wide snapshots, so renders must not overlap.
     StatsSnapshot stats{};
