@@ -122,6 +122,8 @@ TEST_F(Cli, AbsurdBudgetsAreRefused) {
     expectRefused(render("--time 1e300 " + out()), "--time");
     expectRefused(render("--time nan " + out()), "--time");
     expectRefused(render("--max-depth 0 " + out()), "--max-depth");
+    expectRefused(render("--checkpoint -1 " + out()), "--checkpoint");
+    expectRefused(render("--checkpoint nan " + out()), "--checkpoint");
 }
 
 TEST_F(Cli, NegativeBudgetsAreRefused) {
@@ -242,6 +244,18 @@ TEST_F(Cli, ExportRefusesBadInput) {
     expectRefused("export --scene contact --out '" + path("missing/contact.gltf") + "'", "does not exist");
     expectRefused("export --scene contact --out '" + path("contact.glb") + "'", ".gltf");
     expectRefused("export --scene no-such-scene --out '" + path("x.gltf") + "'", "no-such-scene");
+}
+
+// A checkpoint is continued only with the settings it was made with (a reference's state, found
+// beside a render's output, is refused: its samples came from the reference streams), and a file
+// that is not a checkpoint is refused, not trusted. One line, naming the file and what differs.
+TEST_F(Cli, ACheckpointIsContinuedOnlyWithItsOwnSettings) {
+    const std::string size = "--width 8 --height 8 --spp 4 --checkpoint 100 ";
+    ASSERT_EQ(run("reference --scene cornell " + size + "--out '" + path("ref.exr") + "'").exitCode, 0);
+    fs::rename(path("ref.exr.checkpoint"), path("out.exr.checkpoint"));
+    expectRefused(render(size + out()), "streams=reference");
+    std::ofstream(path("out.exr.checkpoint")) << "not a checkpoint\n";
+    expectRefused(render(size + out()), "not a tripath checkpoint");
 }
 
 }  // namespace

@@ -7,7 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -153,9 +155,10 @@ TEST_F(Distributed, AGltfSceneAndItsDepthImagesToo) {
     }
 }
 
-// Starts `cmd` in the background and kills it (SIGKILL to `victim`: "job" for the whole
-// command, or a rank of it) as soon as `file` exists. Returns the command's exit status.
-int killWhenWritten(const std::string& cmd, const std::string& file, const std::string& victimPattern, const fs::path& dir) {
+// Starts `cmd` in the background and, as soon as `file` exists, sends `signal` (SIGKILL by
+// default) to the newest process matching `victimPattern`. Returns the command's exit status.
+int killWhenWritten(const std::string& cmd, const std::string& file, const std::string& victimPattern, const fs::path& dir,
+                    const std::string& signal = "KILL") {
     const std::string pidFile = (dir / "pid").string();
     std::system(("(" + cmd + " > /dev/null 2>&1; echo $? > '" + (dir / "status").string() + "') & echo $! > '" + pidFile + "'").c_str());
     const auto start = std::chrono::steady_clock::now();
@@ -163,7 +166,7 @@ int killWhenWritten(const std::string& cmd, const std::string& file, const std::
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     // The newest process whose command line matches: the render itself, or the last rank mpirun
     // started. (The pattern is anchored at the binary's path, so that no shell matches it.)
-    std::system(("pkill -9 -n -f '" + victimPattern + "'").c_str());
+    std::system(("pkill -" + signal + " -n -f '" + victimPattern + "'").c_str());
     const auto waitStart = std::chrono::steady_clock::now();
     while (!fs::exists(dir / "status") && std::chrono::steady_clock::now() - waitStart < std::chrono::seconds(120))
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -189,6 +192,33 @@ TEST_F(Distributed, AResumedCheckpointedRenderEqualsAnUninterruptedOne) {
     EXPECT_NE(o.err.find("continuing from"), std::string::npos) << o.err;
     expectSameRender(load(path("whole.exr")), load(out), 2, "resumed");
     EXPECT_FALSE(fs::exists(checkpoint)) << "a finished render keeps no checkpoint";
+}
+
+// A reference run twice with a checkpoint (8 spp, then 8 more on two ranks) is the 16-spp
+// reference rendered at once, bit for bit: the second run goes on from the first's exact totals.
+TEST_F(Distributed, AReferenceAddsToItsCheckpointExactly) {
+    const std::string args = "reference --scene cornell-spheres --integrator bdpt --width 24 --height 20 --threads 1 ";
+    ASSERT_EQ(tripath(args + "--spp 16 --out " + path("once.exr")).exitCode, 0);
+    ASSERT_EQ(tripath(args + "--spp 8 --checkpoint 1000 --out " + path("twice.exr")).exitCode, 0);
+    const Outcome o = tripath(args + "--spp 8 --out " + path("twice.exr"), 2);
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    expectSameRender(load(path("once.exr")), load(path("twice.exr")), 2, "continued reference");
+}
+
+// Ctrl-C to mpirun (which passes SIGTERM to its ranks): every rank stops at its next pass, and the
+// image so far is written, with whole passes.
+TEST_F(Distributed, InterruptingMpirunWritesTheImageSoFar) {
+    const std::string out = path("int.exr");
+    const std::string cmd = kMpirun + " -np 2 " + kTripath + " render --scene cornell --width 32 --height 32 --threads 1 "
+                            "--spp 100000 --checkpoint 0.05 --out " + out;
+    killWhenWritten(cmd, out + ".checkpoint", "^" + std::string(TRIPATH_MPIEXEC) + ".* --out " + out, dir_, "INT");
+    ASSERT_TRUE(fs::exists(out));
+    const Rendered r = load(out);
+    const auto spp = std::find_if(r.meta.begin(), r.meta.end(), [](const auto& kv) { return kv.first == "tripath:spp"; });
+    ASSERT_NE(spp, r.meta.end());
+    EXPECT_GT(std::stoi(spp->second), 0);
+    EXPECT_LT(std::stoi(spp->second), 100000);
+    for (float v : r.image.rgb) ASSERT_TRUE(std::isfinite(v));
 }
 
 // A rank killed mid-render ends the whole job with a non-zero exit; the last checkpoint is whole
