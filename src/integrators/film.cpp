@@ -50,18 +50,19 @@ void Film::endBlock() {
     });
 }
 
-std::vector<ExactSums*> Film::totals() {
-    std::vector<ExactSums*> out{&main_.total};
-    for (Sums& d : depth_) out.push_back(&d.total);
-    for (const Strategy& st : order_) out.insert(out.end(), {&strategy_.at(st).first.total, &strategy_.at(st).second.total});
+template <class Self>
+auto Film::totalsOf(Self& film) {
+    std::vector<decltype(&film.main_.total)> out{&film.main_.total};
+    for (auto& d : film.depth_) out.push_back(&d.total);
+    for (const Strategy& st : film.order_) {
+        auto& pair = film.strategy_.at(st);
+        out.insert(out.end(), {&pair.first.total, &pair.second.total});
+    }
     return out;
 }
 
-std::vector<const ExactSums*> Film::totals() const {
-    std::vector<const ExactSums*> out;
-    for (ExactSums* t : const_cast<Film*>(this)->totals()) out.push_back(t);
-    return out;
-}
+std::vector<ExactSums*> Film::totals() { return totalsOf(*this); }
+std::vector<const ExactSums*> Film::totals() const { return totalsOf(*this); }
 
 void Film::add(const Film& other) {
     assert(width_ == other.width_ && height_ == other.height_ && order_ == other.order_);

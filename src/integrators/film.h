@@ -59,6 +59,8 @@ private:
         explicit Sums(size_t n) : block(n, 0.0), total(n) {}
     };
     static void addTo(Sums& sums, int pixel, Spectrum v);
+    template <class Self>
+    static auto totalsOf(Self& film);  // totals() and its const twin
     Image toImage(const Sums& sums, int passes) const;
     int width_, height_;
     FilmLayers layers_;

@@ -103,7 +103,6 @@ void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pa
         }
 }
 
-
 // One pass: the light phase, the tiles in parallel, then the splats in tile order.
 class PassRenderer {
 public:
@@ -243,6 +242,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     result.reduceSeconds = since(reduceStart);
     if (team.rank() == 0) addResumed(result, resume);
     result.stats = statsSnapshot() - statsBefore;
+    team.sum(result.stats.events);  // counts over the whole team, like the passes
+    team.sum(result.stats.phaseSamples);
     setTiming(false);
     return result;
 }
