@@ -10,5 +10,6 @@ void addReferenceCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addMontageCommand(CLI::App& app);
+void addBenchmarkCommand(CLI::App& app);
 
 }  // namespace tripath::app

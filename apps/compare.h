@@ -21,6 +21,8 @@ struct CompareOptions {
     std::vector<std::string> methods;  // integrator names, in the order given
     std::string referencePath;         // empty: render one
     std::string referenceIntegrator = "bdpt";  // the integrator that renders it
+    double referenceSeconds = 0;       // its budget; 0: kReferenceBudget x --time (compare_run.cpp)
+    std::string referenceOut;          // where a rendered one goes; empty: <outDir>/reference.exr
     int runs = 1;
     std::optional<Region> crop;
     std::string outDir;
@@ -81,8 +83,10 @@ struct RunOutput {
 RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::string& method, int index,
                     const Image& reference);
 // Every run of every method, spread over the ranks (compare_ranks.cpp), each alone on its rank;
-// on rank 0 all of them in run-major order (images of run 0 only), nothing on the others.
-std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene, const Image& reference);
+// on rank 0 all of them in run-major order (images of run 0 only, unless allImages), nothing on
+// the others.
+std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene, const Image& reference,
+                                     bool allImages = false);
 // The reference as rank 0 sends it to the others.
 std::string packReference(const Reference& ref);
 Reference unpackReference(const std::string& bytes);
@@ -111,6 +115,10 @@ void writeSideBySide(const Report& r, const std::string& path);
 void writeSummary(const Report& r, const std::string& path);
 // compare_html.cpp
 void writeIndexHtml(const Report& r, const std::string& path);
+// Everything above into `dir`: curves and summaries first, then error.csv, counters.csv, the
+// chart, side-by-side.png (its inset the user's crop or where the methods differ most),
+// summary.md and index.html.
+void writeReport(Report& report, const std::string& dir);
 
 // Text files are written whole or not at all, like the images (write a temporary, then rename).
 void writeText(const std::string& path, const std::string& text);

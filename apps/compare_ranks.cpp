@@ -42,13 +42,13 @@ RunOutput unpack(WireReader& r) {
 
 }  // namespace
 
-std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene, const Image& reference) {
+std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene, const Image& reference, bool allImages) {
     const int ranks = team().size(), me = team().rank();
     const int jobs = o.runs * int(o.methods.size());
     WireWriter mine;
     for (int j = me; j < jobs; j += ranks) {
         RunOutput out = runMethod(o, scene, o.methods[j % o.methods.size()], j / int(o.methods.size()), reference);
-        if (out.run.index > 0) out.image = Image{};  // only run 0's images are written; keep messages small
+        if (out.run.index > 0 && !allImages) out.image = Image{};  // only run 0's images are written; keep messages small
         mine.put(j).put(pack(out));
     }
     std::vector<RunOutput> all(jobs);

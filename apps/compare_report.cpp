@@ -6,12 +6,14 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "compare.h"
 #include "geometry/error.h"
 #include "image/chart.h"
 #include "image/compose.h"
+#include "image/inset.h"
 
 namespace tripath::app {
 
@@ -151,6 +153,31 @@ void writeSummary(const Report& r, const std::string& path) {
          "merges; as `tripath render --stats` counts them), `error-vs-time.svg`/`.png`, `side-by-side.png`, "
          "`<method>.exr`/`.png` (run 0), `index.html`.\n";
     writeText(path, s);
+}
+
+// The user's crop, or a window of an eighth of the image (at least 8 pixels) where the methods differ most.
+namespace {
+Region insetRegion(const CompareOptions& o, const Reference& ref, const std::map<std::string, Image>& images) {
+    if (o.crop) return *o.crop;
+    std::vector<Image> list;
+    for (const std::string& m : o.methods) list.push_back(images.at(m));
+    const int w = std::min(ref.image.width, std::max(8, ref.image.width / 8));
+    const int h = std::min(ref.image.height, std::max(8, ref.image.height / 8));
+    return regionOfLargestDifference(ref.image, list, w, h);
+}
+}  // namespace
+
+void writeReport(Report& report, const std::string& dir) {
+    auto path = [&](const char* name) { return (std::filesystem::path(dir) / name).string(); };
+    for (const std::string& m : report.options.methods) report.curves.push_back(curveOf(report.runs, m));
+    report.summaries = summarize(report.runs, report.curves);
+    report.inset = insetRegion(report.options, report.reference, report.images);
+    writeCsv(report, path("error.csv"));
+    writeCountersCsv(report, path("counters.csv"));
+    writeChart(report, path("error-vs-time.svg"), path("error-vs-time.png"));
+    writeSideBySide(report, path("side-by-side.png"));
+    writeSummary(report, path("summary.md"));
+    writeIndexHtml(report, path("index.html"));
 }
 
 }  // namespace tripath::app

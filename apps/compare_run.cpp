@@ -52,9 +52,10 @@ Reference readGivenReference(const CompareOptions& o) {
 Reference renderReference(const CompareOptions& o, const Scene& scene) {
     RenderOptions r = o.render;
     r.integrator = o.referenceIntegrator;
-    r.seconds = kReferenceBudget * o.render.seconds;
+    r.seconds = o.referenceSeconds > 0 ? o.referenceSeconds : kReferenceBudget * o.render.seconds;
     r.domain = StreamDomain::Reference;  // the reference streams: independent of every run
-    const std::string file = (std::filesystem::path(o.outDir) / "reference.exr").string();
+    const std::string file =
+        o.referenceOut.empty() ? (std::filesystem::path(o.outDir) / "reference.exr").string() : o.referenceOut;
     std::cerr << fmt::format(
         "no --reference: rendering one with {} for {:g} x {} = {} (seed {}, reference streams) into {}; its own "
         "noise adds about 1/{:g} of {}'s error to each measurement. For a cleaner one, see `tripath reference`.\n",

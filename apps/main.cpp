@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     tripath::app::addScenesCommand(app);
     tripath::app::addReferenceCommand(app);
     tripath::app::addCompareCommand(app);
+    tripath::app::addBenchmarkCommand(app);
     tripath::app::addExportCommand(app);
     tripath::app::addMontageCommand(app);
     try {

@@ -332,6 +332,20 @@ TEST(Metrics, TailShareIsTheWorstPixelsShareOfTheRelativeError) {
     EXPECT_LT(m.tailShare, 0.3);
 }
 
+// relMSE without the worst 0.1 %: on the same 1000-pixel image the tail is B alone, so what is
+// left is the 998 background pixels and A, over 3 × 999 values. Catches: leaving out the
+// brightest pixel (A) instead of the worst relative error, dividing by all 3000 values.
+TEST(Metrics, RelMseWithoutTailLeavesOutTheWorstPixels) {
+    const int w = 40, h = 25;
+    Image ref = filled(w, h, 1, 1, 1), test = filled(w, h, 1.5f, 1, 1);
+    for (int c = 0; c < 3; ++c) ref.at(3, 4)[c] = test.at(3, 4)[c] = 10.0f;
+    test.at(3, 4)[0] = 12.0f;
+    for (int c = 0; c < 3; ++c) ref.at(20, 7)[c] = test.at(20, 7)[c] = 0.0f;
+    test.at(20, 7)[0] = 1.0f;
+    const double eBackground = 0.25 / 1.01, eA = 4 / 100.01;
+    EXPECT_NEAR(relMseWithoutTail(compareImages(test, ref), 1000), (998 * eBackground + eA) / 2997, 1e-12);
+}
+
 // How many pixels the worst 0.1 % is: ceil(N / 1000), and at least one. Checked directly and
 // through the metric, with two pixels of equal error (share 1/2 when the tail is one pixel, 1
 // when it is two). Catches: floor(N / 1000) (1001 pixels: one pixel, 0.5), N / 1000 + 1 (1000

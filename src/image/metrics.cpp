@@ -73,4 +73,10 @@ Image crop(const Image& img, int x, int y, int w, int h) {
     return out;
 }
 
+double relMseWithoutTail(const ErrorMetrics& m, std::size_t pixels) {
+    const std::size_t k = tailPixelCount(pixels);
+    if (pixels <= k) return 0;
+    return m.relMse * (1 - m.tailShare) * double(pixels) / double(pixels - k);
+}
+
 }  // namespace tripath

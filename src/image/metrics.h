@@ -28,6 +28,11 @@ struct ErrorMetrics {
 // share. Near 1: a few fireflies carry the error; near k/N: the error is even.
 ErrorMetrics compareImages(const Image& test, const Image& reference, double epsilon = 0.01);
 
+// relMSE with the tailPixelCount() pixels of largest e_p left out: (sum_p e_p − tail) / (3 (N − k)),
+// from the metrics of an image of N pixels (the tail is tailShare of the sum). A mean that a few
+// fireflies cannot dominate, reported beside relMSE (not instead of it: fireflies are error too).
+double relMseWithoutTail(const ErrorMetrics& m, std::size_t pixels);
+
 // How many pixels "the worst 0.1 %" of an image of `pixels` pixels is:
 // ceil(pixels / 1000), so at least 0.1 % of them and at least one pixel
 // (1 for up to 1000 pixels, 2 for 1001..2000, 66 for 256 x 256).

@@ -1,0 +1,112 @@
+// `tripath benchmark`, end to end through the built binary: every method on every scene in the
+// table, light tracing flagged as biased on `sds` (it cannot see the caustic behind the pane) and
+// unbiased methods passed on `cornell`, references cached and reused, bad lists refused.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+namespace tripath {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+    int exitCode;
+    std::string err;
+};
+
+class Benchmark : public testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("tripath-benchmark-" + std::to_string(getpid()) + "-" +
+                                            testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    Outcome tripath(const std::string& args) const {
+        const std::string err = (dir_ / "stderr.txt").string();
+        const int status = std::system(("'" TRIPATH_BINARY "' " + args + " > /dev/null 2> '" + err + "'").c_str());
+        std::ifstream in(err);
+        std::stringstream s;
+        s << in.rdbuf();
+        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
+    }
+    fs::path dir_;
+};
+
+// results.csv as (scene, integrator) → its columns by name.
+std::map<std::pair<std::string, std::string>, std::map<std::string, std::string>> readResults(const fs::path& file) {
+    std::ifstream in(file);
+    std::vector<std::string> header;
+    std::map<std::pair<std::string, std::string>, std::map<std::string, std::string>> rows;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::vector<std::string> fields;
+        std::stringstream s(line);
+        for (std::string f; std::getline(s, f, ',');) fields.push_back(f);
+        if (header.empty()) {
+            header = fields;
+            continue;
+        }
+        std::map<std::string, std::string> row;
+        for (size_t i = 0; i < fields.size() && i < header.size(); ++i) row[header[i]] = fields[i];
+        rows[{row["scene"], row["integrator"]}] = row;
+    }
+    return rows;
+}
+
+TEST_F(Benchmark, TablesEveryMethodOnEverySceneAndFlagsBias) {
+    const std::string out = (dir_ / "b").string();
+    const std::string args = "benchmark --scenes cornell,sds --integrators pt,lt --runs 4 --time 0.25 --reference-time 1 "
+                             "--width 32 --height 32 --threads 2 --out " + out;
+    const Outcome first = tripath(args);
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    const auto rows = readResults(fs::path(out) / "results.csv");
+    ASSERT_EQ(rows.size(), 4u);
+    for (const auto& [key, row] : rows) {
+        EXPECT_GT(std::stod(row.at("relmse")), 0) << key.first << " " << key.second;
+        EXPECT_LE(std::stod(row.at("relmse_without_tail")), std::stod(row.at("relmse")) * (1 + 1e-9)) << key.first;
+        EXPECT_EQ(row.at("blocks"), "64") << key.first << " " << key.second;
+        EXPECT_TRUE(fs::exists(fs::path(out) / key.first / "index.html"));
+        EXPECT_TRUE(fs::exists(fs::path(out) / key.first / ("bias-" + key.second + ".png")));
+    }
+    EXPECT_GT(std::stoi(rows.at({"sds", "lt"}).at("biased_blocks")), 0);
+    EXPECT_EQ(rows.at({"cornell", "pt"}).at("biased_blocks"), "0");
+    EXPECT_EQ(rows.at({"cornell", "lt"}).at("biased_blocks"), "0");
+    EXPECT_EQ(rows.at({"cornell", "pt"}).at("speedup"), "1");  // the baseline is the first method
+    std::ifstream html(fs::path(out) / "index.html");
+    std::stringstream page;
+    page << html.rdbuf();
+    EXPECT_NE(page.str().find("href=\"sds/index.html\""), std::string::npos);
+    EXPECT_NE(page.str().find("sds/bias-lt.png"), std::string::npos);
+
+    // Run again on one scene: the cached reference is reused, not rendered again.
+    const Outcome again = tripath("benchmark --scenes cornell --integrators pt --runs 2 --time 0.1 --reference-time 1 "
+                                  "--width 32 --height 32 --threads 2 --out " + out);
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_NE(again.err.find("reusing the reference"), std::string::npos) << again.err;
+    EXPECT_EQ(again.err.find("rendering one"), std::string::npos) << again.err;
+}
+
+TEST_F(Benchmark, BadListsAreRefusedInOneLine) {
+    const std::string out = " --time 0.1 --out " + (dir_ / "b").string();
+    for (const std::string& args : {"--scenes cornell,,sds", "--scenes cornell --integrators pt,pt",
+                                    "--scenes cornell --integrators pt,magic", "--scenes cornell --runs 1",
+                                    "--scenes cornell --integrators pt --baseline lt"}) {
+        const Outcome o = tripath("benchmark " + args + out);
+        EXPECT_EQ(o.exitCode, 1) << args;
+        EXPECT_EQ(o.err.rfind("error: ", 0), 0u) << args << ": " << o.err;
+        EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << args << ": " << o.err;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "b" / "results.csv"));
+}
+
+}  // namespace
+}  // namespace tripath
