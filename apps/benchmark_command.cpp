@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -51,6 +52,9 @@ struct Cell {
     double speedUp = 0;            // the baseline's relMSE × seconds over this method's
     int biasedBlocks = 0, blocks = 0;
     std::string biasMap;           // PNG, relative to the output directory
+    // What the renderer did, per run (means): rays per second, and every counter of geometry/stats.h.
+    double raysPerSecond = 0;
+    std::array<double, kEventCount> events{};
 };
 
 std::vector<std::string> splitList(const std::string& text, const char* what) {
@@ -200,9 +204,16 @@ std::vector<Cell> benchmarkScene(const BenchmarkCommand& c, const std::string& s
         Cell cell{scene, m};
         cell.summary = *std::find_if(report.summaries.begin(), report.summaries.end(), [&](const auto& s) { return s.method == m; });
         int n = 0;
-        for (const Run& run : runs)
-            if (run.method == m) cell.relMseWithoutTail += relMseWithoutTail(run.final().error, pixels), ++n;
+        for (const Run& run : runs) {
+            if (run.method != m) continue;
+            ++n;
+            cell.relMseWithoutTail += relMseWithoutTail(run.final().error, pixels);
+            for (int e = 0; e < kEventCount; ++e) cell.events[e] += double(run.stats.events[e]);
+            cell.raysPerSecond += double(run.stats[Event::ClosestHitRays] + run.stats[Event::ShadowRays]) / run.final().seconds;
+        }
         cell.relMseWithoutTail /= n;
+        cell.raysPerSecond /= n;
+        for (double& e : cell.events) e /= n;
         if (m != c.biasReference) {
             const BiasMap map = biasMap(runImages[m], runImages[c.biasReference], biasBlockSize(co.render.width, co.render.height));
             cell.biasedBlocks = map.count();
@@ -229,12 +240,17 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
     std::string csv = std::string("# ") + kFormulas + "\n";
     csv += fmt::format("# per run: {} s, {} runs; bias reference {}; baseline {}\n", c.render.seconds, c.runs,
                        c.biasReference, c.baseline);
-    csv += "scene,integrator,relmse,relmse_sd,relmse_without_tail,mse,mae,spp,seconds,inefficiency,speedup,biased_blocks,blocks\n";
-    for (const Cell& x : cells)
-        csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.1f},{:.3f},{:.6g},{:.4g},{},{}\n", x.scene, x.method,
+    csv += "# counters (rays, BSDF calls, merges, ...): what the renderer counted, mean per run\n";
+    csv += "scene,integrator,relmse,relmse_sd,relmse_without_tail,mse,mae,spp,seconds,inefficiency,speedup,biased_blocks,"
+           "blocks,rays_per_s" + counterColumns() + "\n";
+    for (const Cell& x : cells) {
+        csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.1f},{:.3f},{:.6g},{:.4g},{},{},{:.4g}", x.scene, x.method,
                            x.summary.error.relMse, x.summary.relMseStd, x.relMseWithoutTail, x.summary.error.mse,
                            x.summary.error.mae, x.summary.spp, x.summary.seconds, x.summary.error.relMse * x.summary.seconds,
-                           x.speedUp, x.biasedBlocks, x.blocks);
+                           x.speedUp, x.biasedBlocks, x.blocks, x.raysPerSecond);
+        for (double e : x.events) csv += fmt::format(",{:.0f}", e);
+        csv += "\n";
+    }
     writeText((fs::path(c.outDir) / "results.csv").string(), csv);
 
     std::vector<std::string> scenes, methods;
@@ -264,14 +280,14 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
                 if (x.scene == s && x.method == m)
                     html += fmt::format(
                         "<td{}><a href=\"{}/index.html\">{:.4g} ± {:.2g}</a><br><small>w/o tail {:.3g} · {:.0f} spp · "
-                        "×{:.3g}{}</small></td>",
+                        "{:.3g} Mrays/s · ×{:.3g}{}</small></td>",
                         x.summary.error.relMse == best ? " class=\"best\"" : "", slug(s), x.summary.error.relMse,
-                        x.summary.relMseStd, x.relMseWithoutTail, x.summary.spp, x.speedUp,
+                        x.summary.relMseStd, x.relMseWithoutTail, x.summary.spp, x.raysPerSecond / 1e6, x.speedUp,
                         x.blocks > 0 ? fmt::format(" · <b>{}</b>/{} biased", x.biasedBlocks, x.blocks) : std::string(""));
         html += "</tr>\n";
     }
     html += "</table>\n<p>Each cell: relMSE mean ± standard deviation over runs; below it, relMSE without the worst "
-            "0.1 % of pixels, samples per pixel, speed-up against the baseline, biased blocks. Best per scene "
+            "0.1 % of pixels, samples per pixel, rays (closest-hit and shadow) per second, speed-up against the baseline, biased blocks. Best per scene "
             "highlighted.</p>\n<p>" + std::string(kFormulas) + "</p>\n<h2>Bias maps</h2>\n"
             "<p>Red: blocks with significant bias; otherwise darker where the p-value is smaller.</p>\n";
     for (const std::string& s : scenes) {

@@ -108,6 +108,8 @@ struct Report {
     Region inset;
 };
 void writeCsv(const Report& r, const std::string& path);
+// ",closest_hit_rays,shadow_rays,…": a CSV column per event counter of geometry/stats.h.
+std::string counterColumns();
 // counters.csv: one row per run, every event counter of geometry/stats.h in total.
 void writeCountersCsv(const Report& r, const std::string& path);
 void writeChart(const Report& r, const std::string& svgPath, const std::string& pngPath);

@@ -74,14 +74,18 @@ void writeCsv(const Report& r, const std::string& path) {
     writeText(path, s);
 }
 
-void writeCountersCsv(const Report& r, const std::string& path) {
-    std::string s = "integrator,run,seconds,spp";
+std::string counterColumns() {
+    std::string s;
     for (int i = 0; i < kEventCount; ++i) {
         std::string key(eventName(static_cast<Event>(i)));
         std::replace_if(key.begin(), key.end(), [](char c) { return c == ' ' || c == '-'; }, '_');
         s += "," + key;
     }
-    s += "\n";
+    return s;
+}
+
+void writeCountersCsv(const Report& r, const std::string& path) {
+    std::string s = "integrator,run,seconds,spp" + counterColumns() + "\n";
     for (const Run& run : r.runs) {
         const Checkpoint& f = run.final();
         s += fmt::format("{},{},{:.6f},{}", run.method, run.index, f.seconds, f.spp);

@@ -74,6 +74,7 @@ TEST_F(Benchmark, TablesEveryMethodOnEverySceneAndFlagsBias) {
         EXPECT_GT(std::stod(row.at("relmse")), 0) << key.first << " " << key.second;
         EXPECT_LE(std::stod(row.at("relmse_without_tail")), std::stod(row.at("relmse")) * (1 + 1e-9)) << key.first;
         EXPECT_EQ(row.at("blocks"), "64") << key.first << " " << key.second;
+        EXPECT_GT(std::stod(row.at("rays_per_s")), 0) << key.first << " " << key.second;
         EXPECT_TRUE(fs::exists(fs::path(out) / key.first / "index.html"));
         EXPECT_TRUE(fs::exists(fs::path(out) / key.first / ("bias-" + key.second + ".png")));
     }
