@@ -110,8 +110,15 @@ std::string viewer(const Report& r) {
                                escape(caption));
         images += fmt::format("<img data-view=\"{0}\" src=\"{0}.png\" alt=\"{0}\">\n", escape(x.method));
     }
+    // Each method's error map (error_map.h) as one more view.
+    for (const MethodSummary& x : r.summaries) {
+        buttons += fmt::format("<button data-view=\"{0}-error\" data-caption=\"{0}: relative squared error per pixel "
+                               "(run 0; scale below)\">{0} error</button>",
+                               escape(x.method));
+        images += fmt::format("<img data-view=\"{0}-error\" src=\"{0}-error.png\" alt=\"{0} error map\">\n", escape(x.method));
+    }
     return "<div id=\"buttons\">" + buttons + "</div>\n<div id=\"viewer\">\n" + images +
-           "</div>\n<p id=\"caption\"></p>\n";
+           "</div>\n<p id=\"caption\"></p>\n<img id=\"error-scale\" src=\"error-scale.png\" alt=\"error map colour scale\">\n";
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "geometry/error.h"
 #include "image/chart.h"
 #include "image/compose.h"
+#include "image/error_map.h"
 #include "image/inset.h"
 
 namespace tripath::app {
@@ -124,7 +125,13 @@ void writeSideBySide(const Report& r, const std::string& path) {
                           fmt::format("{} spp, {}, relMSE {:.3g}", run0.final().spp, formatSeconds(run0.final().seconds),
                                       run0.final().error.relMse)});
     }
-    writePng(path, sideBySide(panels, r.inset));
+    // Under the images, each method's error map (the same inset), and the colour bar that reads them.
+    std::vector<Panel> errors;
+    for (const std::string& m : r.options.methods)
+        errors.push_back({errorMap(r.images.at(m), r.reference.image), m + ": error",
+                          fmt::format("relMSE {:.3g} (run 0)", compareImages(r.images.at(m), r.reference.image).relMse)});
+    const Image images = sideBySide(panels, r.inset);
+    writePng(path, stackRows({images, sideBySide(errors, r.inset), errorColourBar(images.width)}));
 }
 
 void writeSummary(const Report& r, const std::string& path) {
@@ -180,6 +187,9 @@ void writeReport(Report& report, const std::string& dir) {
     writeCountersCsv(report, path("counters.csv"));
     writeChart(report, path("error-vs-time.svg"), path("error-vs-time.png"));
     writeSideBySide(report, path("side-by-side.png"));
+    for (const std::string& m : report.options.methods)
+        writePng(path((m + "-error.png").c_str()), errorMap(report.images.at(m), report.reference.image));
+    writePng(path("error-scale.png"), errorColourBar(512));
     writeSummary(report, path("summary.md"));
     writeIndexHtml(report, path("index.html"));
 }

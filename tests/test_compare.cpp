@@ -315,8 +315,9 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
 
     for (const char* f : {"pt.exr", "pt.png", "lt.exr", "lt.png", "bdpt.exr", "bdpt.png", "reference.png",
                           "side-by-side.png", "error.csv", "counters.csv", "error-vs-time.svg", "error-vs-time.png", "summary.md",
-                          "index.html"})
+                          "index.html", "pt-error.png", "lt-error.png", "bdpt-error.png", "error-scale.png"})
         EXPECT_TRUE(fs::is_regular_file(out + "/" + f)) << f;
+    EXPECT_NE(readFile(out + "/index.html").find("src=\"lt-error.png\""), std::string::npos);
     EXPECT_EQ(readImage(out + "/error-vs-time.png").width, 800);
     EXPECT_EQ(readImage(out + "/side-by-side.png").width, 8 + 4 * (256 + 8));
     Metadata meta;
@@ -426,7 +427,8 @@ TEST(CompareCommand, IndexHtmlLoadsInHeadlessChromium) {
     ASSERT_EQ(std::system(cmd.c_str()), 0) << readFile(log);
     const std::string html = readFile(dom), messages = readFile(log);
     EXPECT_NE(html.find("data-images=\"loaded\""), std::string::npos) << html.substr(0, 2000);
-    EXPECT_NE(html.find("data-image-count=\"6\""), std::string::npos);  // chart, reference, 3 methods, sheet
+    // chart, reference, 3 methods, their 3 error maps, the error scale, the sheet
+    EXPECT_NE(html.find("data-image-count=\"10\""), std::string::npos);
     EXPECT_NE(html.find("id=\"chart\" src=\"error-vs-time.svg\""), std::string::npos);
     EXPECT_NE(html.find("<pre id=\"console-errors\"></pre>"), std::string::npos) << html;
     EXPECT_EQ(html.find("data-errors"), std::string::npos);

@@ -15,6 +15,7 @@
 
 #include "geometry/error.h"
 #include "image/image.h"
+#include "image/error_map.h"
 #include "image/metrics.h"
 
 namespace fs = std::filesystem;
@@ -344,6 +345,35 @@ TEST(Metrics, RelMseWithoutTailLeavesOutTheWorstPixels) {
     test.at(20, 7)[0] = 1.0f;
     const double eBackground = 0.25 / 1.01, eA = 4 / 100.01;
     EXPECT_NEAR(relMseWithoutTail(compareImages(test, ref), 1000), (998 * eBackground + eA) / 2997, 1e-12);
+}
+
+// The error map's scale (image/error_map.h): the ends clamp to the first and last colours, and the
+// colours brighten decade by decade. A pixel whose channels are all off by d on a reference of 1
+// has e = d² / 1.01; at e = 1e-2, 0.4 of the way up the 5-decade scale, the colour is 0.6 of the way
+// from the second stop (87, 16, 110) to the third (188, 55, 84): (148, 39, 94) in sRGB. Catches a
+// channel sum for the mean (e three times larger), a linear scale, a scale of other ends.
+TEST(ErrorMap, ColoursFollowTheLogScaleOfThePixelsRelativeSquaredError) {
+    auto same = [](Rgb a, Rgb b) { return a.r == b.r && a.g == b.g && a.b == b.b; };
+    EXPECT_TRUE(same(errorColour(0), fromSrgb(0, 0, 4)));
+    EXPECT_TRUE(same(errorColour(1e-5), errorColour(kErrorMapLow)));
+    EXPECT_TRUE(same(errorColour(1e3), fromSrgb(252, 255, 164)));
+    double previous = -1;
+    for (double e = 1e-4; e <= 10; e *= 10) {
+        const Rgb c = errorColour(e);
+        const double luminance = 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+        EXPECT_GT(luminance, previous) << e;
+        previous = luminance;
+    }
+    Image ref = filled(4, 2, 1, 1, 1), test = ref;
+    const float d = float(std::sqrt(1e-2 * 1.01));
+    for (int c = 0; c < 3; ++c) test.at(2, 1)[c] += d;
+    const Image map = errorMap(test, ref);
+    const Rgb expected = fromSrgb(148, 39, 94), zero = fromSrgb(0, 0, 4);
+    EXPECT_NEAR(map.at(2, 1)[0], expected.r, 1e-6);
+    EXPECT_NEAR(map.at(2, 1)[1], expected.g, 1e-6);
+    EXPECT_NEAR(map.at(2, 1)[2], expected.b, 1e-6);
+    EXPECT_EQ(map.at(0, 0)[0], zero.r);
+    EXPECT_THROW(errorMap(filled(3, 2, 1, 1, 1), ref), InputError);
 }
 
 // How many pixels the worst 0.1 % is: ceil(N / 1000), and at least one. Checked directly and

@@ -60,4 +60,17 @@ Image sideBySide(const std::vector<Panel>& panels, const Region& r, int minWidth
     return sheet;
 }
 
+Image stackRows(const std::vector<Image>& rows) {
+    int width = 0, height = 0;
+    for (const Image& r : rows) width = std::max(width, r.width), height += r.height;
+    Image sheet(width, height);
+    fillRect(sheet, {0, 0, width, height}, fromSrgb(32, 32, 32));
+    int y = 0;
+    for (const Image& r : rows) {
+        paste(sheet, r, 0, y);
+        y += r.height;
+    }
+    return sheet;
+}
+
 }  // namespace tripath

@@ -19,4 +19,7 @@ struct Panel {
 // region is not inside them.
 Image sideBySide(const std::vector<Panel>& panels, const Region& inset, int minWidth = 256);
 
+// Images one under the other, left-aligned, on the sheets' dark background.
+Image stackRows(const std::vector<Image>& rows);
+
 }  // namespace tripath
