@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <cstdlib>
 #include <iostream>
 
 #include "checkpoint.h"
@@ -17,6 +18,7 @@ namespace {
 struct RenderCommand {
     RenderOptions options;
     std::string out, png;
+    std::string replay;  // --replay PASS,PIXEL
     float exposure = 0;
     bool depthImages = false;
     int strategyImages = 0;
@@ -54,7 +56,62 @@ void write(const RenderCommand& c, const RenderSettings& rs, const Metadata& met
     }
 }
 
+// --replay: one sample's contributions, one line each, on stdout.
+class PrintingSink final : public ContributionSink {
+public:
+    void add(Strategy st, const Connection& c) override {
+        const Spectrum w = c.weighted();
+        const bool finite = isFinite(w) && isFinite(c.unweighted);
+        std::cout << fmt::format("s={} t={} {} k={}: f/p = ({:.6g}, {:.6g}, {:.6g}) x weight {:.6g} = ({:.6g}, {:.6g}, {:.6g})",
+                                 st.s, st.t, st.merge ? "merge" : "connect", st.length(), c.unweighted.x, c.unweighted.y,
+                                 c.unweighted.z, c.weight, w.x, w.y, w.z);
+        if (c.raster)
+            std::cout << fmt::format(", splat at pixel ({:.2f}, {:.2f}) (the film adds it times 1/N_L)", c.raster->x, c.raster->y);
+        if (c.weightGuarded) std::cout << ", weight guarded to 0 (a pdf ratio was not finite)";
+        if (!finite) std::cout << "  <- NOT FINITE: the film drops this sample";
+        std::cout << "\n";
+        if (finite && !c.raster) sum_ = sum_ + w;
+        ++count_;
+    }
+    void summarize() const {
+        std::cout << fmt::format("{} contributions; the finite ones to the sample's own pixel add up to ({:.6g}, {:.6g}, {:.6g})\n",
+                                 count_, sum_.x, sum_.y, sum_.z);
+    }
+
+private:
+    Spectrum sum_{0.0f};
+    int count_ = 0;
+};
+
+// "PASS,PIXEL" as two non-negative integers, the pixel inside the image.
+std::pair<uint64_t, int> parseReplay(const std::string& text, int width, int height) {
+    const size_t comma = text.find(',');
+    char* end = nullptr;
+    const unsigned long long pass = comma == std::string::npos ? 0 : std::strtoull(text.c_str(), &end, 10);
+    const bool passOk = comma != std::string::npos && comma > 0 && end == text.c_str() + comma && text[0] != '-';
+    const std::string pixelText = passOk ? text.substr(comma + 1) : "";
+    const long long pixel = pixelText.empty() || pixelText[0] == '-' ? -1 : std::strtoll(pixelText.c_str(), &end, 10);
+    if (!passOk || pixel < 0 || end != pixelText.c_str() + pixelText.size() || pixel >= (long long)width * height)
+        throw InputError(fmt::format("--replay must be PASS,PIXEL with PIXEL = y * width + x below {} (got '{}')",
+                                     (long long)width * height, text));
+    return {pass, int(pixel)};
+}
+
+void replay(const RenderCommand& c) {
+    const RenderOptions& o = c.options;
+    validateRenderOptions(o);
+    const auto [pass, pixel] = parseReplay(c.replay, o.width, o.height);
+    const auto scene = loadScene(o);
+    const auto integrator = makeIntegrator(o.integrator, integratorSettings(o));
+    std::cout << fmt::format("{} {}, seed {}: pass {}, {} {} (x {}, y {})\n", o.integrator, o.scene, o.seed, pass,
+                             o.integrator == "lt" ? "light path" : "pixel", pixel, pixel % o.width, pixel / o.width);
+    PrintingSink sink;
+    replaySample(*scene, *integrator, renderSettings(o), pass, pixel, sink);
+    sink.summarize();
+}
+
 void run(const RenderCommand& c) {
+    if (!c.replay.empty()) return replay(c);
     const RenderOptions& o = c.options;
     std::unique_ptr<Scene> scene;
     together([&] {
@@ -94,6 +151,11 @@ void addRenderCommand(CLI::App& app) {
                     "bdpt, vcm, bpm, ppm: also write <out>-s<S>-t<T>-weighted.exr and -unweighted.exr for every "
                     "connection (s,t) of path length k <= this value (k = s+t-1), and <out>-s<S>-t<T>-merge-*.exr for "
                     "every merge (k = s+t-2)");
+    cmd->add_option("--replay", c->replay,
+                    "PASS,PIXEL: render that one sample again (PIXEL = y * width + x; for lt the light path's index) with "
+                    "the other flags as given, and print each of its contributions (strategy, f/p, MIS weight), NaN or "
+                    "infinite ones marked; writes no image (--out is still required). A render that drops NaN/Inf "
+                    "samples prints the first ones' PASS,PIXEL");
     cmd->callback([c] { run(*c); });
 }
 

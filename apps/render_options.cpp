@@ -204,6 +204,13 @@ void printSummary(const std::string& label, const RenderResult& r, const RenderO
                              "{} MIS weights guarded to 0\n",
                              label, r.passes, r.seconds, r.passes * double(width) * height / r.seconds / 1e6,
                              r.droppedSamples, r.guardedWeights);
+    if (!r.droppedLog.empty()) {
+        std::string where;
+        for (const DroppedSample& d : r.droppedLog) where += fmt::format(" {},{}", d.pass, d.pixel);
+        std::cerr << fmt::format("NaN/Inf samples (PASS,PIXEL; the first {}):{}; add --replay PASS,PIXEL to the same "
+                                 "command to see one's contributions\n",
+                                 r.droppedLog.size(), where);
+    }
     if (launched())
         std::cerr << fmt::format("{} ranks; their films were added into rank 0's in {:.3f} s\n", team().size(), r.reduceSeconds);
     if (o.stats) std::cerr << statsReport(r, uint64_t(width) * height);

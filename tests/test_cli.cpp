@@ -123,6 +123,10 @@ TEST_F(Cli, AbsurdBudgetsAreRefused) {
     expectRefused(render("--time nan " + out()), "--time");
     expectRefused(render("--max-depth 0 " + out()), "--max-depth");
     expectRefused(render("--checkpoint -1 " + out()), "--checkpoint");
+    expectRefused(render("--width 8 --height 8 --replay 3 " + out()), "--replay");
+    expectRefused(render("--width 8 --height 8 --replay 3,64 " + out()), "--replay");
+    expectRefused(render("--width 8 --height 8 --replay -1,2 " + out()), "--replay");
+    expectRefused(render("--width 8 --height 8 --replay 1,2x " + out()), "--replay");
     expectRefused(render("--checkpoint nan " + out()), "--checkpoint");
 }
 

@@ -28,6 +28,7 @@ struct Splat {
 struct TileOutput {
     std::vector<Splat> splats;
     uint64_t dropped = 0;
+    std::vector<DroppedSample> droppedLog;  // the tile's first kDroppedLogSize in this pass
     uint64_t guardedWeights = 0;
 };
 
@@ -36,8 +37,9 @@ struct TileOutput {
 // added in the same order whatever the thread count.
 class TileSink final : public ContributionSink {
 public:
-    TileSink(Film& film, const Camera& camera, TileOutput& out)
-        : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPathsPerPass(camera))) {}
+    TileSink(Film& film, const Camera& camera, TileOutput& out, uint64_t pass)
+        : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPathsPerPass(camera))),
+          pass_(pass) {}
     void setPixel(int pixel) { pixel_ = pixel; }
     void add(Strategy st, const Connection& c) override {
         const PhaseScope scope(Phase::Film);
@@ -45,6 +47,7 @@ public:
         const Spectrum w = c.weighted();
         if (!isFinite(w) || !isFinite(c.unweighted)) {
             ++out_.dropped;
+            if (out_.droppedLog.size() < kDroppedLogSize) out_.droppedLog.push_back({pass_, pixel_});
             return;
         }
         if (!st.merge && st.t == 1) {
@@ -62,17 +65,28 @@ private:
     const Camera& camera_;
     TileOutput& out_;
     const float splatShare_;  // each splat is one of the pass's N_L estimates of every pixel it lands in
+    const uint64_t pass_;
     int pixel_ = 0;
 };
+
+// The random stream of camera sample (pass, pixel), and its raster position: the stream's first
+// two draws jitter it within the pixel. render() and replaySample() both start a sample here.
+Rng sampleStream(uint64_t seed, StreamDomain domain, uint64_t pass, const Camera& cam, int pixel) {
+    const uint64_t pixels = uint64_t(cam.width()) * cam.height();
+    return Rng(seed, static_cast<uint64_t>(domain), pass * pixels + uint64_t(pixel));
+}
+Vec2 jitteredRaster(Rng& rng, int pixel, int width) {
+    const float jx = rng.uniform(), jy = rng.uniform();
+    return {pixel % width + jx, pixel / width + jy};
+}
 
 void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pass, Film& film, int tile,
                 uint64_t seed, StreamDomain domain, TileOutput& out) {
     const Camera& cam = scene.camera();
     const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
     const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
-    const uint64_t pixels = uint64_t(cam.width()) * cam.height();
     thread_local PathBuffers paths;
-    TileSink sink(film, cam, out);
+    TileSink sink(film, cam, out, pass.index);
     enrolThread();
     const PhaseScope scope(Phase::Sampling);
     const bool packets = integrator.tracesCameraRays();
@@ -88,9 +102,9 @@ void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pa
         for (int xRun = x0; xRun < xEnd; xRun += kRun) {
             const int n = std::min(kRun, xEnd - xRun);
             for (int i = 0; i < n; ++i) {
-                Rng& rng = rngs[i].emplace(seed, static_cast<uint64_t>(domain), pass.index * pixels + y * cam.width() + xRun + i);
-                const float jx = rng.uniform(), jy = rng.uniform();
-                rasters[i] = {xRun + i + jx, y + jy};
+                const int pixel = y * cam.width() + xRun + i;
+                Rng& rng = rngs[i].emplace(sampleStream(seed, domain, pass.index, cam, pixel));
+                rasters[i] = jitteredRaster(rng, pixel, cam.width());
                 dirs[i] = cam.direction(rasters[i]);
             }
             if (packets) scene.intersect8(cam.position(), std::span(dirs.data(), n), std::span(hits.data(), n));
@@ -128,6 +142,9 @@ public:
             out.splats.clear();
             result.droppedSamples += out.dropped;
             result.guardedWeights += out.guardedWeights;
+            for (const DroppedSample& d : out.droppedLog)
+                if (result.droppedLog.size() < kDroppedLogSize) result.droppedLog.push_back(d);
+            out.droppedLog.clear();
             out.dropped = out.guardedWeights = 0;
         }
     }
@@ -246,6 +263,20 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     team.sum(result.stats.phaseSamples);
     setTiming(false);
     return result;
+}
+
+void replaySample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, uint64_t pass, int pixel,
+                  ContributionSink& sink) {
+    const Camera& cam = scene.camera();
+    LightPhase lightPhase;
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        const Pass p = lightPhase.run(scene, integrator, pass, settings.seed, settings.domain);
+        PathBuffers paths;
+        Rng rng = sampleStream(settings.seed, settings.domain, pass, cam, pixel);
+        const Vec2 raster = jitteredRaster(rng, pixel, cam.width());
+        integrator.sample(scene, p, pixel, CameraRay(raster), rng, paths, sink);
+    });
 }
 
 }  // namespace tripath

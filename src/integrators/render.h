@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "geometry/rng.h"
 #include "geometry/stats.h"
@@ -25,6 +26,14 @@ namespace tripath {
 constexpr int kPassesPerBlock = 4;
 
 struct RenderResult;
+
+// A camera sample (for lt: a light path) that made a NaN or infinite contribution, which the film
+// dropped: enough to render that one sample again with replaySample. A render keeps the first few.
+struct DroppedSample {
+    uint64_t pass = 0;
+    int pixel = 0;  // y · width + x (lt: the light path's index in its pass)
+};
+constexpr size_t kDroppedLogSize = 16;
 
 struct RenderSettings {
     int spp = 16;                 // passes this run renders; with `seconds` > 0, an upper bound (0: none)
@@ -65,6 +74,7 @@ struct RenderResult {
     uint64_t droppedSamples = 0;  // NaN or infinite contributions kept off the film
     uint64_t guardedWeights = 0;  // MIS weights set to 0 because a pdf ratio was not finite (mis.h)
     double reduceSeconds = 0;     // spent adding the team's films into rank 0's at the end
+    std::vector<DroppedSample> droppedLog;  // this process's first kDroppedLogSize dropped samples, in pass and tile order
     // What the render did (geometry/stats.h): its events, and with timing on its cycles per phase.
     // Taken as the difference of two process-wide snapshots, so renders must not overlap.
     StatsSnapshot stats{};
@@ -72,5 +82,12 @@ struct RenderResult {
 };
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
+
+// Renders camera sample (pass, pixel) of a render with these settings again, exactly as render()
+// did (after the light phase of its pass, when the integrator has one), and hands each of its
+// contributions to `sink`, finite or not: `tripath render --replay`. For lt, `pixel` is the light
+// path's index.
+void replaySample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, uint64_t pass, int pixel,
+                  ContributionSink& sink);
 
 }  // namespace tripath
