@@ -190,7 +190,10 @@ std::vector<Cell> benchmarkScene(const BenchmarkCommand& c, const std::string& s
     std::map<std::string, std::vector<Image>> runImages;
     for (RunOutput& out : outputs) {
         runImages[out.run.method].push_back(out.image);
-        if (out.run.index == 0) images[out.run.method] = std::move(out.image);
+        if (out.run.index == 0) {
+            writeExr((fs::path(co.outDir) / (out.run.method + ".exr")).string(), out.image, out.meta);
+            images[out.run.method] = std::move(out.image);
+        }
         runs.push_back(std::move(out.run));
     }
     writePng((fs::path(co.outDir) / "reference.png").string(), ref.image);
@@ -236,6 +239,50 @@ constexpr const char* kFormulas =
     "biased blocks: blocks where Welch's t-test of the runs' mean luminance against the bias reference's runs is "
     "significant at family-wise level 0.01 (Holm's correction).";
 
+std::vector<std::string> scenesOf(const std::vector<Cell>& cells) {
+    std::vector<std::string> out;
+    for (const Cell& x : cells)
+        if (std::find(out.begin(), out.end(), x.scene) == out.end()) out.push_back(x.scene);
+    return out;
+}
+std::vector<std::string> methodsOf(const std::vector<Cell>& cells) {
+    std::vector<std::string> out;
+    for (const Cell& x : cells)
+        if (std::find(out.begin(), out.end(), x.method) == out.end()) out.push_back(x.method);
+    return out;
+}
+const Cell& cellOf(const std::vector<Cell>& cells, const std::string& scene, const std::string& method) {
+    return *std::find_if(cells.begin(), cells.end(), [&](const Cell& x) { return x.scene == scene && x.method == method; });
+}
+double bestRelMse(const std::vector<Cell>& cells, const std::string& scene) {
+    double best = INFINITY;
+    for (const Cell& x : cells)
+        if (x.scene == scene) best = std::min(best, x.summary.error.relMse);
+    return best;
+}
+
+// results.md: the table as Markdown, for documents (docs/failures.md is one benchmark's).
+std::string markdownTable(const std::vector<Cell>& cells) {
+    const std::vector<std::string> methods = methodsOf(cells);
+    std::string md = "| scene |";
+    for (const std::string& m : methods) md += " " + m + " |";
+    md += "\n|---|";
+    for (size_t i = 0; i < methods.size(); ++i) md += "---|";
+    md += "\n";
+    for (const std::string& s : scenesOf(cells)) {
+        md += "| `" + s + "` |";
+        for (const std::string& m : methods) {
+            const Cell& x = cellOf(cells, s, m);
+            std::string cell = fmt::format("{:.3g} ({:.0f} spp)", x.summary.error.relMse, x.summary.spp);
+            if (x.summary.error.relMse == bestRelMse(cells, s)) cell = "**" + cell + "**";
+            if (x.biasedBlocks > 0) cell += fmt::format(", biased {}/{}", x.biasedBlocks, x.blocks);
+            md += " " + cell + " |";
+        }
+        md += "\n";
+    }
+    return md;
+}
+
 void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
     std::string csv = std::string("# ") + kFormulas + "\n";
     csv += fmt::format("# per run: {} s, {} runs; bias reference {}; baseline {}\n", c.render.seconds, c.runs,
@@ -252,12 +299,9 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
         csv += "\n";
     }
     writeText((fs::path(c.outDir) / "results.csv").string(), csv);
+    writeText((fs::path(c.outDir) / "results.md").string(), markdownTable(cells));
 
-    std::vector<std::string> scenes, methods;
-    for (const Cell& x : cells) {
-        if (std::find(scenes.begin(), scenes.end(), x.scene) == scenes.end()) scenes.push_back(x.scene);
-        if (std::find(methods.begin(), methods.end(), x.method) == methods.end()) methods.push_back(x.method);
-    }
+    const std::vector<std::string> scenes = scenesOf(cells), methods = methodsOf(cells);
     std::string html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>tripath benchmark</title>\n"
                        "<style>body{font-family:\"DejaVu Sans\",Verdana,sans-serif;margin:2em;color:#222}"
                        "table{border-collapse:collapse}th,td{border:1px solid #bbb;padding:.3em .7em;text-align:right}"
@@ -271,19 +315,17 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
     for (const std::string& m : methods) html += "<th>" + escapeMarkup(m) + "</th>";
     html += "</tr>\n";
     for (const std::string& s : scenes) {
-        double best = INFINITY;
-        for (const Cell& x : cells)
-            if (x.scene == s) best = std::min(best, x.summary.error.relMse);
+        const double best = bestRelMse(cells, s);
         html += fmt::format("<tr><td><a href=\"{0}/index.html\">{1}</a></td>", slug(s), escapeMarkup(s));
-        for (const std::string& m : methods)
-            for (const Cell& x : cells)
-                if (x.scene == s && x.method == m)
-                    html += fmt::format(
+        for (const std::string& m : methods) {
+            const Cell& x = cellOf(cells, s, m);
+            html += fmt::format(
                         "<td{}><a href=\"{}/index.html\">{:.4g} ± {:.2g}</a><br><small>w/o tail {:.3g} · {:.0f} spp · "
                         "{:.3g} Mrays/s · ×{:.3g}{}</small></td>",
                         x.summary.error.relMse == best ? " class=\"best\"" : "", slug(s), x.summary.error.relMse,
                         x.summary.relMseStd, x.relMseWithoutTail, x.summary.spp, x.raysPerSecond / 1e6, x.speedUp,
                         x.blocks > 0 ? fmt::format(" · <b>{}</b>/{} biased", x.biasedBlocks, x.blocks) : std::string(""));
+        }
         html += "</tr>\n";
     }
     html += "</table>\n<p>Each cell: relMSE mean ± standard deviation over runs; below it, relMSE without the worst "

@@ -1,78 +1,54 @@
 #!/usr/bin/env bash
-# The "where each method fails" table of docs/failures.md, and its contact sheet.
+# The "where each method fails" table of docs/failures.md, and its contact sheet: one
+# `tripath benchmark` run over the failure scenes.
 #
-#   scripts/failure-table.sh [SECONDS] [SIZE]     defaults: 4 seconds per integrator, 128x128
+#   scripts/failure-table.sh [SECONDS] [SIZE] [RUNS]     defaults: 3 seconds per run, 128x128, 3 runs
 #
-# For each failure scene (src/geometry/failure_scenes.h) it runs `tripath compare`: a reference
-# rendered for 10x the time (by bdpt, or by vcm on the scenes with paths bdpt cannot sample),
-# then pt, lt, bdpt, vcm, bpm and ppm for SECONDS each (equal time). It
-# reads each method's final relMSE (and spp) from the compare's error.csv and writes:
-#   docs/failures.md          the table between its <!-- table:begin/end --> markers (the text
-#                             around them is written by hand and left alone); best in bold
-#   docs/images/failures.png  reference and every method per scene, each row scaled alike
-# The renders themselves stay in build/failures/<scene>/ (compare's report: index.html).
-# Runtime: 11 scenes x 16 x SECONDS plus start-up, about 12 minutes at the defaults. Timings
-# are wall-clock: run it on an otherwise idle machine, or the table measures the neighbours.
+# The benchmark (README, "Over many scenes") renders every failure scene
+# (src/geometry/failure_scenes.h) with pt, lt, bdpt, vcm, bpm and ppm, RUNS runs of SECONDS each
+# (equal time), against a vcm reference of 10 x SECONDS per scene (vcm samples every path here,
+# the caustics seen through glass or a mirror included), and tests each method for bias against
+# bdpt's runs. Its report stays in build/failures/ (index.html: the table, a page per scene, the
+# bias maps). From it this writes:
+#   docs/failures.md          the benchmark's results.md between the <!-- table:begin/end -->
+#                             markers (the text around them is written by hand and left alone)
+#   docs/images/failures.png  reference and every method's run 0 per scene, each row scaled alike
+#   docs/images/failures-bias-<scene>.png for the scenes named in $BIAS_MAPS (default: sds): the
+#                             benchmark's bias maps of lt and pt there
+# Runtime: 11 scenes x (6 x RUNS x SECONDS + 10 x SECONDS), about 15 minutes at the defaults.
+# Timings are wall-clock: run it on an otherwise idle machine, or the table measures the neighbours.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds="${1:-4}"
+seconds="${1:-3}"
 size="${2:-128}"
+runs="${3:-3}"
 tripath="${TRIPATH:-build/tripath}"
 out=build/failures
 scenes=(caustic caustic-point sds sds-point sds-mirrors door-ajar contact grazing degenerate degenerate-tiny degenerate-far)
 methods=(pt lt bdpt vcm bpm ppm)
-# The reference's integrator: vcm where some light has no bdpt strategy (the caustic seen through
-# the pane), bdpt elsewhere (unbiased, and at least as good where it can sample every path).
-declare -A reference_integrator=([sds]=vcm [sds-point]=vcm [sds-mirrors]=vcm)
 
 [ -x "$tripath" ] || { echo "error: $tripath not found: build first (scripts/build.sh) or set TRIPATH" >&2; exit 1; }
-mkdir -p "$out" docs/images
+mkdir -p docs/images
+rm -rf "$out"
+"$tripath" benchmark --scenes "$(IFS=,; echo "${scenes[*]}")" --integrators "$(IFS=,; echo "${methods[*]}")" \
+  --time "$seconds" --runs "$runs" --width "$size" --height "$size" --reference-integrator vcm --bias-reference bdpt \
+  --out "$out"
 
-# "relMSE spp" of a method's finished render: the last row of its run 0 in error.csv
-# (columns: integrator,run,seconds,spp,relmse,mse,mae).
-final() {
-  awk -F, -v m="$2" '$1 == m && $2 == 0 { spp = $4; rel = $5 } END { print rel, spp }' "$1/error.csv"
-}
-
-table="$out/table.md"
-{
-  echo "| scene | reference | $(IFS='|'; echo "${methods[*]}" | sed 's/|/ | /g') |"
-  echo "|---|---|$(printf -- '---|%.0s' "${methods[@]}")"
-} >"$table"
 sheet=()
 for scene in "${scenes[@]}"; do
-  dir="$out/$scene"
-  rm -rf "$dir"
-  refint="${reference_integrator[$scene]:-bdpt}"
-  "$tripath" compare --scene "$scene" --integrators "$(IFS=,; echo "${methods[*]}")" --reference-integrator "$refint" \
-    --time "$seconds" --width "$size" --height "$size" --out "$dir" 2>"$out/$scene.log" || { cat "$out/$scene.log" >&2; exit 1; }
-  declare -A rel=() spp=()
-  best=""
-  for m in "${methods[@]}"; do
-    read -r r s < <(final "$dir" "$m")
-    rel[$m]=$r
-    spp[$m]=$s
-    if [ -z "$best" ] || awk -v a="$r" -v b="${rel[$best]}" 'BEGIN { exit !(a < b) }'; then best=$m; fi
-  done
-  row="| \`$scene\` | $refint |"
-  for m in "${methods[@]}"; do
-    cell=$(printf '%.3g (%s spp)' "${rel[$m]}" "${spp[$m]}")
-    [ "$m" = "$best" ] && cell="**$cell**"
-    row="$row $cell |"
-  done
-  echo "$row" >>"$table"
-  sheet+=("$dir/reference.exr")
-  for m in "${methods[@]}"; do sheet+=("$dir/$m.exr"); done
-  echo "$row" >&2
+  sheet+=("$(ls "$out"/references/"$scene"-"$size"x"$size"-vcm-*.exr)")
+  for m in "${methods[@]}"; do sheet+=("$out/$scene/$m.exr"); done
 done
-
 # Shrunk 2x (box filter) so that the sheet stays small enough for the repository.
 "$tripath" montage "${sheet[@]}" --columns $((${#methods[@]} + 1)) --shrink 2 --out docs/images/failures.png \
   --column-labels "reference,$(IFS=,; echo "${methods[*]}")" --row-labels "$(IFS=,; echo "${scenes[*]}")"
+for scene in ${BIAS_MAPS:-sds}; do
+  for m in lt pt; do cp "$out/$scene/bias-$m.png" "docs/images/failures-bias-$scene-$m.png"; done
+done
 
 # Replace the generated block of docs/failures.md, keeping the hand-written text around it.
-note="relMSE against the reference after ${seconds} s per method at ${size}x${size} ($(date -u +%Y-%m-%d), $(nproc) cores); lower is better, the best of each row in bold."
-awk -v table="$table" -v note="$note" '
+note="relMSE against a vcm reference (10 × the time) after ${seconds} s per run at ${size}x${size}, mean of ${runs} runs ($(date -u +%Y-%m-%d), $(nproc) cores); lower is better, the best of each row in bold; \"biased n/N\": blocks where Welch's t-test against bdpt's runs finds bias (Holm, family-wise 1 %)."
+awk -v table="$out/results.md" -v note="$note" '
   /<!-- table:begin -->/ { print; print ""; print note; print ""; while ((getline line < table) > 0) print line; print ""; skip = 1; next }
   /<!-- table:end -->/ { skip = 0 }
   !skip { print }
