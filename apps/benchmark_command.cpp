@@ -91,9 +91,9 @@ Image biasPicture(const BiasMap& map, const Image& image) {
             const float* p = &image.rgb[3 * (size_t(y) * image.width + x)];
             const float lum = std::min(1.0f, 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]);
             const float shade = float(std::clamp(1 + std::log10(std::max(map.tests[b].p, 1e-6)) / 6, 0.0, 1.0));
-            const float* tint = map.biased[b] ? std::array<float, 3>{1, 0.05f, 0.05f}.data() : nullptr;
+            static constexpr std::array<float, 3> kRed{1, 0.05f, 0.05f};
             for (int c = 0; c < 3; ++c)
-                out.rgb[3 * (size_t(y) * image.width + x) + c] = 0.3f * lum + 0.7f * (tint ? tint[c] : shade);
+                out.rgb[3 * (size_t(y) * image.width + x) + c] = 0.3f * lum + 0.7f * (map.biased[b] ? kRed[c] : shade);
         }
     return out;
 }
@@ -162,6 +162,7 @@ bool cachedReferenceFits(const CompareOptions& co) {
 std::vector<Cell> benchmarkScene(const BenchmarkCommand& c, const std::string& scene, const std::vector<std::string>& methods,
                                  const std::atomic<bool>* stop) {
     CompareOptions co = sceneOptions(c, scene, methods);
+    co.stop = stop;
     std::unique_ptr<Scene> loaded;
     bool reuse = false;
     together([&] {
@@ -175,29 +176,13 @@ std::vector<Cell> benchmarkScene(const BenchmarkCommand& c, const std::string& s
     team().max(shared);
     if (shared[0]) co.referencePath = co.referenceOut;
     if (isRankZero() && shared[0]) std::cerr << fmt::format("benchmark: reusing the reference {}\n", co.referenceOut);
-    Reference ref;
-    together([&] {
-        if (co.referencePath.empty() || isRankZero()) ref = obtainReference(co, *loaded);
-    });
-    std::string packed = isRankZero() ? packReference(ref) : std::string();
-    broadcast(packed);
-    if (!isRankZero()) ref = unpackReference(packed);
-
+    const Reference ref = shareReference(co, *loaded);
     std::vector<RunOutput> outputs = runEverywhere(co, *loaded, ref.image, true);
-    if (!isRankZero() || (stop && stop->load())) return {};
-    std::vector<Run> runs;
-    std::map<std::string, Image> images;
-    std::map<std::string, std::vector<Image>> runImages;
-    for (RunOutput& out : outputs) {
-        runImages[out.run.method].push_back(out.image);
-        if (out.run.index == 0) {
-            writeExr((fs::path(co.outDir) / (out.run.method + ".exr")).string(), out.image, out.meta);
-            images[out.run.method] = std::move(out.image);
-        }
-        runs.push_back(std::move(out.run));
-    }
+    if (!isRankZero() || (stop && stop->load())) return {};  // an interrupted scene is left out, not reported half-done
     writePng((fs::path(co.outDir) / "reference.png").string(), ref.image);
-    for (const auto& [m, image] : images) writePng((fs::path(co.outDir) / (m + ".png")).string(), image);
+    KeptRuns kept = keepRuns(outputs, co.outDir);
+    const std::vector<Run>& runs = kept.runs;
+    std::map<std::string, Image>& images = kept.images;
     Report report{co, ref, runs, images, {}, {}, {}};
     writeReport(report, co.outDir);
 
@@ -218,7 +203,7 @@ std::vector<Cell> benchmarkScene(const BenchmarkCommand& c, const std::string& s
         cell.raysPerSecond /= n;
         for (double& e : cell.events) e /= n;
         if (m != c.biasReference) {
-            const BiasMap map = biasMap(runImages[m], runImages[c.biasReference], biasBlockSize(co.render.width, co.render.height));
+            const BiasMap map = biasMap(kept.everyImage[m], kept.everyImage[c.biasReference], biasBlockSize(co.render.width, co.render.height));
             cell.biasedBlocks = map.count();
             cell.blocks = int(map.tests.size());
             cell.biasMap = (fs::path(slug(scene)) / ("bias-" + m + ".png")).string();
@@ -350,13 +335,15 @@ void run(BenchmarkCommand& c) {
     together([&] { validate(c, scenes, methods); });
     const std::atomic<bool>* stop = installInterruptHandler();
     std::vector<Cell> cells;
-    const double perScene = (methods.size() + 1) * c.runs * c.render.seconds;
+    // At most: a reference per scene (unless cached), and the runs (the bias reference's too).
+    const double perScene = (methods.size() + 1) * c.runs * c.render.seconds / team().size() +
+                            (c.referenceSeconds > 0 ? c.referenceSeconds : kReferenceBudget * c.render.seconds);
     for (size_t i = 0; i < scenes.size(); ++i) {
         if (stop->load()) break;
         if (isRankZero())
-            std::cerr << fmt::format("benchmark: scene {}/{} {}: {} methods × {} runs × {} s; about {:.0f} s left in all\n",
+            std::cerr << fmt::format("benchmark: scene {}/{} {}: {} methods × {} runs × {} s; at most {:.0f} s left in all\n",
                                      i + 1, scenes.size(), scenes[i], methods.size(), c.runs, c.render.seconds,
-                                     perScene * double(scenes.size() - i) / team().size());
+                                     perScene * double(scenes.size() - i));
         std::vector<Cell> done = benchmarkScene(c, scenes[i], methods, stop);
         if (stop->load()) break;  // an interrupted scene is left out, not reported half-done
         cells.insert(cells.end(), done.begin(), done.end());

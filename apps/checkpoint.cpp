@@ -124,12 +124,12 @@ RenderResult renderResumable(const Scene& scene, const Integrator& integrator, R
     if (counts[0] && !old) {
         old = RenderResult{shape, int(counts[1]), counts[2], counts[3] / 1e6};
     }
+    bool finished = false;  // the checkpoint already holds the whole budget
     if (old) {
         std::cerr << fmt::format("continuing from {}: {} spp, {:.1f} s\n", path, old->passes, old->seconds);
         if (how.budgetIsTotal) {
-            if (rs.spp > 0 && old->passes >= rs.spp) return std::move(*old);
+            finished = (rs.spp > 0 && old->passes >= rs.spp) || (rs.seconds > 0 && old->seconds >= rs.seconds);
             if (rs.spp > 0) rs.spp -= old->passes;
-            if (rs.seconds > 0 && old->seconds >= rs.seconds) return std::move(*old);
             if (rs.seconds > 0) rs.seconds -= old->seconds;
         }
         rs.resume = &*old;
@@ -142,7 +142,7 @@ RenderResult renderResumable(const Scene& scene, const Integrator& integrator, R
             writeCheckpoint(path, how.settings, sofar);
         };
     }
-    RenderResult r = render(scene, integrator, rs);
+    RenderResult r = finished ? std::move(*old) : render(scene, integrator, rs);
     if (isRankZero()) {
         const bool interrupted = rs.stop && rs.stop->load();
         std::error_code ignored;

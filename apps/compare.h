@@ -23,6 +23,7 @@ struct CompareOptions {
     std::string referenceIntegrator = "bdpt";  // the integrator that renders it
     double referenceSeconds = 0;       // its budget; 0: kReferenceBudget x --time (compare_run.cpp)
     std::string referenceOut;          // where a rendered one goes; empty: <outDir>/reference.exr
+    const std::atomic<bool>* stop = nullptr;  // set (Ctrl-C): the run under way ends at its next pass, no more start
     int runs = 1;
     std::optional<Region> crop;
     std::string outDir;
@@ -87,9 +88,19 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
 // the others.
 std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene, const Image& reference,
                                      bool allImages = false);
-// The reference as rank 0 sends it to the others.
+// The reference on every rank: rendered by all ranks together, or read by rank 0 (--reference),
+// then sent by rank 0 to the others.
+Reference shareReference(const CompareOptions& o, const Scene& scene);
 std::string packReference(const Reference& ref);
 Reference unpackReference(const std::string& bytes);
+// Rank 0, after runEverywhere: the runs, and run 0's image of each method (also written to
+// <dir>/<method>.exr and .png); every image the outputs carry, by method, in run order.
+struct KeptRuns {
+    std::vector<Run> runs;
+    std::map<std::string, Image> images;
+    std::map<std::string, std::vector<Image>> everyImage;
+};
+KeptRuns keepRuns(std::vector<RunOutput>& outputs, const std::string& dir);
 
 // compare_stats.cpp
 Curve curveOf(const std::vector<Run>& runs, const std::string& method);

@@ -101,31 +101,12 @@ void run(CompareCommand& c) {
         scene = loadScene(c.options.render);
     });
     const CompareOptions& o = c.options;
-    // A reference to render is rendered by every rank together; a given one is read by rank 0.
-    // Either way rank 0 then sends it to the others.
-    Reference ref;
-    together([&] {
-        if (o.referencePath.empty() || isRankZero()) ref = obtainReference(o, *scene);
-    });
-    std::string packed = isRankZero() ? packReference(ref) : std::string();
-    broadcast(packed);
-    if (!isRankZero()) ref = unpackReference(packed);
-
+    const Reference ref = shareReference(o, *scene);
     std::vector<RunOutput> outputs = runEverywhere(o, *scene, ref.image);
     if (!isRankZero()) return;
     writePng((fs::path(o.outDir) / "reference.png").string(), ref.image);
-    std::vector<Run> runs;
-    std::map<std::string, Image> images;
-    for (RunOutput& out : outputs) {
-        const std::string& m = out.run.method;
-        if (out.run.index == 0) {
-            writeExr((fs::path(o.outDir) / (m + ".exr")).string(), out.image, out.meta);
-            writePng((fs::path(o.outDir) / (m + ".png")).string(), out.image);
-            images[m] = std::move(out.image);
-        }
-        runs.push_back(std::move(out.run));
-    }
-    Report report{o, ref, runs, images, {}, {}, {}};
+    KeptRuns kept = keepRuns(outputs, o.outDir);
+    Report report{o, ref, kept.runs, kept.images, {}, {}, {}};
     writeReport(report, o.outDir);
     const MethodSummary& best = report.summaries[bestMethod(report.summaries)];
     std::cerr << fmt::format("lowest error at equal time: {} (relMSE {:.4g}); report in {}\n", best.method,
@@ -144,6 +125,7 @@ void addCompareCommand(CLI::App& app) {
     addRenderOptions(*cmd, c->options.render, false);
     // Every method gets the same time; a sample count would not be a fair budget across methods.
     cmd->remove_option(cmd->get_option("--spp"));
+    cmd->remove_option(cmd->get_option("--checkpoint"));  // runs are short and timed: nothing to resume
     cmd->get_option("--time")->required()->description("Wall-clock budget in seconds for each run of each integrator");
     cmd->add_option("--integrators", c->integrators, "Comma-separated integrators to compare (pt, lt, bdpt, vcm, bpm, ppm)")
         ->capture_default_str();

@@ -2,6 +2,9 @@
 // round-robin, each rendered on one rank alone, and gathered on rank 0, which writes the report.
 // Equal-time runs must not share cores: start one rank per core set (docs/distributed.md).
 #include "compare.h"
+
+#include <filesystem>
+
 #include "processes.h"
 #include "wire.h"
 
@@ -46,7 +49,7 @@ std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene
     const int ranks = team().size(), me = team().rank();
     const int jobs = o.runs * int(o.methods.size());
     WireWriter mine;
-    for (int j = me; j < jobs; j += ranks) {
+    for (int j = me; j < jobs && !(o.stop && o.stop->load()); j += ranks) {
         RunOutput out = runMethod(o, scene, o.methods[j % o.methods.size()], j / int(o.methods.size()), reference);
         if (out.run.index > 0 && !allImages) out.image = Image{};  // only run 0's images are written; keep messages small
         mine.put(j).put(pack(out));
@@ -64,6 +67,32 @@ std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene
         }
     }
     return all;
+}
+
+Reference shareReference(const CompareOptions& o, const Scene& scene) {
+    Reference ref;
+    together([&] {
+        if (o.referencePath.empty() || isRankZero()) ref = obtainReference(o, scene);
+    });
+    std::string packed = isRankZero() ? packReference(ref) : std::string();
+    broadcast(packed);
+    if (!isRankZero()) ref = unpackReference(packed);
+    return ref;
+}
+
+KeptRuns keepRuns(std::vector<RunOutput>& outputs, const std::string& dir) {
+    KeptRuns kept;
+    for (RunOutput& out : outputs) {
+        const std::string& m = out.run.method;
+        if (!out.image.rgb.empty()) kept.everyImage[m].push_back(out.image);
+        if (out.run.index == 0) {
+            writeExr((std::filesystem::path(dir) / (m + ".exr")).string(), out.image, out.meta);
+            writePng((std::filesystem::path(dir) / (m + ".png")).string(), out.image);
+            kept.images[m] = std::move(out.image);
+        }
+        kept.runs.push_back(std::move(out.run));
+    }
+    return kept;
 }
 
 std::string packReference(const Reference& ref) {

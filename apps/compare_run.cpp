@@ -88,6 +88,7 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
     const auto integrator = makeIntegrator(method, integratorSettings(ro));
     RenderSettings rs = renderSettings(ro);
     rs.team = &solo();  // a run is timed alone on its rank: compare_ranks.cpp deals the runs out
+    rs.stop = o.stop;
     const std::string label = fmt::format("{} run {}/{}", method, index + 1, o.runs);
     rs.progress = progressReporter(rs, ro.width, ro.height, label);
     // Measuring happens inside onPass, whose time the render loop leaves out of the budget.

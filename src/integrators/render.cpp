@@ -247,7 +247,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
             RenderResult sofar{result.film, 0, 0, result.seconds, result.droppedSamples, result.guardedWeights};
             addUpOverTeam(team, sofar, local, localNext);  // every block up to here is done: nextPass ends a round
             team.reduce(sofar.film);
-            if (team.rank() == 0) settings.onCheckpoint(addResumed(sofar, resume));
+            if (team.rank() == 0 && settings.onCheckpoint) settings.onCheckpoint(addResumed(sofar, resume));
             callbackSeconds += since(t0);
             lastCheckpoint = elapsed();
         }
