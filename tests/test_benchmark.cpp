@@ -11,34 +11,16 @@
 #include <sstream>
 #include <string>
 
+#include "shell_test.h"
+
 namespace tripath {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-    int exitCode;
-    std::string err;
-};
-
-class Benchmark : public testing::Test {
+class Benchmark : public test::ShellTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("tripath-benchmark-" + std::to_string(getpid()) + "-" +
-                                            testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    Outcome tripath(const std::string& args) const {
-        const std::string err = (dir_ / "stderr.txt").string();
-        const int status = std::system(("'" TRIPATH_BINARY "' " + args + " > /dev/null 2> '" + err + "'").c_str());
-        std::ifstream in(err);
-        std::stringstream s;
-        s << in.rdbuf();
-        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
-    }
-    fs::path dir_;
+    Outcome tripath(const std::string& args) const { return shell("'" TRIPATH_BINARY "' " + args); }
 };
 
 // results.csv as (scene, integrator) → its columns by name.

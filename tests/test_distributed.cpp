@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "image/image.h"
+#include "shell_test.h"
 
 namespace tripath {
 namespace {
@@ -30,35 +31,12 @@ const std::string kMpirun = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CON
                             "' --oversubscribe";
 const std::string kTripath = std::string("'") + TRIPATH_BINARY + "'";
 
-class Distributed : public testing::Test {
+class Distributed : public test::ShellTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("tripath-mpi-" + std::to_string(getpid()) + "-" +
-                                            testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-    struct Outcome {
-        int exitCode;
-        std::string err;
-    };
-    Outcome shell(const std::string& cmd) const {
-        const std::string err = path("stderr.txt");
-        const int status = std::system((cmd + " > /dev/null 2> '" + err + "'").c_str());
-        std::ifstream in(err);
-        std::stringstream s;
-        s << in.rdbuf();
-        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
-    }
     // `tripath <args>` alone (ranks == 0) or under mpirun with that many ranks.
     Outcome tripath(const std::string& args, int ranks = 0) const {
         return shell((ranks > 0 ? kMpirun + " -np " + std::to_string(ranks) + " " : std::string()) + kTripath + " " + args);
     }
-
-    fs::path dir_;
 };
 
 struct Rendered {
