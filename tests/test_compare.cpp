@@ -243,6 +243,23 @@ TEST(ReferenceCommand, RefusesToMixDifferentSettings) {
     EXPECT_EQ(metaValue(meta, "tripath:spp"), "2");
 }
 
+// Samples from another Embree version or ISA may hit differently (geometry/embree_isa.h), so a
+// reference that records another tripath:embree is not added to: one line naming both.
+TEST(ReferenceCommand, RefusesToAddToAReferenceFromAnotherEmbree) {
+    TempDir dir;
+    const std::string ref = dir / "ref.exr";
+    const std::string args = "reference " + kSmall + " --spp 2 --out " + ref;
+    ASSERT_EQ(tripathCli(dir, args).exitCode, 0);
+    Metadata meta;
+    const Image image = readExr(ref, &meta);
+    const std::string here = metaValue(meta, "tripath:embree");
+    EXPECT_NE(here.find(' '), std::string::npos) << "version and ISA: '" << here << "'";
+    for (auto& [key, value] : meta)
+        if (key == "tripath:embree") value = here + "-elsewhere";
+    writeExr(ref, image, meta);
+    expectOneLineError(tripathCli(dir, args), "has embree " + here + "-elsewhere");
+}
+
 TEST(CompareCommand, BadInputGivesOneLineError) {
     TempDir dir;
     const std::string ref = dir / "ref.exr", out = dir / "out";
