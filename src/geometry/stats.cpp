@@ -17,9 +17,11 @@ struct Registry {
     std::array<uint64_t, kEventCount> finished{};
 };
 
+// Never destroyed: worker threads may end after the static destructors ran at exit, and their
+// Enrolment still reports to it then.
 Registry& registry() {
-    static Registry r;
-    return r;
+    static Registry* r = new Registry;
+    return *r;
 }
 
 // Lives as long as its thread: lists the thread's counters on creation, folds them into the
