@@ -52,9 +52,7 @@ struct Cell {
     double speedUp = 0;            // the baseline's relMSE × seconds over this method's
     int biasedBlocks = 0, blocks = 0;
     std::string biasMap;           // PNG, relative to the output directory
-    // What the renderer did, per run (means): rays per second, and every counter of geometry/stats.h.
-    double raysPerSecond = 0;
-    std::array<double, kEventCount> events{};
+    std::array<double, kEventCount> events{};  // every counter of geometry/stats.h, mean per run
 };
 
 std::vector<std::string> splitList(const std::string& text, const char* what) {
@@ -197,10 +195,8 @@ std::vector<Cell> benchmarkScene(const BenchmarkCommand& c, const std::string& s
             ++n;
             cell.relMseWithoutTail += relMseWithoutTail(run.final().error, pixels);
             for (int e = 0; e < kEventCount; ++e) cell.events[e] += double(run.stats.events[e]);
-            cell.raysPerSecond += double(run.stats[Event::ClosestHitRays] + run.stats[Event::ShadowRays]) / run.final().seconds;
         }
         cell.relMseWithoutTail /= n;
-        cell.raysPerSecond /= n;
         for (double& e : cell.events) e /= n;
         if (m != c.biasReference) {
             const BiasMap map = biasMap(kept.everyImage[m], kept.everyImage[c.biasReference], biasBlockSize(co.render.width, co.render.height));
@@ -279,7 +275,7 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
         csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.1f},{:.3f},{:.6g},{:.4g},{},{},{:.4g}", x.scene, x.method,
                            x.summary.error.relMse, x.summary.relMseStd, x.relMseWithoutTail, x.summary.error.mse,
                            x.summary.error.mae, x.summary.spp, x.summary.seconds, x.summary.error.relMse * x.summary.seconds,
-                           x.speedUp, x.biasedBlocks, x.blocks, x.raysPerSecond);
+                           x.speedUp, x.biasedBlocks, x.blocks, x.summary.raysPerSecond);
         for (double e : x.events) csv += fmt::format(",{:.0f}", e);
         csv += "\n";
     }
@@ -308,7 +304,7 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
                         "<td{}><a href=\"{}/index.html\">{:.4g} ± {:.2g}</a><br><small>w/o tail {:.3g} · {:.0f} spp · "
                         "{:.3g} Mrays/s · ×{:.3g}{}</small></td>",
                         x.summary.error.relMse == best ? " class=\"best\"" : "", slug(s), x.summary.error.relMse,
-                        x.summary.relMseStd, x.relMseWithoutTail, x.summary.spp, x.raysPerSecond / 1e6, x.speedUp,
+                        x.summary.relMseStd, x.relMseWithoutTail, x.summary.spp, x.summary.raysPerSecond / 1e6, x.speedUp,
                         x.blocks > 0 ? fmt::format(" · <b>{}</b>/{} biased", x.biasedBlocks, x.blocks) : std::string(""));
         }
         html += "</tr>\n";

@@ -71,6 +71,7 @@ struct MethodSummary {
     bool extrapolated = false;  // never reached: extrapolated assuming relMSE ∝ 1/time
     double efficiency = 0;    // 1 / (relMSE * seconds)
     double relVariance = 0;   // per-sample relative variance relMSE * spp, mean over runs of each run's product
+    double raysPerSecond = 0; // closest-hit and shadow rays per second of render time, mean over runs
 };
 
 // compare_run.cpp

@@ -140,15 +140,16 @@ void writeSummary(const Report& r, const std::string& path) {
     std::string s = fmt::format("# tripath compare: {}\n\n{}.\n\nReference: {} (`{}`).\n\n", r.options.render.scene,
                                 settingsLine(r.options), r.reference.description, r.reference.file);
     s += fmt::format("| method | relMSE | MSE | MAE | spp | time to reach {}'s relMSE | efficiency 1/(relMSE·s) | "
-                     "relMSE·spp | worst 0.1 % of pixels |\n",
+                     "relMSE·spp | worst 0.1 % of pixels | Mrays/s |\n",
                      best.method);
-    s += "|---|---|---|---|---|---|---|---|---|\n";
+    s += "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string& m : r.options.methods) {
         const MethodSummary& x = summaryOf(r, m);
         const std::string rel = many ? fmt::format("{:.4g} ± {:.2g}", x.error.relMse, x.relMseStd)
                                      : fmt::format("{:.4g}", x.error.relMse);
-        s += fmt::format("| {} | {} | {:.4g} | {:.4g} | {:.0f} | {} | {:.4g} | {:.4g} | {} |\n", m, rel, x.error.mse,
-                         x.error.mae, x.spp, timeToBestText(x), x.efficiency, x.relVariance, tailShareText(x.error.tailShare));
+        s += fmt::format("| {} | {} | {:.4g} | {:.4g} | {:.0f} | {} | {:.4g} | {:.4g} | {} | {:.4g} |\n", m, rel, x.error.mse,
+                         x.error.mae, x.spp, timeToBestText(x), x.efficiency, x.relVariance, tailShareText(x.error.tailShare),
+                         x.raysPerSecond / 1e6);
     }
     s += fmt::format(
         "\nLowest error at equal time: **{}**. Errors are against the reference{}; relMSE = mean of "
@@ -156,6 +157,7 @@ void writeSummary(const Report& r, const std::string& path) {
         "methods' efficiencies is how many times longer the worse one needs for the same error. relMSE·spp is the "
         "per-sample relative variance of an unbiased method while the reference's own error is negligible (where that "
         "error or a bias is not, it grows with spp), so efficiency = (spp/s) / (relMSE·spp): speed over per-sample noise. "
+        "Mrays/s: closest-hit and shadow rays per second of render time (`counters.csv` has every counter). "
         "\"Worst 0.1 % of pixels\" is the share of the relMSE sum carried by the 0.1 % of pixels (at least one) with the "
         "largest relative squared error: near 100 %, a few fireflies make the error. Time spent "
         "measuring the error at the checkpoints is not counted in the render time.\n",

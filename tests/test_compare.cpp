@@ -341,6 +341,7 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
     EXPECT_EQ(readExr(out + "/lt.exr", &meta).width, 32);
     EXPECT_EQ(metaValue(meta, "tripath:integrator"), "lt");
 
+    std::map<std::string, double> raysPerSecond;  // per method: the mean over its 2 runs, from counters.csv
     // counters.csv: a row per run; every sample of every method casts at least one closest-hit
     // ray (a camera ray, or a light path's first), so the column cannot be below spp x pixels.
     {
@@ -355,6 +356,7 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
             for (std::string c; std::getline(fields, c, ',');) cells.push_back(c);
             ASSERT_GE(cells.size(), 6u) << line;
             EXPECT_GE(std::stod(cells[4]), std::stod(cells[3]) * 32 * 32) << line;
+            raysPerSecond[cells[0]] += (std::stod(cells[4]) + std::stod(cells[5])) / std::stod(cells[2]) / 2;
             ++rows;
         }
         EXPECT_EQ(rows, 6);
@@ -407,7 +409,9 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
     // column of another method, or a share left as a fraction under a "%" sign.
     for (const char* m : {"pt", "lt", "bdpt"}) {
         const std::vector<std::string> cells = tableRow(summary, m);
-        ASSERT_EQ(cells.size(), 9u) << m;
+        ASSERT_EQ(cells.size(), 10u) << m;
+        // Mrays/s, the mean over runs of each run's rays over its seconds (counters.csv's 6 digits).
+        EXPECT_NEAR(std::stod(cells[9]), raysPerSecond[m] / 1e6, 1e-3 * raysPerSecond[m] / 1e6) << m;
         EXPECT_NEAR(std::stod(cells[7]), finalRelMseSpp[m], 1e-3 * finalRelMseSpp[m]) << m;
         EXPECT_EQ(cells[8].substr(cells[8].size() - 2), " %") << cells[8];
         EXPECT_NEAR(std::stod(cells[8]), 100 * finalTail[m], 1e-2 * 100 * finalTail[m]) << m;
