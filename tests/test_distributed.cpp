@@ -207,6 +207,7 @@ TEST_F(Distributed, AKilledRankEndsTheJobAndTheLastCheckpointStaysLoadable) {
     const int status = killWhenWritten(kMpirun + " -np 2 " + kTripath + " " + args + " --spp 100000", checkpoint,
                                        "^" + std::string(TRIPATH_BINARY) + ".* --out " + out, dir_);
     EXPECT_NE(status, 0);
+    EXPECT_NE(status, 124) << "the job hung until `timeout` ended it";
     ASSERT_TRUE(fs::exists(checkpoint));
     std::ifstream in(checkpoint);
     int passes = 0;
@@ -231,6 +232,7 @@ TEST_F(Distributed, ARankThatCannotReadTheSceneEndsTheJobWithItsReason) {
     const Outcome o = shell(kMpirun + " -np 1 --wdir '" + path("has") + "' " + render + " : -np 1 --wdir '" +
                             path("lacks") + "' " + render);
     EXPECT_NE(o.exitCode, 0);
+    EXPECT_NE(o.exitCode, 124) << "the job hung until `timeout` ended it";
     EXPECT_FALSE(fs::exists(path("out.exr")));
     std::istringstream lines(o.err);
     int ours = 0;
@@ -263,6 +265,7 @@ TEST_F(Distributed, CompareGathersEveryRunFromEveryRank) {
 TEST_F(Distributed, BadInputGivesOneErrorLineFromRankZero) {
     const Outcome o = tripath("render --scene cornell --spp 0 --out " + path("out.exr"), 2);
     EXPECT_NE(o.exitCode, 0);
+    EXPECT_NE(o.exitCode, 124) << "the job hung until `timeout` ended it";
     EXPECT_EQ(o.err.rfind("error: --spp", 0), 0u) << o.err;
     EXPECT_EQ(o.err.find("error:", 1), std::string::npos) << o.err;
     EXPECT_FALSE(fs::exists(path("out.exr")));
