@@ -91,19 +91,17 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
 
 Metadata checkpointSettings(const RenderOptions& o, const Scene& scene, const Integrator& integrator,
                             const FilmLayers& layers) {
-    Metadata m{{"scene", o.scene},
-               {"integrator", integrator.name()},
-               {"width", std::to_string(o.width)},
-               {"height", std::to_string(o.height)},
-               {"max-depth", std::to_string(o.maxDepth)},
-               {"rr-depth", std::to_string(o.rrDepth)},
-               {"mis", o.mis},
-               {"seed", std::to_string(o.seed)},
-               {"streams", streamsName(o.domain)},
-               {"embree", embreeDescription()},
-               {"depth-images", std::to_string(layers.depthImages)},
-               {"strategy-images", std::to_string(layers.strategyLength)}};
-    for (const auto& [key, value] : lightPhaseMetadata(o, scene, integrator)) m.push_back({key.substr(8), value});  // drop "tripath:"
+    Metadata m = convergenceSettings(o, integrator.name());
+    const Metadata more{{"tripath:width", std::to_string(o.width)},
+                        {"tripath:height", std::to_string(o.height)},
+                        {"tripath:seed", std::to_string(o.seed)},
+                        {"tripath:streams", streamsName(o.domain)},
+                        {"tripath:embree", embreeDescription()},
+                        {"tripath:depth-images", std::to_string(layers.depthImages)},
+                        {"tripath:strategy-images", std::to_string(layers.strategyLength)}};
+    m.insert(m.end(), more.begin(), more.end());
+    const Metadata light = lightPhaseMetadata(o, scene, integrator);
+    m.insert(m.end(), light.begin(), light.end());
     return m;
 }
 

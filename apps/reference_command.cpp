@@ -33,13 +33,10 @@ struct ReferenceCommand {
 // The settings that must match for new samples to estimate the same image as the old ones
 // (the seed too: the new passes continue the old sample indices, so only the same seed keeps
 // them fresh).
-std::vector<std::pair<std::string, std::string>> settingsToMatch(const RenderOptions& o, const std::string& integrator) {
-    return {{"tripath:scene", o.scene},
-            {"tripath:integrator", integrator},
-            {"tripath:max-depth", std::to_string(o.maxDepth)},
-            {"tripath:rr-depth", std::to_string(o.rrDepth)},
-            {"tripath:mis", o.mis},
-            {"tripath:seed", std::to_string(o.seed)}};
+Metadata settingsToMatch(const RenderOptions& o, const std::string& integrator) {
+    Metadata m = convergenceSettings(o, integrator);
+    m.push_back({"tripath:seed", std::to_string(o.seed)});
+    return m;
 }
 
 // The reference already at --out, checked against this run's settings; nullopt if there is none.

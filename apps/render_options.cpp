@@ -138,6 +138,14 @@ RenderSettings renderSettings(const RenderOptions& o) {
     return s;
 }
 
+Metadata convergenceSettings(const RenderOptions& o, const std::string& integrator) {
+    return {{"tripath:scene", o.scene},
+            {"tripath:integrator", integrator},
+            {"tripath:max-depth", std::to_string(o.maxDepth)},
+            {"tripath:rr-depth", std::to_string(o.rrDepth)},
+            {"tripath:mis", o.mis}};
+}
+
 Metadata renderMetadata(const RenderOptions& o, const Scene& scene, const Integrator& integrator, const RenderResult& r) {
     Metadata m{{"tripath:scene", o.scene},
             {"tripath:integrator", integrator.name()},

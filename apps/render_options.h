@@ -50,6 +50,10 @@ IntegratorSettings integratorSettings(const RenderOptions& o);
 std::unique_ptr<Scene> loadScene(const RenderOptions& o);
 // spp/time budget, seed and threads as the render loop takes them (defaults to 16 spp).
 RenderSettings renderSettings(const RenderOptions& o);
+// What decides the image a render converges to, as EXR metadata: tripath:scene, integrator,
+// max-depth, rr-depth and mis. Every check that a file may be added to or measured against
+// (references, checkpoints, the benchmark's reference cache) starts from these.
+Metadata convergenceSettings(const RenderOptions& o, const std::string& integrator);
 // The EXR metadata describing a finished render.
 Metadata renderMetadata(const RenderOptions& o, const Scene& scene, const Integrator& integrator, const RenderResult& r);
 // The part of it that describes the light phase: light paths per pass, and for the merging
