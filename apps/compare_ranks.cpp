@@ -19,13 +19,11 @@ void get(WireReader& r, Image& image) {
     r.get(image.rgb);
 }
 
-std::string pack(const RunOutput& out) {
-    WireWriter w;
+void put(WireWriter& w, const RunOutput& out) {
     w.put(out.run.method).put(out.run.index).put(out.run.seed).put(out.run.checkpoints).put(out.run.stats);
     put(w, out.image);
     w.put(uint64_t(out.meta.size()));
     for (const auto& [key, value] : out.meta) w.put(key).put(value);
-    return w.bytes();
 }
 
 RunOutput unpack(WireReader& r) {
@@ -52,18 +50,16 @@ std::vector<RunOutput> runEverywhere(const CompareOptions& o, const Scene& scene
     for (int j = me; j < jobs && !(o.stop && o.stop->load()); j += ranks) {
         RunOutput out = runMethod(o, scene, o.methods[j % o.methods.size()], j / int(o.methods.size()), reference);
         if (out.run.index > 0 && !allImages) out.image = Image{};  // only run 0's images are written; keep messages small
-        mine.put(j).put(pack(out));
+        mine.put(j);
+        put(mine, out);
     }
     std::vector<RunOutput> all(jobs);
     for (const std::string& bytes : gather(mine.bytes())) {
         WireReader r(bytes);
         while (!r.done()) {
             int j = 0;
-            std::string packed;
             r.get(j);
-            r.get(packed);
-            WireReader inner(packed);
-            all[j] = unpack(inner);
+            all[j] = unpack(r);
         }
     }
     return all;

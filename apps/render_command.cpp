@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <cstdlib>
+#include <charconv>
 #include <iostream>
 
 #include "checkpoint.h"
@@ -85,15 +85,15 @@ private:
 
 // "PASS,PIXEL" as two non-negative integers, the pixel inside the image.
 std::pair<uint64_t, int> parseReplay(const std::string& text, int width, int height) {
-    const size_t comma = text.find(',');
-    char* end = nullptr;
-    const unsigned long long pass = comma == std::string::npos ? 0 : std::strtoull(text.c_str(), &end, 10);
-    const bool passOk = comma != std::string::npos && comma > 0 && end == text.c_str() + comma && text[0] != '-';
-    const std::string pixelText = passOk ? text.substr(comma + 1) : "";
-    const long long pixel = pixelText.empty() || pixelText[0] == '-' ? -1 : std::strtoll(pixelText.c_str(), &end, 10);
-    if (!passOk || pixel < 0 || end != pixelText.c_str() + pixelText.size() || pixel >= (long long)width * height)
+    uint64_t pass = 0, pixel = 0;
+    const char *begin = text.data(), *end = begin + text.size();
+    const auto [afterPass, passError] = std::from_chars(begin, end, pass);
+    const bool ok = passError == std::errc{} && afterPass != end && *afterPass == ',' &&
+                    std::from_chars(afterPass + 1, end, pixel) == std::from_chars_result{end, std::errc{}} &&
+                    pixel < uint64_t(width) * uint64_t(height);
+    if (!ok)
         throw InputError(fmt::format("--replay must be PASS,PIXEL with PIXEL = y * width + x below {} (got '{}')",
-                                     (long long)width * height, text));
+                                     uint64_t(width) * uint64_t(height), text));
     return {pass, int(pixel)};
 }
 
