@@ -47,11 +47,11 @@ struct BenchmarkCommand {
 // One method on one scene: means over its runs.
 struct Cell {
     std::string scene, method;
-    MethodSummary summary;
+    MethodSummary summary{};
     double relMseWithoutTail = 0;  // mean over runs
     double speedUp = 0;            // the baseline's relMSE × seconds over this method's
     int biasedBlocks = 0, blocks = 0;
-    std::string biasMap;           // PNG, relative to the output directory
+    std::string biasMap{};         // PNG, relative to the output directory
     std::array<double, kEventCount> events{};  // every counter of geometry/stats.h, mean per run
 };
 
@@ -143,13 +143,9 @@ bool cachedReferenceFits(const CompareOptions& co) {
     try {
         const ReferenceFile ref = readReference(co.referenceOut);
         requireSize(ref, co.render.width, co.render.height);
-        requireSettings(ref, {{"tripath:scene", co.render.scene},
-                              {"tripath:integrator", co.referenceIntegrator},
-                              {"tripath:max-depth", std::to_string(co.render.maxDepth)},
-                              {"tripath:rr-depth", std::to_string(co.render.rrDepth)},
-                              {"tripath:mis", co.render.mis},
-                              {"tripath:streams", "reference"}},
-                        false);
+        Metadata settings = convergenceSettings(co.render, co.referenceIntegrator);
+        settings.push_back({"tripath:streams", "reference"});
+        requireSettings(ref, settings, false);
         return true;
     } catch (const InputError& e) {
         std::cerr << fmt::format("benchmark: not reusing {}: {}\n", co.referenceOut, e.what());

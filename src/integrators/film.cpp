@@ -35,10 +35,26 @@ void Film::add(int pixel, Strategy strategy, Spectrum weighted, Spectrum unweigh
     }
 }
 
+template <class Self>
+auto Film::sumsOf(Self& film) {
+    std::vector<decltype(&film.main_)> out{&film.main_};
+    for (auto& d : film.depth_) out.push_back(&d);
+    for (const Strategy& st : film.order_) {
+        auto& pair = film.strategy_.at(st);
+        out.insert(out.end(), {&pair.first, &pair.second});
+    }
+    return out;
+}
+
+template <class Self>
+auto Film::totalsOf(Self& film) {
+    std::vector<decltype(&film.main_.total)> out;
+    for (auto* sums : sumsOf(film)) out.push_back(&sums->total);
+    return out;
+}
+
 void Film::endBlock() {
-    std::vector<Sums*> all{&main_};
-    for (Sums& d : depth_) all.push_back(&d);
-    for (auto& [st, pair] : strategy_) all.insert(all.end(), {&pair.first, &pair.second});
+    const std::vector<Sums*> all = sumsOf(*this);
     const size_t n = main_.block.size();
     constexpr size_t kChunk = 1 << 14;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + kChunk - 1) / kChunk), [&](const tbb::blocked_range<size_t>& r) {
@@ -48,17 +64,6 @@ void Film::endBlock() {
             std::fill(s->block.begin() + begin, s->block.begin() + end, 0.0);
         }
     });
-}
-
-template <class Self>
-auto Film::totalsOf(Self& film) {
-    std::vector<decltype(&film.main_.total)> out{&film.main_.total};
-    for (auto& d : film.depth_) out.push_back(&d.total);
-    for (const Strategy& st : film.order_) {
-        auto& pair = film.strategy_.at(st);
-        out.insert(out.end(), {&pair.first.total, &pair.second.total});
-    }
-    return out;
 }
 
 std::vector<ExactSums*> Film::totals() { return totalsOf(*this); }

@@ -59,6 +59,9 @@ private:
         explicit Sums(size_t n) : block(n, 0.0), total(n) {}
     };
     static void addTo(Sums& sums, int pixel, Spectrum v);
+    // Every sum, in the order of totals(), for a film or a const film.
+    template <class Self>
+    static auto sumsOf(Self& film);
     template <class Self>
     static auto totalsOf(Self& film);  // totals() and its const twin
     Image toImage(const Sums& sums, int passes) const;

@@ -196,7 +196,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     Team& team = settings.team ? *settings.team : solo();
     FilmLayers layers = settings.layers;
     layers.merges = integrator.strategies().merges();
-    RenderResult result{Film(cam.width(), cam.height(), layers)};
+    RenderResult result{.film = Film(cam.width(), cam.height(), layers)};
     const RenderResult* resume = settings.resume;
     const uint64_t firstPass = resume ? resume->nextPass : settings.firstPass;
     PassRenderer passes(scene, integrator, settings);
@@ -208,6 +208,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     double callbackSeconds = 0;  // spent in onPass and onCheckpoint: the caller's time, not the render's
     auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     auto elapsed = [&] { return since(start) - callbackSeconds; };
+    auto timeUpOrStopped = [&] {
+        return (settings.seconds > 0 && elapsed() >= settings.seconds) || (settings.stop && settings.stop->load());
+    };
     double lastCheckpoint = 0;
 
     int local = 0;                  // passes this rank rendered
@@ -221,9 +224,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         const uint64_t end = std::min(budget, begin + kPassesPerBlock);
         bool halted = false;  // by the clock or by a stop request, before the block's end
         for (uint64_t p = begin; p < end; ++p) {
-            const bool timeUp = settings.seconds > 0 && elapsed() >= settings.seconds;
-            const bool stopped = settings.stop && settings.stop->load();
-            if ((timeUp || stopped) && local > 0) {
+            if (local > 0 && timeUpOrStopped()) {
                 halted = true;
                 break;
             }
@@ -240,13 +241,17 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         }
         passes.endBlock(result.film);
         const bool budgetDone = (round + 1) * ranks * kPassesPerBlock >= budget;
-        const bool timeUp = settings.seconds > 0 && elapsed() >= settings.seconds;
-        if (team.any(halted || timeUp || (settings.stop && settings.stop->load())) || budgetDone) break;
+        if (team.any(halted || timeUpOrStopped()) || budgetDone) break;
         if (settings.checkpointSeconds > 0 && team.any(elapsed() - lastCheckpoint >= settings.checkpointSeconds)) {
             const auto t0 = std::chrono::steady_clock::now();
-            RenderResult sofar{result.film, 0, 0, result.seconds, result.droppedSamples, result.guardedWeights};
+            // Rank 0 reduces into a copy (its own film must keep only its own passes); the others
+            // only send theirs.
+            RenderResult sofar{.film = team.rank() == 0 ? result.film : Film(0, 0),
+                               .seconds = result.seconds,
+                               .droppedSamples = result.droppedSamples,
+                               .guardedWeights = result.guardedWeights};
             addUpOverTeam(team, sofar, local, localNext);  // every block up to here is done: nextPass ends a round
-            team.reduce(sofar.film);
+            team.reduce(team.rank() == 0 ? sofar.film : result.film);
             if (team.rank() == 0 && settings.onCheckpoint) settings.onCheckpoint(addResumed(sofar, resume));
             callbackSeconds += since(t0);
             lastCheckpoint = elapsed();
