@@ -4,9 +4,11 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <optional>
+#include <tuple>
 
 #include "geometry/stats.h"
 #include "integrators/light_phase.h"
@@ -177,6 +179,41 @@ void addUpOverTeam(Team& team, RenderResult& r, int localPasses, uint64_t localN
     r.seconds = maxima[1] / 1e6;
 }
 
+// The order one process logs dropped samples in: by pass, then tile (PassRenderer::run collects
+// the tiles' logs in tile order), then pixel (renderTile walks a tile's rows in order); a sample
+// that dropped twice is logged twice, and a stable sort keeps such twins together.
+struct DroppedOrder {
+    int width;
+    std::tuple<uint64_t, int, int> key(const DroppedSample& d) const {
+        const int tilesX = (width + kTileSize - 1) / kTileSize, x = d.pixel % width, y = d.pixel / width;
+        return {d.pass, (y / kTileSize) * tilesX + x / kTileSize, d.pixel};
+    }
+    bool operator()(const DroppedSample& a, const DroppedSample& b) const { return key(a) < key(b); }
+};
+
+// Makes every rank's log the team's first kDroppedLogSize dropped samples, the log one process
+// would have kept. A rank's log holds the first of its own passes, so the team's first are among
+// their union. Each rank writes its log into its own slot of a zeroed array (count, then pass and
+// pixel per entry) and the team's sum gathers them all.
+void gatherDroppedLog(Team& team, const Camera& cam, std::vector<DroppedSample>& log) {
+    constexpr size_t kSlot = 1 + 2 * kDroppedLogSize;
+    std::vector<uint64_t> slots(kSlot * size_t(team.size()), 0);
+    uint64_t* mine = slots.data() + kSlot * size_t(team.rank());
+    mine[0] = log.size();
+    for (size_t i = 0; i < log.size(); ++i) {
+        mine[1 + 2 * i] = log[i].pass;
+        mine[2 + 2 * i] = uint64_t(log[i].pixel);
+    }
+    team.sum(slots);
+    log.clear();
+    for (int r = 0; r < team.size(); ++r) {
+        const uint64_t* slot = slots.data() + kSlot * size_t(r);
+        for (uint64_t i = 0; i < slot[0]; ++i) log.push_back({slot[1 + 2 * i], static_cast<int>(slot[2 + 2 * i])});
+    }
+    std::stable_sort(log.begin(), log.end(), DroppedOrder{cam.width()});
+    if (log.size() > kDroppedLogSize) log.resize(kDroppedLogSize);
+}
+
 // Rank 0's result gains the render it resumed (films add exactly, so where a render was cut does
 // not show in its bits).
 RenderResult& addResumed(RenderResult& r, const RenderResult* resume) {
@@ -259,6 +296,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     }
     result.seconds = elapsed();
     addUpOverTeam(team, result, local, localNext);
+    gatherDroppedLog(team, cam, result.droppedLog);
     const auto reduceStart = std::chrono::steady_clock::now();
     team.reduce(result.film);
     result.reduceSeconds = since(reduceStart);

@@ -74,7 +74,9 @@ struct RenderResult {
     uint64_t droppedSamples = 0;  // NaN or infinite contributions kept off the film
     uint64_t guardedWeights = 0;  // MIS weights set to 0 because a pdf ratio was not finite (mis.h)
     double reduceSeconds = 0;     // spent adding the team's films into rank 0's at the end
-    std::vector<DroppedSample> droppedLog{};  // this process's first kDroppedLogSize dropped samples, in pass and tile order
+    // The team's first kDroppedLogSize dropped samples in pass, tile and pixel order: the same log
+    // for any number of ranks and threads.
+    std::vector<DroppedSample> droppedLog{};
     // What the render did (geometry/stats.h): its events, and with timing on its cycles per phase.
     // Taken as the difference of two process-wide snapshots, so renders must not overlap.
     StatsSnapshot stats{};
