@@ -113,19 +113,25 @@ TEST(FlipTest, LdrFlipIsSymmetric) {
     for (std::size_t i = 0; i < ab.size(); ++i) EXPECT_NEAR(ab[i], ba[i], 1e-6f);
 }
 
-// Saturated high-frequency colour noise: its contrast-filtered colours leave the RGB cube, which
-// [1] clips before CIELAB. Catches a missing clip (distances beyond the gamut's maximum give errors
-// above 1) and a compression that is not bounded.
-TEST(FlipTest, ErrorsStayInUnitRangeOnSaturatedNoise) {
+// Contrast filtering blurs the chroma channels more than the achromatic one, so yellow crossed by
+// thin black lines comes out darker than yellow yet nearly as chromatic: a colour outside the RGB
+// cube, which [1] clips before CIELAB. Unclipped, its distance to black exceeds the green-blue
+// maximum and the error leaves [0, 1] (1.022 here). Catches a missing clip, and a compression that
+// is not bounded.
+TEST(FlipTest, ErrorsStayInUnitRangeWhereFilteringLeavesTheGamut) {
+    const int w = 32;
+    Image lines = uniform(w, 8, 1, 1, 0);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < w; x += 4) setPixel(lines, x, y, 0, 0, 0);
     std::mt19937 rng(11);
     std::bernoulli_distribution coin(0.5);
-    Image a(32, 32), b(32, 32);
-    for (float& v : a.rgb) v = coin(rng) ? 1.0f : 0.0f;
-    for (float& v : b.rgb) v = coin(rng) ? 1.0f : 0.0f;
-    for (float e : ldrFlipMap(a, b)) {
-        EXPECT_GE(e, 0.0f);
-        EXPECT_LE(e, 1.0f);
-    }
+    Image noise(w, 8);
+    for (float& v : noise.rgb) v = coin(rng) ? 1.0f : 0.0f;
+    for (const Image* img : {&lines, &noise})
+        for (float e : ldrFlipMap(*img, uniform(w, 8, 0, 0, 0))) {
+            EXPECT_GE(e, 0.0f);
+            EXPECT_LE(e, 1.0f);
+        }
 }
 
 // A black-to-white step in the reference, none in the test. The edge detector's taps on either
@@ -276,10 +282,13 @@ TEST(FlipTest, HdrFlipIsTheMaximumOverExposures) {
 
 // [2] clips the tone mapped values to [0, 1]: the ACES fit tends to 2.51/2.43 > 1, so without the
 // clip two highlights of 100 and 200 would differ (1.029 vs 1.031) where the display shows white
-// for both. Catches a missing clip after tone mapping.
+// for both. One pixel on black, so that the contrast filter spreads it below 1 and its own clip
+// does not hide the difference. Catches a missing clip after tone mapping.
 TEST(FlipTest, HighlightsBeyondWhiteAreEqual) {
-    const auto flip = hdrFlipMap(uniform(8, 8, 200, 200, 200), uniform(8, 8, 100, 100, 100), {0, 0, 1});
-    for (float e : flip) EXPECT_EQ(e, 0.0f);
+    Image reference(9, 9), test(9, 9);
+    setPixel(reference, 4, 4, 100, 100, 100);
+    setPixel(test, 4, 4, 200, 200, 200);
+    for (float e : hdrFlipMap(test, reference, {0, 0, 1})) EXPECT_EQ(e, 0.0f);
 }
 
 // flip.h: a non-finite test pixel gives NaN near it, not a clipped colour, and a NaN mean; far
