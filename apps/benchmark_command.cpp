@@ -212,6 +212,8 @@ std::vector<Cell> benchmarkScene(const BenchmarkCommand& c, const std::string& s
 constexpr const char* kFormulas =
     "relMSE: mean over pixels and channels of (x − r)² / (r² + 0.01), against the scene's reference; "
     "relMSE without tail: the same with the 0.1 % of pixels of largest relative squared error left out; "
+    "HDR-FLIP: the mean of Andersson et al.'s perceptual difference map (Eurographics 2021) at one range of exposures "
+    "set from the scene's reference, at 67 pixels per degree (0 none, 1 the largest); "
     "inefficiency: relMSE × seconds (lower is better); speed-up: the baseline's inefficiency over the method's; "
     "biased blocks: blocks where Welch's t-test of the runs' mean luminance against the bias reference's runs is "
     "significant at family-wise level 0.01 (Holm's correction).";
@@ -265,12 +267,12 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
     csv += fmt::format("# per run: {} s, {} runs; bias reference {}; baseline {}\n", c.render.seconds, c.runs,
                        c.biasReference, c.baseline);
     csv += "# counters (rays, BSDF calls, merges, ...): what the renderer counted, mean per run\n";
-    csv += "scene,integrator,relmse,relmse_sd,relmse_without_tail,mse,mae,spp,seconds,inefficiency,speedup,biased_blocks,"
-           "blocks,rays_per_s" + counterColumns() + "\n";
+    csv += "scene,integrator,relmse,relmse_sd,relmse_without_tail,mse,mae,hdr_flip,spp,seconds,inefficiency,speedup,"
+           "biased_blocks,blocks,rays_per_s" + counterColumns() + "\n";
     for (const Cell& x : cells) {
-        csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.1f},{:.3f},{:.6g},{:.4g},{},{},{:.4g}", x.scene, x.method,
-                           x.summary.error.relMse, x.summary.relMseStd, x.relMseWithoutTail, x.summary.error.mse,
-                           x.summary.error.mae, x.summary.spp, x.summary.seconds, x.summary.error.relMse * x.summary.seconds,
+        csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.1f},{:.3f},{:.6g},{:.4g},{},{},{:.4g}", x.scene,
+                           x.method, x.summary.error.relMse, x.summary.relMseStd, x.relMseWithoutTail, x.summary.error.mse,
+                           x.summary.error.mae, x.summary.flip, x.summary.spp, x.summary.seconds, x.summary.error.relMse * x.summary.seconds,
                            x.speedUp, x.biasedBlocks, x.blocks, x.summary.raysPerSecond);
         for (double e : x.events) csv += fmt::format(",{:.0f}", e);
         csv += "\n";
@@ -297,16 +299,16 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
         for (const std::string& m : methods) {
             const Cell& x = cellOf(cells, s, m);
             html += fmt::format(
-                        "<td{}><a href=\"{}/index.html\">{:.4g} ± {:.2g}</a><br><small>w/o tail {:.3g} · {:.0f} spp · "
-                        "{:.3g} Mrays/s · ×{:.3g}{}</small></td>",
+                        "<td{}><a href=\"{}/index.html\">{:.4g} ± {:.2g}</a><br><small>w/o tail {:.3g} · FLIP {:.3g} · "
+                        "{:.0f} spp · {:.3g} Mrays/s · ×{:.3g}{}</small></td>",
                         x.summary.error.relMse == best ? " class=\"best\"" : "", slug(s), x.summary.error.relMse,
-                        x.summary.relMseStd, x.relMseWithoutTail, x.summary.spp, x.summary.raysPerSecond / 1e6, x.speedUp,
+                        x.summary.relMseStd, x.relMseWithoutTail, x.summary.flip, x.summary.spp, x.summary.raysPerSecond / 1e6, x.speedUp,
                         x.blocks > 0 ? fmt::format(" · <b>{}</b>/{} biased", x.biasedBlocks, x.blocks) : std::string(""));
         }
         html += "</tr>\n";
     }
     html += "</table>\n<p>Each cell: relMSE mean ± standard deviation over runs; below it, relMSE without the worst "
-            "0.1 % of pixels, samples per pixel, rays (closest-hit and shadow) per second, speed-up against the baseline, biased blocks. Best per scene "
+            "0.1 % of pixels, HDR-FLIP, samples per pixel, rays (closest-hit and shadow) per second, speed-up against the baseline, biased blocks. Best per scene "
             "highlighted.</p>\n<p>" + std::string(kFormulas) + "</p>\n<h2>Bias maps</h2>\n"
             "<p>Red: blocks with significant bias; otherwise darker where the p-value is smaller.</p>\n";
     for (const std::string& s : scenes) {

@@ -47,6 +47,7 @@ struct Run {
     uint64_t seed;
     std::vector<Checkpoint> checkpoints;  // the last one is the finished render
     StatsSnapshot stats{};                // what the finished render did (rays, BSDF calls, …)
+    double flip = 0;                      // HDR-FLIP of the finished render (image/flip.h), at the reference's exposures
     const Checkpoint& final() const { return checkpoints.back(); }
 };
 
@@ -72,6 +73,7 @@ struct MethodSummary {
     double efficiency = 0;    // 1 / (relMSE * seconds)
     double relVariance = 0;   // per-sample relative variance relMSE * spp, mean over runs of each run's product
     double raysPerSecond = 0; // closest-hit and shadow rays per second of render time, mean over runs
+    double flip = 0;          // HDR-FLIP of the finished renders, mean over runs
 };
 
 // compare_run.cpp
@@ -139,6 +141,8 @@ void writeText(const std::string& path, const std::string& text);
 // Text shared by summary.md and index.html.
 std::string settingsLine(const CompareOptions& o);
 std::string formatSeconds(double s);
+// What the reports say HDR-FLIP is, and at which exposures and viewing it is measured.
+extern const char* const kFlipDefinition;
 // A tail share (ErrorMetrics::tailShare) as a percentage: "12.3 %".
 std::string tailShareText(double share);
 // "12 s", "~40 s (extrapolated)" or "not reached (error levels off)".

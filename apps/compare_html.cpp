@@ -86,13 +86,14 @@ std::string table(const Report& r) {
         "<th>time to reach {}'s relMSE</th><th>efficiency 1/(relMSE·s)</th>"
         "<th title=\"per-sample relative variance of an unbiased method\">relMSE·spp</th>"
         "<th title=\"share of the relMSE carried by the 0.1 % of pixels with the largest error\">worst 0.1 % of "
-        "pixels</th><th title=\"closest-hit and shadow rays per second of render time\">Mrays/s</th></tr>\n",
-        escape(best.method));
+        "pixels</th><th title=\"{}\">HDR-FLIP</th><th title=\"closest-hit and shadow rays per second of render time\">"
+        "Mrays/s</th></tr>\n",
+        escape(best.method), escape(kFlipDefinition));
     for (const MethodSummary& x : r.summaries) {
         s += fmt::format("<tr><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.0f}</td><td>{}</td><td>{:.4g}</td>"
-                         "<td>{:.4g}</td><td>{}</td><td>{:.4g}</td></tr>\n",
+                         "<td>{:.4g}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td></tr>\n",
                          escape(x.method), x.error.relMse, x.error.mse, x.error.mae, x.spp, timeToBestText(x), x.efficiency,
-                         x.relVariance, tailShareText(x.error.tailShare), x.raysPerSecond / 1e6);
+                         x.relVariance, tailShareText(x.error.tailShare), x.flip, x.raysPerSecond / 1e6);
     }
     return s + "</table>\n";
 }

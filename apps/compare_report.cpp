@@ -50,6 +50,11 @@ std::string timeToBestText(const MethodSummary& s) {
     return s.extrapolated ? fmt::format("~{} (extrapolated)", formatSeconds(s.timeToBest)) : formatSeconds(s.timeToBest);
 }
 
+const char* const kFlipDefinition =
+    "HDR-FLIP: the mean over pixels of the perceptual difference map of Andersson et al. (Eurographics 2021; 0 none, 1 "
+    "the largest), at one range of exposures set from the scene's reference for every method, seen at 67 pixels per "
+    "degree.";
+
 std::string tailShareText(double share) { return fmt::format("{:.3g} %", 100 * share); }
 
 std::string formatSeconds(double s) { return s < 10 ? fmt::format("{:.3g} s", s) : fmt::format("{:.0f} s", s); }
@@ -66,12 +71,13 @@ std::string settingsLine(const CompareOptions& o) {
 
 void writeCsv(const Report& r, const std::string& path) {
     // New columns go at the end, so that scripts reading columns by position keep working.
-    std::string s = "integrator,run,seconds,spp,relmse,mse,mae,relmse_x_spp,tail_share\n";
+    // hdr_flip is measured on the finished render only: its rows alone have it.
+    std::string s = "integrator,run,seconds,spp,relmse,mse,mae,relmse_x_spp,tail_share,hdr_flip\n";
     for (const Run& run : r.runs)
         for (const Checkpoint& c : run.checkpoints)
-            s += fmt::format("{},{},{:.6f},{},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g}\n", run.method, run.index, c.seconds,
+            s += fmt::format("{},{},{:.6f},{},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{}\n", run.method, run.index, c.seconds,
                              c.spp, c.error.relMse, c.error.mse, c.error.mae, perSampleRelVariance(c.error.relMse, c.spp),
-                             c.error.tailShare);
+                             c.error.tailShare, &c == &run.final() ? fmt::format("{:.8g}", run.flip) : "");
     writeText(path, s);
 }
 
@@ -140,16 +146,16 @@ void writeSummary(const Report& r, const std::string& path) {
     std::string s = fmt::format("# tripath compare: {}\n\n{}.\n\nReference: {} (`{}`).\n\n", r.options.render.scene,
                                 settingsLine(r.options), r.reference.description, r.reference.file);
     s += fmt::format("| method | relMSE | MSE | MAE | spp | time to reach {}'s relMSE | efficiency 1/(relMSE·s) | "
-                     "relMSE·spp | worst 0.1 % of pixels | Mrays/s |\n",
+                     "relMSE·spp | worst 0.1 % of pixels | HDR-FLIP | Mrays/s |\n",
                      best.method);
-    s += "|---|---|---|---|---|---|---|---|---|---|\n";
+    s += "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string& m : r.options.methods) {
         const MethodSummary& x = summaryOf(r, m);
         const std::string rel = many ? fmt::format("{:.4g} ± {:.2g}", x.error.relMse, x.relMseStd)
                                      : fmt::format("{:.4g}", x.error.relMse);
-        s += fmt::format("| {} | {} | {:.4g} | {:.4g} | {:.0f} | {} | {:.4g} | {:.4g} | {} | {:.4g} |\n", m, rel, x.error.mse,
-                         x.error.mae, x.spp, timeToBestText(x), x.efficiency, x.relVariance, tailShareText(x.error.tailShare),
-                         x.raysPerSecond / 1e6);
+        s += fmt::format("| {} | {} | {:.4g} | {:.4g} | {:.0f} | {} | {:.4g} | {:.4g} | {} | {:.4g} | {:.4g} |\n", m, rel,
+                         x.error.mse, x.error.mae, x.spp, timeToBestText(x), x.efficiency, x.relVariance,
+                         tailShareText(x.error.tailShare), x.flip, x.raysPerSecond / 1e6);
     }
     s += fmt::format(
         "\nLowest error at equal time: **{}**. Errors are against the reference{}; relMSE = mean of "
@@ -159,9 +165,9 @@ void writeSummary(const Report& r, const std::string& path) {
         "error or a bias is not, it grows with spp), so efficiency = (spp/s) / (relMSE·spp): speed over per-sample noise. "
         "Mrays/s: closest-hit and shadow rays per second of render time (`counters.csv` has every counter). "
         "\"Worst 0.1 % of pixels\" is the share of the relMSE sum carried by the 0.1 % of pixels (at least one) with the "
-        "largest relative squared error: near 100 %, a few fireflies make the error. Time spent "
+        "largest relative squared error: near 100 %, a few fireflies make the error. {} Time spent "
         "measuring the error at the checkpoints is not counted in the render time.\n",
-        best.method, many ? ", means over runs (± one standard deviation)" : "");
+        best.method, many ? ", means over runs (± one standard deviation)" : "", kFlipDefinition);
     s += "\nFiles: `error.csv` (every checkpoint), `counters.csv` (per run: rays, BSDF calls, connections, splats, "
          "merges; as `tripath render --stats` counts them), `error-vs-time.svg`/`.png`, `side-by-side.png`, "
          "`<method>.exr`/`.png` (run 0), `index.html`.\n";

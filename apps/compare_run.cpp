@@ -10,6 +10,7 @@
 #include "compare.h"
 #include "processes.h"
 #include "geometry/error.h"
+#include "image/flip.h"
 
 namespace tripath::app {
 
@@ -104,11 +105,13 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
         run.checkpoints.push_back({kTargets, r.seconds, r.passes, compareImages(image, reference)});
     run.checkpoints.back().target = kTargets;
     run.stats = r.stats;
+    run.flip = hdrFlip(image, reference, flipExposures(reference));
     printSummary(label, r, ro);
     const Checkpoint& f = run.final();
-    std::cerr << fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in the worst 0.1% of pixels\n",
+    std::cerr << fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in the worst 0.1% of "
+                             "pixels, HDR-FLIP {:.4g}\n",
                              label, f.error.relMse, f.error.mse, f.error.mae, perSampleRelVariance(f.error.relMse, f.spp),
-                             tailShareText(f.error.tailShare));
+                             tailShareText(f.error.tailShare), run.flip);
     return {std::move(run), std::move(image), renderMetadata(ro, scene, *integrator, r)};
 }
 

@@ -67,7 +67,7 @@ std::pair<double, bool> timeToReach(const Curve& c, double level) {
 MethodSummary finals(const std::vector<const Run*>& runs) {
     MethodSummary s;
     s.method = runs.front()->method;
-    std::vector<double> rel, mse, mae, tail, spp, sec, relVar, rays;
+    std::vector<double> rel, mse, mae, tail, spp, sec, relVar, rays, flip;
     for (const Run* r : runs) {
         const Checkpoint& f = r->final();
         rel.push_back(f.error.relMse);
@@ -78,6 +78,7 @@ MethodSummary finals(const std::vector<const Run*>& runs) {
         sec.push_back(f.seconds);
         relVar.push_back(perSampleRelVariance(f.error.relMse, f.spp));
         rays.push_back(double(r->stats[Event::ClosestHitRays] + r->stats[Event::ShadowRays]) / f.seconds);
+        flip.push_back(r->flip);
     }
     s.error = {mean(rel), mean(mse), mean(mae), mean(tail)};
     s.relMseStd = stddev(rel);
@@ -86,6 +87,7 @@ MethodSummary finals(const std::vector<const Run*>& runs) {
     s.efficiency = 1 / (s.error.relMse * s.seconds);
     s.relVariance = mean(relVar);
     s.raysPerSecond = mean(rays);
+    s.flip = mean(flip);
     return s;
 }
 

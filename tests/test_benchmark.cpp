@@ -57,6 +57,8 @@ TEST_F(Benchmark, TablesEveryMethodOnEverySceneAndFlagsBias) {
         EXPECT_LE(std::stod(row.at("relmse_without_tail")), std::stod(row.at("relmse")) * (1 + 1e-9)) << key.first;
         EXPECT_EQ(row.at("blocks"), "64") << key.first << " " << key.second;
         EXPECT_GT(std::stod(row.at("rays_per_s")), 0) << key.first << " " << key.second;
+        const double flip = std::stod(row.at("hdr_flip"));  // 0 if runs were compared with themselves
+        EXPECT_TRUE(flip > 0 && flip < 1) << key.first << " " << key.second << " " << flip;
         EXPECT_TRUE(fs::exists(fs::path(out) / key.first / "index.html"));
         EXPECT_TRUE(fs::exists(fs::path(out) / key.first / ("bias-" + key.second + ".png")));
     }
@@ -80,9 +82,9 @@ TEST_F(Benchmark, TablesEveryMethodOnEverySceneAndFlagsBias) {
 
 TEST_F(Benchmark, BadListsAreRefusedInOneLine) {
     const std::string out = " --time 0.1 --out " + (dir_ / "b").string();
-    for (const std::string& args : {"--scenes cornell,,sds", "--scenes cornell --integrators pt,pt",
-                                    "--scenes cornell --integrators pt,magic", "--scenes cornell --runs 1",
-                                    "--scenes cornell --integrators pt --baseline lt"}) {
+    for (const std::string args : {"--scenes cornell,,sds", "--scenes cornell --integrators pt,pt",
+                                   "--scenes cornell --integrators pt,magic", "--scenes cornell --runs 1",
+                                   "--scenes cornell --integrators pt --baseline lt"}) {
         const Outcome o = tripath("benchmark " + args + out);
         EXPECT_EQ(o.exitCode, 1) << args;
         EXPECT_EQ(o.err.rfind("error: ", 0), 0u) << args << ": " << o.err;

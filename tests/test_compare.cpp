@@ -20,6 +20,7 @@
 #include "geometry/error.h"
 #include "image/chart.h"
 #include "image/compose.h"
+#include "image/flip.h"
 #include "image/image.h"
 #include "image/inset.h"
 #include "image/metrics.h"
@@ -88,22 +89,24 @@ struct CsvRow {
     std::string integrator;
     int run, spp;
     double seconds, relMse, mse, mae, relMseSpp, tailShare;
+    double flip = std::nan("");  // the finished render's row only
 };
 
 std::vector<CsvRow> parseCsv(const std::string& text) {
     std::istringstream in(text);
     std::string line;
     std::getline(in, line);
-    EXPECT_EQ(line, "integrator,run,seconds,spp,relmse,mse,mae,relmse_x_spp,tail_share");
+    EXPECT_EQ(line, "integrator,run,seconds,spp,relmse,mse,mae,relmse_x_spp,tail_share,hdr_flip");
     std::vector<CsvRow> rows;
     while (std::getline(in, line)) {
         std::vector<std::string> f;
         std::stringstream ls(line);
         for (std::string cell; std::getline(ls, cell, ',');) f.push_back(cell);
-        EXPECT_EQ(f.size(), 9u) << line;
-        if (f.size() != 9) continue;
+        EXPECT_TRUE(line.back() == ',' ? f.size() == 9u : f.size() == 10u) << line;  // an empty last cell, or hdr_flip
+        if (f.size() < 9) continue;
         rows.push_back({f[0], std::stoi(f[1]), std::stoi(f[3]), std::stod(f[2]), std::stod(f[4]), std::stod(f[5]),
                         std::stod(f[6]), std::stod(f[7]), std::stod(f[8])});
+        if (f.size() == 10) rows.back().flip = std::stod(f[9]);
     }
     return rows;
 }
@@ -365,7 +368,7 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
     std::map<std::pair<std::string, int>, std::vector<CsvRow>> byRun;
     for (const CsvRow& r : parseCsv(readFile(out + "/error.csv"))) byRun[{r.integrator, r.run}].push_back(r);
     ASSERT_EQ(byRun.size(), 6u);
-    std::map<std::string, double> first, last, firstSpp, lastSpp, finalRelMseSpp, finalTail;
+    std::map<std::string, double> first, last, firstSpp, lastSpp, finalRelMseSpp, finalTail, finalFlip;
     for (const auto& [key, rows] : byRun) {
         ASSERT_GE(rows.size(), 3u) << key.first;
         for (size_t i = 1; i < rows.size(); ++i) {
@@ -391,6 +394,16 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
         }
         finalRelMseSpp[key.first] += rows.back().relMseSpp / 2;
         finalTail[key.first] += rows.back().tailShare / 2;
+        // HDR-FLIP belongs to the finished render alone.
+        for (size_t i = 0; i + 1 < rows.size(); ++i) EXPECT_TRUE(std::isnan(rows[i].flip)) << key.first;
+        EXPECT_TRUE(rows.back().flip > 0 && rows.back().flip < 1) << key.first << " " << rows.back().flip;
+        finalFlip[key.first] += rows.back().flip / 2;
+        // Run 0's is its image's against the reference at the reference's exposures. Catches a
+        // render compared with itself, exposures taken from the render, a checkpoint's image.
+        if (key.second == 0) {
+            const Image reference = readExr(ref), image = readExr(out + "/" + key.first + ".exr");
+            EXPECT_NEAR(rows.back().flip, hdrFlip(image, reference, flipExposures(reference)), 1e-7) << key.first;
+        }
     }
     // relMSE of an unbiased method falls like 1/spp until the reference's own noise is reached.
     // Asked for: half the drop that law predicts, capped at 3x (the cap is for fast machines,
@@ -409,15 +422,16 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
     // column of another method, or a share left as a fraction under a "%" sign.
     for (const char* m : {"pt", "lt", "bdpt"}) {
         const std::vector<std::string> cells = tableRow(summary, m);
-        ASSERT_EQ(cells.size(), 10u) << m;
+        ASSERT_EQ(cells.size(), 11u) << m;
         // Mrays/s, the mean over runs of each run's rays over its seconds (counters.csv's 6 digits).
-        EXPECT_NEAR(std::stod(cells[9]), raysPerSecond[m] / 1e6, 1e-3 * raysPerSecond[m] / 1e6) << m;
+        EXPECT_NEAR(std::stod(cells[10]), raysPerSecond[m] / 1e6, 1e-3 * raysPerSecond[m] / 1e6) << m;
+        EXPECT_NEAR(std::stod(cells[9]), finalFlip[m], 1e-3 * finalFlip[m]) << m;  // the mean over runs
         EXPECT_NEAR(std::stod(cells[7]), finalRelMseSpp[m], 1e-3 * finalRelMseSpp[m]) << m;
         EXPECT_EQ(cells[8].substr(cells[8].size() - 2), " %") << cells[8];
         EXPECT_NEAR(std::stod(cells[8]), 100 * finalTail[m], 1e-2 * 100 * finalTail[m]) << m;
     }
     const std::string html = readFile(out + "/index.html");
-    for (const char* m : {"relMSE·spp</th>", "worst 0.1 % of pixels</th>"})
+    for (const char* m : {"relMSE·spp</th>", "worst 0.1 % of pixels</th>", "HDR-FLIP</th>"})
         EXPECT_NE(html.find(m), std::string::npos) << m;
     EXPECT_NE(readFile(out + "/error-vs-time.svg").find("<polyline"), std::string::npos);
 }

@@ -54,7 +54,7 @@ FlipExposures flipExposures(const Image& reference);
 std::vector<float> hdrFlipMap(const Image& test, const Image& reference, const FlipExposures& exposures,
                               double pixelsPerDegree = kFlipPixelsPerDegree);
 
-// The mean of hdrFlipMap, the single number [1]'s authors recommend (their errata, "hindsight").
+// The mean of hdrFlipMap: the one number per image pair that FLIP's authors pool the map into.
 double hdrFlip(const Image& test, const Image& reference, const FlipExposures& exposures,
                double pixelsPerDegree = kFlipPixelsPerDegree);
 
