@@ -376,6 +376,15 @@ TEST(ErrorMap, ColoursFollowTheLogScaleOfThePixelsRelativeSquaredError) {
     EXPECT_THROW(errorMap(filled(3, 2, 1, 1, 1), ref), InputError);
 }
 
+// srgbDecode is the inverse of the PNG writer's encoding on every 8-bit code, so an image drawn
+// in sRGB bytes (the chart) is written back to the same bytes. Catches a 2.2 gamma for the sRGB
+// curve, or a decode that misses its linear segment.
+TEST(Image, SrgbDecodeRoundTripsEveryByteThroughTheWriter) {
+    for (int v = 0; v < 256; ++v) EXPECT_EQ(int(srgbToByte(srgbDecode(static_cast<unsigned char>(v)))), v) << v;
+    EXPECT_EQ(srgbDecode(0), 0.0f);
+    EXPECT_EQ(srgbDecode(255), 1.0f);
+}
+
 // How many pixels the worst 0.1 % is: ceil(N / 1000), and at least one. Checked directly and
 // through the metric, with two pixels of equal error (share 1/2 when the tail is one pixel, 1
 // when it is two). Catches: floor(N / 1000) (1001 pixels: one pixel, 0.5), N / 1000 + 1 (1000

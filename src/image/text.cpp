@@ -67,15 +67,6 @@ void drawText(Image& img, int x, int y, const std::string& text, const TextStyle
         for (int mx = 0; mx < m.width; ++mx) blendPixel(img, x0 + mx, y0 + my, style.color, m.at(mx, my));
 }
 
-void drawTextUp(Image& img, int x, int y, const std::string& text, const TextStyle& style) {
-    if (text.empty()) return;
-    const Mask m = rasterise(text, style);
-    // Mask column mx becomes image row (bottom to top), mask row my becomes image column.
-    const int x0 = x - m.height / 2, y0 = y + m.width / 2;
-    for (int my = 0; my < m.height; ++my)
-        for (int mx = 0; mx < m.width; ++mx) blendPixel(img, x0 + my, y0 - mx, style.color, m.at(mx, my));
-}
-
 int textWidth(const std::string& text, const TextStyle& style) {
     if (text.empty()) return 0;
     const OIIO::ROI r = measure(text, style);

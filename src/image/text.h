@@ -22,9 +22,6 @@ void requireFont();
 
 // Draws one line of UTF-8 text with its baseline at y, anchored at x by `style.align`.
 void drawText(Image& img, int x, int y, const std::string& text, const TextStyle& style);
-// The same, turned 90 degrees counter-clockwise (reading bottom to top, as a chart's y-axis label),
-// centred on (x, y).
-void drawTextUp(Image& img, int x, int y, const std::string& text, const TextStyle& style);
 // Width in pixels that drawText would take.
 int textWidth(const std::string& text, const TextStyle& style);
 
