@@ -7,15 +7,6 @@ namespace tripath {
 
 Rgb fromSrgb(uint8_t r, uint8_t g, uint8_t b) { return {srgbDecode(r), srgbDecode(g), srgbDecode(b)}; }
 
-void blendPixel(Image& img, int x, int y, Rgb c, float coverage) {
-    if (x < 0 || y < 0 || x >= img.width || y >= img.height || !(coverage > 0)) return;
-    const float a = std::min(coverage, 1.0f);
-    float* p = img.at(x, y);
-    p[0] += a * (c.r - p[0]);
-    p[1] += a * (c.g - p[1]);
-    p[2] += a * (c.b - p[2]);
-}
-
 void fillRect(Image& img, Region r, Rgb c) {
     for (int y = std::max(0, r.y); y < std::min(img.height, r.y + r.h); ++y)
         for (int x = std::max(0, r.x); x < std::min(img.width, r.x + r.w); ++x) {

@@ -20,8 +20,6 @@ struct Region {
 // An 8-bit sRGB colour (as in CSS "#rrggbb") as the linear value that writePng turns back into it.
 Rgb fromSrgb(uint8_t r, uint8_t g, uint8_t b);
 
-// Blends `c` over one pixel with the given coverage in [0, 1]; pixels outside the image are ignored.
-void blendPixel(Image& img, int x, int y, Rgb c, float coverage);
 // Pixels outside the image are left out.
 void fillRect(Image& img, Region r, Rgb c);
 void strokeRect(Image& img, Region r, Rgb c, int thickness = 1);
