@@ -6,10 +6,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -147,36 +149,142 @@ TEST(RenderLoop, OnPassSeesEveryPassAndTheFilmSoFar) {
     EXPECT_EQ(last.rgb, r.image().rgb);
 }
 
-TEST(Chart, SvgHasAxesLegendAndOneLinePerSeries) {
+// The chart's SVG (Cairo's SVG surface, chart.cpp): an SVG document of the asked size in pixels,
+// with each series stroked twice in its colour (its line and its legend entry) and a band filled
+// translucent. Catches a series or legend left out, a band drawn opaque or not at all, and sizes in
+// Cairo's default unit (points, which would show the report's chart a third larger).
+TEST(Chart, SvgIsOfTheAskedSizeAndStrokesEachSeries) {
     LogLogChart c;
-    c.title = "t & <title>";
-    c.xLabel = "render time (s)";
-    c.yLabel = "relMSE";
-    c.series.push_back({"pt", {31, 119, 180}, {0.01, 0.1, 1}, {1, 0.1, 0.01}, {0.5, 0.05, 0.005}, {2, 0.2, 0.02}});
-    c.series.push_back({"lt", {255, 127, 14}, {0.01, 1}, {2, 0.02}, {}, {}});
+    c.width = 640;
+    c.height = 400;
+    c.series.push_back({"red", {255, 0, 0}, {0.01, 0.1, 1}, {1, 0.1, 0.01}, {0.5, 0.05, 0.005}, {2, 0.2, 0.02}});
+    c.series.push_back({"blue", {0, 0, 255}, {0.01, 1}, {2, 0.02}, {}, {}});
     const std::string svg = chartSvg(c);
-    EXPECT_EQ(svg.rfind("<svg ", 0), 0u);
-    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+    EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+    EXPECT_NE(svg.find(R"(<svg xmlns="http://www.w3.org/2000/svg")"), std::string::npos);
+    EXPECT_NE(svg.find(R"(width="640px" height="400px" viewBox="0 0 640 400")"), std::string::npos) << svg.substr(0, 300);
+    EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
     auto count = [&](const std::string& s) {
         size_t n = 0;
         for (size_t p = svg.find(s); p != std::string::npos; p = svg.find(s, p + 1)) ++n;
         return n;
     };
-    EXPECT_EQ(count("<polyline"), 2u);
-    EXPECT_EQ(count("<polygon"), 1u);  // only pt has a band
-    EXPECT_NE(svg.find("t &amp; &lt;title&gt;"), std::string::npos);
-    EXPECT_NE(svg.find(">render time (s)<"), std::string::npos);
-    EXPECT_NE(svg.find(">0.01<"), std::string::npos);  // a decade tick label
-    EXPECT_NE(svg.find(">lt<"), std::string::npos);    // legend entry
+    EXPECT_EQ(count("stroke:rgb(100%,0%,0%)"), 2u);
+    EXPECT_EQ(count("stroke:rgb(0%,0%,100%)"), 2u);
+    EXPECT_EQ(count("fill:rgb(100%,0%,0%);fill-opacity:0.2;"), 1u);  // only red has a band
+}
 
-    const Image png = chartImage(c);
-    EXPECT_EQ(png.width, c.width);
-    EXPECT_EQ(png.height, c.height);
-    // Something other than the white background was drawn in the plot area.
-    size_t coloured = 0;
-    for (size_t i = 0; i < png.rgb.size(); i += 3)
-        if (png.rgb[i] < 0.5f && png.rgb[i + 2] > 0.2f) ++coloured;
-    EXPECT_GT(coloured, 200u);
+namespace {
+
+// A chart whose positions are easy by hand: both axes span 10^0..10^2, which with the 5 % margins
+// is log10 -0.1..2.1; a 322x316 chart has a 220x220 plot area at (78, 40). So 1, 10 and 100 sit at
+// x = 88, 188, 288 and y = 250, 150, 50 pixels.
+LogLogChart handChart(ChartSeries s) {
+    LogLogChart c;
+    c.width = 322;
+    c.height = 316;
+    c.series.push_back(std::move(s));
+    return c;
+}
+
+// The 8-bit sRGB value writePng would write for a pixel of chartImage.
+std::array<int, 3> bytesAt(const Image& img, int x, int y) {
+    return {srgbToByte(img.at(x, y)[0]), srgbToByte(img.at(x, y)[1]), srgbToByte(img.at(x, y)[2])};
+}
+
+bool reddish(const std::array<int, 3>& c) { return c[0] > 200 && c[1] < 120 && c[2] < 120; }
+
+double segmentDistance(double px, double py, double ax, double ay, double bx, double by) {
+    const double dx = bx - ax, dy = by - ay;
+    const double t = std::clamp(((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+    return std::hypot(px - ax - t * dx, py - ay - t * dy);
+}
+
+}  // namespace
+
+// The points (1, 10), (10, 100), (100, 1) in pure red land on (88, 150), (188, 50), (288, 250);
+// every red pixel below the legend is on the line between them; where swapped axes would put the
+// points there is no red. Catches swapped axes, a linear scale, a y axis growing downwards, and
+// Cairo's sRGB bytes decoded other than writePng encodes them (the red would not come back 255, 0, 0).
+TEST(Chart, PointsSitWhereTheLogAxesPutThem) {
+    const Image img = chartImage(handChart({"r", {255, 0, 0}, {1, 10, 100}, {10, 100, 1}, {}, {}}));
+    ASSERT_EQ(img.width, 322);
+    ASSERT_EQ(img.height, 316);
+    const std::array<int, 3> red{255, 0, 0};
+    for (auto [x, y] : {std::pair{88, 150}, {188, 50}, {288, 250}}) {
+        EXPECT_EQ(bytesAt(img, x, y), red) << x << "," << y;
+        EXPECT_EQ(bytesAt(img, x - 1, y - 1), red) << x << "," << y;
+    }
+    for (auto [x, y] : {std::pair{188, 250}, {288, 150}, {88, 50}}) EXPECT_FALSE(reddish(bytesAt(img, x, y))) << x << "," << y;
+    size_t onLine = 0;
+    for (int y = 90; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            if (!reddish(bytesAt(img, x, y))) continue;
+            const double d = std::min(segmentDistance(x + 0.5, y + 0.5, 88, 150, 188, 50),
+                                      segmentDistance(x + 0.5, y + 0.5, 188, 50, 288, 250));
+            EXPECT_LT(d, 3.5) << "red at " << x << "," << y;
+            ++onLine;
+        }
+    EXPECT_GT(onLine, 300u);
+}
+
+// A band from 1 to 100 under a line at 10: inside it the colour is a fifth of the series' blue
+// over white (204, 204, 255, give or take Cairo's rounding), above it the plot stays white, on the
+// line it is the blue. Catches a band drawn opaque, left out, or spanning the wrong values.
+TEST(Chart, BandIsATranslucentFillBetweenLowAndHigh) {
+    const Image img = chartImage(handChart({"b", {0, 0, 255}, {1, 100}, {10, 10}, {1, 1}, {100, 100}}));
+    const std::array<int, 3> inside = bytesAt(img, 125, 110);
+    EXPECT_NEAR(inside[0], 204, 1);
+    EXPECT_NEAR(inside[1], 204, 1);
+    EXPECT_EQ(inside[2], 255);
+    EXPECT_EQ(bytesAt(img, 125, 45), (std::array<int, 3>{255, 255, 255}));
+    EXPECT_EQ(bytesAt(img, 125, 150), (std::array<int, 3>{0, 0, 255}));
+}
+
+// Zero, negative, NaN and infinite coordinates are left out of lines, bands and axes: the chart
+// with them is the chart without them, pixel for pixel and byte for byte; a series with nothing
+// to show and a chart with no series draw without throwing.
+TEST(Chart, PointsALogAxisCannotShowAreLeftOut) {
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    const LogLogChart clean = handChart({"r", {255, 0, 0}, {1, 10, 100}, {10, 100, 1}, {5, 50, 0.5}, {20, 200, 2}});
+    LogLogChart dirty = handChart({"r",
+                                   {255, 0, 0},
+                                   {1, 0, 10, -1, nan, 3, 100, inf},
+                                   {10, 5, 100, 3, 2, nan, 1, 1},
+                                   {5, 1, 50, 1, 1, 0, 0.5, 1},
+                                   {20, 9, 200, 9, 9, -1, 2, 9}});
+    EXPECT_EQ(chartImage(dirty).rgb, chartImage(clean).rgb);
+    // From the first shape on: the document's id before it counts Cairo's surfaces.
+    auto drawing = [](const std::string& svg) { return svg.substr(svg.find("<rect")); };
+    EXPECT_EQ(drawing(chartSvg(dirty)), drawing(chartSvg(clean)));
+    dirty.series.push_back({"none", {0, 0, 255}, {0, -1, nan}, {1, 1, 1}, {}, {}});
+    EXPECT_NO_THROW(chartImage(dirty));
+    EXPECT_NO_THROW(chartSvg(LogLogChart{}));
+    EXPECT_EQ(chartImage(LogLogChart{}).width, 800);
+}
+
+// The title above the plot and the y label turned to read upwards (its ink taller than wide, left
+// of the plot). Catches a title or label left out, and a y label drawn level.
+TEST(Chart, TitleAndUprightYLabelAreDrawn) {
+    LogLogChart c = handChart({"r", {255, 0, 0}, {1, 100}, {1, 100}, {}, {}});
+    c.title = "Title";
+    c.yLabel = "relMSE (lower is better)";
+    const Image img = chartImage(c);
+    auto ink = [&](int x0, int y0, int x1, int y1) {
+        int left = x1, right = x0, top = y1, bottom = y0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x)
+                if (bytesAt(img, x, y)[0] < 100)
+                    left = std::min(left, x), right = std::max(right, x), top = std::min(top, y), bottom = std::max(bottom, y);
+        return std::array<int, 4>{left, top, right, bottom};
+    };
+    const auto title = ink(0, 0, img.width, 36);
+    EXPECT_LT(title[0], title[2]) << "no title";
+    EXPECT_NEAR((title[0] + title[2]) / 2.0, 78 + 110, 4);  // centred over the plot
+    const auto label = ink(0, 40, 32, 260);  // left of the tick labels
+    ASSERT_LT(label[0], label[2]) << "no y label";
+    EXPECT_GT(label[3] - label[1], 4 * (label[2] - label[0]));
+    EXPECT_NEAR((label[1] + label[3]) / 2.0, 150, 4);  // centred beside the plot
 }
 
 TEST(Compose, InsetFindsTheRegionWhereMethodsDiffer) {
@@ -433,7 +541,7 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
     const std::string html = readFile(out + "/index.html");
     for (const char* m : {"relMSE·spp</th>", "worst 0.1 % of pixels</th>", "HDR-FLIP</th>"})
         EXPECT_NE(html.find(m), std::string::npos) << m;
-    EXPECT_NE(readFile(out + "/error-vs-time.svg").find("<polyline"), std::string::npos);
+    EXPECT_NE(readFile(out + "/error-vs-time.svg").find("<svg "), std::string::npos);
 }
 
 // index.html opened by headless Chromium: the page marks <body data-images="loaded"> when every

@@ -1,14 +1,41 @@
-#include "image/chart_layout.h"
+// Log-log charts drawn with Cairo: one routine, drawChart, lays the chart out and draws it onto
+// whichever surface it is given, so the SVG and the PNG are the same drawing by construction.
+#include "image/chart.h"
 
+#include <cairo-svg.h>
+#include <cairo.h>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
 
-namespace tripath::chart {
+namespace tripath {
 
 namespace {
+
+constexpr double kFontSize = 13, kTitleSize = 15, kLegendRow = 20;
+constexpr const char* kFont = "DejaVu Sans";  // Debian's fonts-dejavu-core, as text.h's labels
+
+// log10 of the values at the two ends of an axis.
+struct LogAxis {
+    double lo = 0, hi = 1;
+    double unit(double v) const { return (std::log10(v) - lo) / (hi - lo); }  // 0 at lo, 1 at hi
+};
+
+struct Tick {
+    double value;
+    bool labelled;
+};
+
+struct Box {
+    double x, y, w, h;
+};
+
+bool plottable(double v) { return std::isfinite(v) && v > 0; }
 
 LogAxis axisFor(const std::vector<double>& values) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -43,54 +70,209 @@ std::vector<Tick> ticksFor(const LogAxis& a) {
     return ticks;
 }
 
-}  // namespace
+// Where the plot area and its axes go; data points map to pixels through it.
+struct Layout {
+    Box plot;
+    LogAxis x, y;
 
-double LogAxis::unit(double v) const { return (std::log10(v) - lo) / (hi - lo); }
-
-bool plottable(double v) { return std::isfinite(v) && v > 0; }
-
-Layout layout(const LogLogChart& chart) {
-    std::vector<double> xs, ys;
-    for (const ChartSeries& s : chart.series) {
-        xs.insert(xs.end(), s.x.begin(), s.x.end());
-        for (const auto* v : {&s.y, &s.low, &s.high}) ys.insert(ys.end(), v->begin(), v->end());
-    }
-    Layout l;
-    l.plot = {78, 40, chart.width - 78 - 24, chart.height - 40 - 56};
-    l.x = axisFor(xs);
-    l.y = axisFor(ys);
-    l.xTicks = ticksFor(l.x);
-    l.yTicks = ticksFor(l.y);
-    int nameWidth = 0;
-    for (const ChartSeries& s : chart.series) nameWidth = std::max<int>(nameWidth, 8 * s.name.size());
-    const int w = 46 + nameWidth, h = 10 + Layout::legendRow * static_cast<int>(chart.series.size());
-    l.legend = {l.plot.x + l.plot.w - w - 10, l.plot.y + 10, w, h};
-    return l;
-}
-
-Point toPixel(const Layout& l, double x, double y) {
-    return {l.plot.x + l.x.unit(x) * l.plot.w, l.plot.y + (1 - l.y.unit(y)) * l.plot.h};
-}
-
-std::vector<Point> linePoints(const Layout& l, const ChartSeries& s) {
-    std::vector<Point> pts;
-    for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
-        if (plottable(s.x[i]) && plottable(s.y[i])) pts.push_back(toPixel(l, s.x[i], s.y[i]));
-    return pts;
-}
-
-std::vector<Point> bandOutline(const Layout& l, const ChartSeries& s) {
-    std::vector<Point> upper, lower;
-    if (s.low.size() != s.x.size() || s.high.size() != s.x.size()) return {};
-    for (size_t i = 0; i < s.x.size(); ++i)
-        if (plottable(s.x[i]) && plottable(s.low[i]) && plottable(s.high[i])) {
-            upper.push_back(toPixel(l, s.x[i], s.high[i]));
-            lower.push_back(toPixel(l, s.x[i], s.low[i]));
+    explicit Layout(const LogLogChart& chart) : plot{78, 40, chart.width - 78.0 - 24, chart.height - 40.0 - 56} {
+        std::vector<double> xs, ys;
+        for (const ChartSeries& s : chart.series) {
+            xs.insert(xs.end(), s.x.begin(), s.x.end());
+            for (const auto* v : {&s.y, &s.low, &s.high}) ys.insert(ys.end(), v->begin(), v->end());
         }
-    upper.insert(upper.end(), lower.rbegin(), lower.rend());
-    return upper;
+        x = axisFor(xs);
+        y = axisFor(ys);
+    }
+    // y grows downwards in pixels, upwards in data.
+    double px(double v) const { return plot.x + x.unit(v) * plot.w; }
+    double py(double v) const { return plot.y + (1 - y.unit(v)) * plot.h; }
+};
+
+// A 1-pixel line on a pixel row or column rather than across two (crisp in the PNG).
+double crisp(double v) { return std::floor(v) + 0.5; }
+
+void setColor(cairo_t* cr, const std::array<uint8_t, 3>& c, double alpha = 1) {
+    cairo_set_source_rgba(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, alpha);
+}
+
+void setGrey(cairo_t* cr, int v) { setColor(cr, {uint8_t(v), uint8_t(v), uint8_t(v)}); }
+
+enum class Anchor { Start, Middle, End };
+
+// Width of one line of text, with the font selected for drawing it.
+double advance(cairo_t* cr, const std::string& s, double size, bool bold = false) {
+    cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, size);
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, s.c_str(), &e);
+    return e.x_advance;
+}
+
+// One line of text with its baseline at y, anchored at x; turned by `angle` (radians, clockwise)
+// about (x, y).
+void text(cairo_t* cr, double x, double y, const std::string& s, double size, Anchor anchor = Anchor::Start,
+          bool bold = false, double angle = 0) {
+    const double w = advance(cr, s, size, bold);
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_rotate(cr, angle);
+    cairo_move_to(cr, anchor == Anchor::Start ? 0 : anchor == Anchor::Middle ? -w / 2 : -w, 0);
+    cairo_show_text(cr, s.c_str());
+    cairo_restore(cr);
 }
 
 std::string tickLabel(double v) { return fmt::format("{:g}", v); }
 
-}  // namespace tripath::chart
+void drawGrid(cairo_t* cr, const Layout& l) {
+    const Box& p = l.plot;
+    cairo_set_line_width(cr, 1);
+    for (const Tick& t : ticksFor(l.x)) {
+        const double x = crisp(l.px(t.value));
+        setGrey(cr, t.labelled ? 200 : 236);
+        cairo_move_to(cr, x, p.y);
+        cairo_line_to(cr, x, p.y + p.h);
+        cairo_stroke(cr);
+        setGrey(cr, 0);
+        if (t.labelled) text(cr, x, p.y + p.h + 17, tickLabel(t.value), kFontSize, Anchor::Middle);
+    }
+    for (const Tick& t : ticksFor(l.y)) {
+        const double y = crisp(l.py(t.value));
+        setGrey(cr, t.labelled ? 200 : 236);
+        cairo_move_to(cr, p.x, y);
+        cairo_line_to(cr, p.x + p.w, y);
+        cairo_stroke(cr);
+        setGrey(cr, 0);
+        if (t.labelled) text(cr, p.x - 6, y + 4, tickLabel(t.value), kFontSize, Anchor::End);
+    }
+}
+
+// Bands (high forwards, low backwards, translucent) under the lines, each point marked with a dot;
+// clipped to the plot area. A point a log axis cannot show is left out.
+void drawSeries(cairo_t* cr, const Layout& l, const LogLogChart& c) {
+    cairo_save(cr);
+    cairo_rectangle(cr, l.plot.x, l.plot.y, l.plot.w, l.plot.h);
+    cairo_clip(cr);
+    for (const ChartSeries& s : c.series) {
+        if (s.low.size() != s.x.size() || s.high.size() != s.x.size()) continue;
+        std::vector<size_t> shown;
+        for (size_t i = 0; i < s.x.size(); ++i)
+            if (plottable(s.x[i]) && plottable(s.low[i]) && plottable(s.high[i])) shown.push_back(i);
+        if (shown.size() < 2) continue;
+        for (size_t i : shown) cairo_line_to(cr, l.px(s.x[i]), l.py(s.high[i]));
+        for (auto i = shown.rbegin(); i != shown.rend(); ++i) cairo_line_to(cr, l.px(s.x[*i]), l.py(s.low[*i]));
+        cairo_close_path(cr);
+        setColor(cr, s.color, 0.2);
+        cairo_fill(cr);
+    }
+    cairo_set_line_width(cr, 2);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    for (const ChartSeries& s : c.series) {
+        setColor(cr, s.color);
+        std::vector<std::pair<double, double>> points;
+        for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
+            if (plottable(s.x[i]) && plottable(s.y[i])) points.emplace_back(l.px(s.x[i]), l.py(s.y[i]));
+        for (const auto& [x, y] : points) cairo_line_to(cr, x, y);
+        cairo_stroke(cr);
+        for (const auto& [x, y] : points) {
+            cairo_new_sub_path(cr);
+            cairo_arc(cr, x, y, 2.5, 0, 2 * std::numbers::pi);
+        }
+        cairo_fill(cr);
+    }
+    cairo_restore(cr);
+}
+
+// In the plot's top-right corner: a line of each series' colour and its name.
+void drawLegend(cairo_t* cr, const Layout& l, const LogLogChart& c) {
+    double nameWidth = 0;
+    for (const ChartSeries& s : c.series) nameWidth = std::max(nameWidth, advance(cr, s.name, kFontSize));
+    const double w = std::ceil(46 + nameWidth), h = 10 + kLegendRow * c.series.size();
+    const double x = l.plot.x + l.plot.w - w - 10 + 0.5, y = l.plot.y + 10 + 0.5;
+    cairo_rectangle(cr, x, y, w, h);
+    cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+    cairo_fill_preserve(cr);
+    setGrey(cr, 153);
+    cairo_set_line_width(cr, 1);
+    cairo_stroke(cr);
+    cairo_set_line_width(cr, 2);
+    for (size_t i = 0; i < c.series.size(); ++i) {
+        const double rowY = std::floor(y) + 5 + kLegendRow * i + kLegendRow / 2;
+        setColor(cr, c.series[i].color);
+        cairo_move_to(cr, x + 8, rowY);
+        cairo_line_to(cr, x + 34, rowY);
+        cairo_stroke(cr);
+        setGrey(cr, 0);
+        text(cr, x + 40, rowY + 4, c.series[i].name, kFontSize);
+    }
+}
+
+void drawChart(cairo_t* cr, const LogLogChart& c) {
+    const Layout l(c);
+    const Box& p = l.plot;
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    drawGrid(cr, l);
+    drawSeries(cr, l, c);
+    setGrey(cr, 0);
+    cairo_set_line_width(cr, 1);
+    cairo_rectangle(cr, crisp(p.x), crisp(p.y), std::round(p.w), std::round(p.h));
+    cairo_stroke(cr);
+    text(cr, p.x + p.w / 2, 24, c.title, kTitleSize, Anchor::Middle, true);
+    text(cr, p.x + p.w / 2, p.y + p.h + 42, c.xLabel, kFontSize + 1, Anchor::Middle);
+    text(cr, 20, p.y + p.h / 2, c.yLabel, kFontSize + 1, Anchor::Middle, false, -std::numbers::pi / 2);
+    drawLegend(cr, l, c);
+}
+
+using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+
+// Cairo records its first error on the context or surface and ignores the calls after it.
+void check(cairo_status_t status) {
+    if (status != CAIRO_STATUS_SUCCESS) throw std::runtime_error(std::string("chart: ") + cairo_status_to_string(status));
+}
+
+void drawOnto(const Surface& surface, const LogLogChart& c) {
+    cairo_t* cr = cairo_create(surface.get());
+    drawChart(cr, c);
+    const cairo_status_t status = cairo_status(cr);
+    cairo_destroy(cr);
+    check(status);
+    cairo_surface_flush(surface.get());
+    check(cairo_surface_status(surface.get()));
+}
+
+}  // namespace
+
+std::string chartSvg(const LogLogChart& c) {
+    std::string svg;
+    auto append = [](void* out, const unsigned char* data, unsigned int length) {
+        static_cast<std::string*>(out)->append(reinterpret_cast<const char*>(data), length);
+        return CAIRO_STATUS_SUCCESS;
+    };
+    const Surface surface(cairo_svg_surface_create_for_stream(append, &svg, c.width, c.height), cairo_surface_destroy);
+    // Pixels, not Cairo's default points: <img width="800"> in the report shows it at its size.
+    cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
+    drawOnto(surface, c);
+    cairo_surface_finish(surface.get());  // writes the closing tags
+    check(cairo_surface_status(surface.get()));
+    return svg;
+}
+
+// Cairo's 8-bit values are sRGB-encoded, as a browser shows the SVG; decoded here to the linear
+// values that writePng encodes back into the same bytes. The background is opaque, so every pixel
+// has alpha 255 and Cairo's premultiplied colour is the colour itself.
+Image chartImage(const LogLogChart& c) {
+    const Surface surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, c.width, c.height), cairo_surface_destroy);
+    drawOnto(surface, c);
+    const unsigned char* data = cairo_image_surface_get_data(surface.get());
+    const int stride = cairo_image_surface_get_stride(surface.get());
+    Image img(c.width, c.height);
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) {
+            const uint32_t argb = reinterpret_cast<const uint32_t*>(data + size_t(y) * stride)[x];
+            for (int ch = 0; ch < 3; ++ch) img.at(x, y)[ch] = srgbDecode(uint8_t(argb >> (16 - 8 * ch)));
+        }
+    return img;
+}
+
+}  // namespace tripath

@@ -1,5 +1,5 @@
-// Log-log line charts (error against time), written as SVG text and rasterised into an Image
-// for PNG, from one description so that the two always show the same thing.
+// Log-log line charts (error against time), as SVG text and as an Image for PNG: one drawing
+// (Cairo, in chart.cpp) onto both, so that the two always show the same thing.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -23,7 +23,8 @@ struct LogLogChart {
     int width = 800, height = 500;
 };
 
-// Points that a log axis cannot show (zero, negative, NaN) are left out of lines and bands.
+// Points that a log axis cannot show (zero, negative, NaN) are left out of lines and bands. Text
+// is in DejaVu Sans (text.h's requireFont checks for it), drawn as glyph outlines in the SVG.
 std::string chartSvg(const LogLogChart& chart);
 Image chartImage(const LogLogChart& chart);
 

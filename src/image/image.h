@@ -63,5 +63,8 @@ void checkWritable(const std::string& path);
 // tests and tools agree with the writer bit for bit.
 float srgbEncode(float linear);
 unsigned char srgbToByte(float linear);
+// The inverse: the linear value of an 8-bit sRGB code (as in CSS "#rrggbb"), which srgbToByte
+// turns back into the same code.
+float srgbDecode(unsigned char code);
 
 }  // namespace tripath

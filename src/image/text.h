@@ -1,5 +1,6 @@
 // Text labels drawn into an Image, in DejaVu Sans (Debian's fonts-dejavu-core, installed by
-// scripts/install-deps.sh). OpenImageIO rasterises the glyphs; it stays inside text.cpp.
+// scripts/install-deps.sh; the charts of chart.h use the same font through Cairo). OpenImageIO
+// draws the glyphs; it stays inside text.cpp.
 #pragma once
 #include <string>
 
@@ -22,9 +23,6 @@ void requireFont();
 
 // Draws one line of UTF-8 text with its baseline at y, anchored at x by `style.align`.
 void drawText(Image& img, int x, int y, const std::string& text, const TextStyle& style);
-// The same, turned 90 degrees counter-clockwise (reading bottom to top, as a chart's y-axis label),
-// centred on (x, y).
-void drawTextUp(Image& img, int x, int y, const std::string& text, const TextStyle& style);
 // Width in pixels that drawText would take.
 int textWidth(const std::string& text, const TextStyle& style);
 
