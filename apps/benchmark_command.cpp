@@ -252,7 +252,8 @@ std::string markdownTable(const std::vector<Cell>& cells) {
         md += "| `" + s + "` |";
         for (const std::string& m : methods) {
             const Cell& x = cellOf(cells, s, m);
-            std::string cell = fmt::format("{:.3g} ({:.0f} spp)", x.summary.error.relMse, x.summary.spp);
+            std::string cell = fmt::format("{:.3g} ({:.0f} spp, FLIP {:.2g})", x.summary.error.relMse, x.summary.spp,
+                                           x.summary.flip);
             if (x.summary.error.relMse == bestRelMse(cells, s)) cell = "**" + cell + "**";
             if (x.biasedBlocks > 0) cell += fmt::format(", biased {}/{}", x.biasedBlocks, x.blocks);
             md += " " + cell + " |";

@@ -15,6 +15,9 @@
 #   docs/images/failures.png  reference and every method's run 0 per scene, each row scaled alike
 #   docs/images/failures-bias-<scene>.png for the scenes named in $BIAS_MAPS (default: sds): the
 #                             benchmark's bias maps of lt and pt there
+#   docs/images/failures-benchmark.png, failures-page-sds.png: the benchmark's index.html and the
+#                             page of sds as headless Chromium shows them (scripts/install-test-deps.sh
+#                             installs it)
 # Runtime: 11 scenes x (6 x RUNS x SECONDS + 10 x SECONDS), about 15 minutes at the defaults.
 # Timings are wall-clock: run it on an otherwise idle machine, or the table measures the neighbours.
 set -euo pipefail
@@ -45,6 +48,13 @@ done
 for scene in ${BIAS_MAPS:-sds}; do
   for m in lt pt; do cp "$out/$scene/bias-$m.png" "docs/images/failures-bias-$scene-$m.png"; done
 done
+# The pages as a reader sees them (screenshots of the top of each page).
+screenshot() {
+  chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --user-data-dir="$out/chromium-profile" \
+    --window-size="$3" --screenshot="$2" "file://$(realpath "$1")" 2>/dev/null
+}
+screenshot "$out/index.html" docs/images/failures-benchmark.png 1400,1150
+screenshot "$out/sds/index.html" docs/images/failures-page-sds.png 1400,1400
 
 # Replace the generated block of docs/failures.md, keeping the hand-written text around it.
 note="relMSE against a vcm reference (10 × the time) after ${seconds} s per run at ${size}x${size}, mean of ${runs} runs ($(date -u +%Y-%m-%d), $(nproc) cores); lower is better, the best of each row in bold; \"biased n/N\": blocks where Welch's t-test against bdpt's runs finds bias (Holm, family-wise 1 %)."
