@@ -400,9 +400,9 @@ TEST(Text, LabelsAreAnchoredByTheirAlignment) {
 // in sRGB bytes (the chart) is written back to the same bytes. Catches a 2.2 gamma for the sRGB
 // curve, or a decode that misses its linear segment.
 TEST(Image, SrgbDecodeRoundTripsEveryByteThroughTheWriter) {
-    for (int v = 0; v < 256; ++v) EXPECT_EQ(int(srgbToByte(srgbDecode(static_cast<unsigned char>(v)))), v) << v;
-    EXPECT_EQ(srgbDecode(0), 0.0f);
-    EXPECT_EQ(srgbDecode(255), 1.0f);
+    for (int v = 0; v < 256; ++v) EXPECT_EQ(int(srgbToByte(srgbDecode(v / 255.0f))), v) << v;
+    EXPECT_EQ(srgbDecode(0.0f), 0.0f);
+    EXPECT_EQ(srgbDecode(1.0f), 1.0f);
 }
 
 // How many pixels the worst 0.1 % is: ceil(N / 1000), and at least one. Checked directly and

@@ -270,7 +270,7 @@ Image chartImage(const LogLogChart& c) {
     for (int y = 0; y < c.height; ++y)
         for (int x = 0; x < c.width; ++x) {
             const uint32_t argb = reinterpret_cast<const uint32_t*>(data + size_t(y) * stride)[x];
-            for (int ch = 0; ch < 3; ++ch) img.at(x, y)[ch] = srgbDecode(uint8_t(argb >> (16 - 8 * ch)));
+            for (int ch = 0; ch < 3; ++ch) img.at(x, y)[ch] = srgbDecode(uint8_t(argb >> (16 - 8 * ch)) / 255.0f);
         }
     return img;
 }

@@ -5,7 +5,9 @@
 
 namespace tripath {
 
-Rgb fromSrgb(uint8_t r, uint8_t g, uint8_t b) { return {srgbDecode(r), srgbDecode(g), srgbDecode(b)}; }
+Rgb fromSrgb(uint8_t r, uint8_t g, uint8_t b) {
+    return {srgbDecode(r / 255.0f), srgbDecode(g / 255.0f), srgbDecode(b / 255.0f)};
+}
 
 void fillRect(Image& img, Region r, Rgb c) {
     for (int y = std::max(0, r.y); y < std::min(img.height, r.y + r.h); ++y)

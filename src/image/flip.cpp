@@ -70,10 +70,6 @@ float clip01(float v) { return v < 0 ? 0.0f : (v > 1 ? 1.0f : v); }
 // The larger of a and b, NaN if either is.
 float maxOrNaN(float a, float b) { return std::isnan(b) || a < b ? b : a; }
 
-float srgbDecode(float v) {
-    return v <= 0.04045f ? v / 12.92f : float(std::pow((double(v) + 0.055) / 1.055, 2.4));
-}
-
 double luminance(const float* rgb) {
     return kRgbToXyz[1][0] * rgb[0] + kRgbToXyz[1][1] * rgb[1] + kRgbToXyz[1][2] * rgb[2];
 }

@@ -196,10 +196,7 @@ unsigned char srgbToByte(float linear) {
     return static_cast<unsigned char>(v >= 255.0f ? 255.0f : v);
 }
 
-float srgbDecode(unsigned char code) {
-    const float c = code / 255.0f;
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
+float srgbDecode(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 void writeExr(const std::string& path, const Image& img, const Metadata& meta) {
     checkImage(path, img);

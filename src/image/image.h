@@ -63,8 +63,8 @@ void checkWritable(const std::string& path);
 // tests and tools agree with the writer bit for bit.
 float srgbEncode(float linear);
 unsigned char srgbToByte(float linear);
-// The inverse: the linear value of an 8-bit sRGB code (as in CSS "#rrggbb"), which srgbToByte
-// turns back into the same code.
-float srgbDecode(unsigned char code);
+// The inverse, the sRGB EOTF: the linear value of an encoded one in [0, 1]. Of an 8-bit code c (as
+// in CSS "#rrggbb") it is srgbDecode(c / 255.0f), which srgbToByte turns back into c.
+float srgbDecode(float encoded);
 
 }  // namespace tripath
