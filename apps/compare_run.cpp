@@ -64,12 +64,13 @@ Reference renderReference(const CompareOptions& o, const Scene& scene) {
         kReferenceBudget, r.integrator);
     const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
     RenderSettings rs = renderSettings(r);
+    rs.team = &team();  // every rank renders the reference together
     const std::string label = "reference " + r.integrator + " " + r.scene;
     rs.progress = progressReporter(rs, r.width, r.height, label);
     const RenderResult result = render(scene, *integrator, rs);  // by every rank together
     if (isRankZero()) {
         printSummary(label, result, r);
-        writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result));
+        writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result, team().size()));
     }
     return {result.image(), fmt::format("{}, {} spp, {:.0f} s", r.integrator, result.passes, result.seconds), file};
 }
@@ -112,7 +113,7 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
                              "pixels, HDR-FLIP {:.4g}\n",
                              label, f.error.relMse, f.error.mse, f.error.mae, perSampleRelVariance(f.error.relMse, f.spp),
                              tailShareText(f.error.tailShare), run.flip);
-    return {std::move(run), std::move(image), renderMetadata(ro, scene, *integrator, r)};
+    return {std::move(run), std::move(image), renderMetadata(ro, scene, *integrator, r, team().size())};
 }
 
 }  // namespace tripath::app

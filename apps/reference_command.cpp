@@ -107,17 +107,18 @@ void run(const ReferenceCommand& c) {
     });
 
     RenderSettings rs = renderSettings(o);
+    rs.team = &team();
     rs.firstPass = continuing ? shared[2] : 0;  // fresh sample indices after the ones already in the file
     rs.stop = installInterruptHandler();
     const std::string label = fmt::format("reference {} {}", o.integrator, o.scene);
     rs.progress = progressReporter(rs, o.width, o.height, label);
     Resumable how{c.out, checkpointSettings(o, *scene, *integrator, rs.layers), false, true, {}};
-    how.writeImage = [&](const RenderResult& sofar) { writeExr(c.out, sofar.image(), renderMetadata(o, *scene, *integrator, sofar)); };
+    how.writeImage = [&](const RenderResult& sofar) { writeExr(c.out, sofar.image(), renderMetadata(o, *scene, *integrator, sofar, team().size())); };
     const RenderResult r = renderResumable(*scene, *integrator, rs, o, how);
     if (!isRankZero()) return;
     printSummary(label, r, o);
 
-    Metadata meta = renderMetadata(o, *scene, *integrator, r);
+    Metadata meta = renderMetadata(o, *scene, *integrator, r, team().size());
     Image image = r.image();
     if (old && !exact) {
         image = combine(old->image, old->spp(), image, r.passes);

@@ -20,8 +20,6 @@ struct RenderCommand {
     std::string out, png;
     std::string replay;  // --replay PASS,PIXEL
     float exposure = 0;
-    bool depthImages = false;
-    int strategyImages = 0;
 };
 
 // "<dir>/<stem><suffix>.exr" beside the main output.
@@ -36,10 +34,6 @@ void validate(const RenderCommand& c) {
     if (std::filesystem::path(c.out).extension() != ".exr") throw InputError("--out must name an .exr file: " + c.out);
     if (!c.png.empty() && std::filesystem::path(c.png).extension() != ".png")
         throw InputError("--png must name a .png file: " + c.png);
-    if (c.strategyImages < 0 || c.strategyImages > 16)
-        throw InputError(fmt::format("--strategy-images must be between 1 and 16 (got {})", c.strategyImages));
-    if (c.strategyImages > 0 && (o.integrator == "pt" || o.integrator == "lt"))
-        throw InputError("--strategy-images needs --integrator bdpt, vcm, bpm or ppm (pt and lt have no (s,t) to separate)");
     if (!isRankZero()) return;  // only rank 0 writes
     checkWritable(c.out);
     if (!c.png.empty()) checkWritable(c.png);
@@ -106,7 +100,7 @@ void replay(const RenderCommand& c) {
     std::cout << fmt::format("{} {}, seed {}: pass {}, {} {} (x {}, y {})\n", o.integrator, o.scene, o.seed, pass,
                              o.integrator == "lt" ? "light path" : "pixel", pixel, pixel % o.width, pixel / o.width);
     PrintingSink sink;
-    replaySample(*scene, *integrator, renderSettings(o), pass, pixel, sink);
+    replaySample(*scene, *integrator, renderSettings(o), pass, pixel, sink);  // one process replays
     sink.summarize();
 }
 
@@ -120,18 +114,17 @@ void run(const RenderCommand& c) {
     });
     const auto integrator = makeIntegrator(o.integrator, integratorSettings(o));
     RenderSettings rs = renderSettings(o);
-    if (c.depthImages) rs.layers.depthImages = o.maxDepth;
-    rs.layers.strategyLength = c.strategyImages;
+    rs.team = &team();
     rs.stop = installInterruptHandler();
     const std::string label = fmt::format("{} {}", o.integrator, o.scene);
     rs.progress = progressReporter(rs, o.width, o.height, label);
 
     Resumable how{c.out, checkpointSettings(o, *scene, *integrator, rs.layers), true, false, {}};
-    how.writeImage = [&](const RenderResult& sofar) { write(c, rs, renderMetadata(o, *scene, *integrator, sofar), sofar); };
+    how.writeImage = [&](const RenderResult& sofar) { write(c, rs, renderMetadata(o, *scene, *integrator, sofar, team().size()), sofar); };
     const RenderResult r = renderResumable(*scene, *integrator, rs, o, how);
     if (!isRankZero()) return;
     printSummary(label, r, o);
-    write(c, rs, renderMetadata(o, *scene, *integrator, r), r);
+    write(c, rs, renderMetadata(o, *scene, *integrator, r, team().size()), r);
     std::cerr << "wrote " << c.out << (c.png.empty() ? "" : " and " + c.png) << "\n";
 }
 
@@ -144,10 +137,10 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--out", c->out, "Output EXR: linear radiance, 32-bit float, with the settings as metadata")->required();
     cmd->add_option("--png", c->png, "Also write an sRGB PNG preview here");
     cmd->add_option("--exposure", c->exposure, "PNG exposure in stops (the EXR is never scaled)")->capture_default_str();
-    cmd->add_flag("--depth-images", c->depthImages,
+    cmd->add_flag("--depth-images", c->options.depthImages,
                   "Also write <out>-k<K>.exr for each path length K = 1..max-depth: the Neumann-series terms, which "
                   "add up to the full image");
-    cmd->add_option("--strategy-images", c->strategyImages,
+    cmd->add_option("--strategy-images", c->options.strategyImages,
                     "bdpt, vcm, bpm, ppm: also write <out>-s<S>-t<T>-weighted.exr and -unweighted.exr for every "
                     "connection (s,t) of path length k <= this value (k = s+t-1), and <out>-s<S>-t<T>-merge-*.exr for "
                     "every merge (k = s+t-2)");

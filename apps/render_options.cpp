@@ -6,10 +6,7 @@
 #include <csignal>
 #include <iostream>
 
-#include "geometry/embree_isa.h"
 #include "geometry/error.h"
-#include "geometry/scene_source.h"
-#include "paths/kernels.h"
 #include "processes.h"
 #include "stats_report.h"
 
@@ -84,98 +81,10 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
 }
 
 void validateRenderOptions(const RenderOptions& o) {
-    auto fail = [](const std::string& m) { throw InputError(m); };
-    // The film keeps 96 bytes a pixel (the block's double RGB and the exact 192-bit totals) plus the
-    // output image: 8192² is ~6.7 GiB.
-    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384 || double(o.width) * o.height > 8192.0 * 8192.0)
-        fail(fmt::format("--width/--height must be at least 1 and at most 16384, with at most 8192x8192 pixels (got {}x{})",
-                         o.width, o.height));
-    if (o.sppGiven && (o.spp < 1 || o.spp > 1000000))
-        fail(fmt::format("--spp must be between 1 and 1000000 (got {})", o.spp));
-    if (o.timeGiven && !(o.seconds > 0 && o.seconds <= 1e7))
-        fail(fmt::format("--time must be a number of seconds above 0 and at most 1e7 (got {})", o.seconds));
-    if (o.maxDepth < 1 || o.maxDepth > 1024) fail(fmt::format("--max-depth must be between 1 and 1024 (got {})", o.maxDepth));
-    if (o.rrDepth < 1) fail(fmt::format("--rr-depth must be at least 1 (got {})", o.rrDepth));
+    validate(o, Spelling::CommandLine);
     if (!(o.checkpointSeconds >= 0 && o.checkpointSeconds <= 1e7))
-        fail(fmt::format("--checkpoint must be a number of seconds, at least 0 and at most 1e7 (got {})", o.checkpointSeconds));
-    if (o.threads < 0 || o.threads > 4096) fail(fmt::format("--threads must be between 0 and 4096 (got {})", o.threads));
-    if (o.radiusGiven && !(o.merge.radius > 0 && o.merge.radius < 1e30f))
-        fail(fmt::format("--radius must be a length in world units above 0 (got {})", o.merge.radius));
-    if (o.radiusFactorGiven && !(o.merge.radiusFactor > 0 && o.merge.radiusFactor <= 1))
-        fail(fmt::format("--radius-factor must be above 0 and at most 1 (got {})", o.merge.radiusFactor));
-    if (!(o.merge.radiusPixels > 0 && o.merge.radiusPixels <= 1000))
-        fail(fmt::format("--radius-pixels must be above 0 and at most 1000 (got {})", o.merge.radiusPixels));
-    if (!(o.merge.alpha > 0 && o.merge.alpha <= 1))
-        fail(fmt::format("--alpha must be above 0 and at most 1 (got {})", o.merge.alpha));
-    parseMisHeuristic(o.mis);
-    makeIntegrator(o.integrator, {});
-}
-
-IntegratorSettings integratorSettings(const RenderOptions& o) {
-    IntegratorSettings s;
-    s.walk.maxDepth = o.maxDepth;
-    s.walk.rrDepth = o.rrDepth;
-    s.mis = parseMisHeuristic(o.mis);
-    s.merge = o.merge;
-    return s;
-}
-
-std::unique_ptr<Scene> loadScene(const RenderOptions& o) {
-    return std::make_unique<Scene>(loadSceneDesc(o.scene, o.gltf), o.width, o.height);
-}
-
-const char* streamsName(StreamDomain d) { return d == StreamDomain::Reference ? "reference" : "render"; }
-
-RenderSettings renderSettings(const RenderOptions& o) {
-    RenderSettings s;
-    s.seconds = o.seconds;
-    s.spp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : 16);
-    s.seed = o.seed;
-    s.domain = o.domain;
-    s.threads = o.threads;
-    s.timing = o.stats;
-    s.team = &team();
-    return s;
-}
-
-Metadata convergenceSettings(const RenderOptions& o, const std::string& integrator) {
-    return {{"tripath:scene", o.scene},
-            {"tripath:integrator", integrator},
-            {"tripath:max-depth", std::to_string(o.maxDepth)},
-            {"tripath:rr-depth", std::to_string(o.rrDepth)},
-            {"tripath:mis", o.mis}};
-}
-
-Metadata renderMetadata(const RenderOptions& o, const Scene& scene, const Integrator& integrator, const RenderResult& r) {
-    Metadata m{{"tripath:scene", o.scene},
-            {"tripath:integrator", integrator.name()},
-            {"tripath:spp", std::to_string(r.passes)},
-            {"tripath:next-pass", std::to_string(r.nextPass)},
-            {"tripath:seconds", fmt::format("{:.3f}", r.seconds)},
-            {"tripath:seed", std::to_string(o.seed)},
-            {"tripath:streams", streamsName(o.domain)},
-            {"tripath:max-depth", std::to_string(o.maxDepth)},
-            {"tripath:rr-depth", std::to_string(o.rrDepth)},
-            {"tripath:mis", o.mis},
-            {"tripath:dropped-samples", std::to_string(r.droppedSamples)},
-            {"tripath:guarded-weights", std::to_string(r.guardedWeights)},
-            {"tripath:version", TRIPATH_VERSION},
-            {"tripath:embree", embreeDescription()},
-            {"tripath:ranks", std::to_string(team().size())}};
-    const Metadata light = lightPhaseMetadata(o, scene, integrator);
-    m.insert(m.end(), light.begin(), light.end());
-    return m;
-}
-
-Metadata lightPhaseMetadata(const RenderOptions& o, const Scene& scene, const Integrator& integrator) {
-    Metadata m;
-    if (integrator.hasLightPhase())
-        m.push_back({"tripath:light-paths-per-pass", fmt::format("{:.0f}", lightPathsPerPass(scene.camera()))});
-    if (integrator.strategies().merges()) {
-        m.push_back({"tripath:radius", fmt::format("{:.9g}", integrator.firstMergeRadius(scene))});
-        m.push_back({"tripath:alpha", fmt::format("{:.9g}", o.merge.alpha)});
-    }
-    return m;
+        throw InputError(fmt::format("--checkpoint must be a number of seconds, at least 0 and at most 1e7 (got {})",
+                                     o.checkpointSeconds));
 }
 
 namespace {

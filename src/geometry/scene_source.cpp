@@ -8,13 +8,13 @@
 
 namespace tripath {
 
-SceneDesc loadSceneDesc(const std::string& nameOrPath, const GltfOptions& gltf) {
+SceneDesc loadSceneDesc(const std::string& nameOrPath, const GltfOptions& gltf, const WarningSink& warn) {
     if (isBuiltinScene(nameOrPath)) return builtinScene(nameOrPath);
     const std::filesystem::path path(nameOrPath);
     const std::string ext = path.extension().string();
     if (ext != ".gltf" && ext != ".glb" && !std::filesystem::exists(path))
         throw InputError("unknown scene '" + nameOrPath + "': not a built-in (see `tripath scenes`) nor a .gltf/.glb file");
-    return loadGltf(nameOrPath, printWarning, gltf);
+    return loadGltf(nameOrPath, warn, gltf);
 }
 
 }  // namespace tripath

@@ -4,11 +4,13 @@
 
 #include "geometry/gltf_loader.h"
 #include "geometry/scene_desc.h"
+#include "geometry/warnings.h"
 
 namespace tripath {
 
 // A built-in scene by name, else a .gltf/.glb file. Throws InputError for an unknown name that
-// is not a file either, or for a bad file (`gltf` says which files a glTF file may read).
-SceneDesc loadSceneDesc(const std::string& nameOrPath, const GltfOptions& gltf = {});
+// is not a file either, or for a bad file (`gltf` says which files a glTF file may read). The
+// loader's warnings go to `warn`.
+SceneDesc loadSceneDesc(const std::string& nameOrPath, const GltfOptions& gltf = {}, const WarningSink& warn = printWarning);
 
 }  // namespace tripath

@@ -1,0 +1,68 @@
+// What a front end asks to render: the scene, the image size, the integrator and its settings, the
+// budget, the seed and the film's extra layers. The command line (apps/) and the Python module
+// (python/) fill the same request and it is validated here, in one place, so both refuse the same
+// values for the same reasons, and one request gives the same image from either.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "geometry/gltf_loader.h"
+#include "geometry/scene.h"
+#include "image/image.h"
+#include "integrators/integrator.h"
+#include "integrators/render.h"
+
+namespace tripath {
+
+struct RenderRequest {
+    std::string scene;                    // a built-in's name or a .gltf/.glb file
+    GltfOptions gltf;
+    std::string integrator = "bdpt";
+    int spp = 0;                          // passes (0 unless given: then 16, or as many as `seconds` allows)
+    double seconds = 0;                   // wall-clock budget (0 unless given)
+    bool sppGiven = false, timeGiven = false, radiusGiven = false, radiusFactorGiven = false;
+    int width = 512, height = 512;
+    int maxDepth = 16;                    // longest path kept, in segments
+    int rrDepth = 3;                      // Russian roulette from this many subpath vertices on
+    std::string mis = "power";            // balance, power or none
+    MergeSettings merge;                  // vcm, bpm, ppm: the radius schedule
+    uint64_t seed = 1;
+    int threads = 0;                      // 0: all cores
+    bool stats = false;                   // run the phase timers (the counts are always kept)
+    bool depthImages = false;             // a film layer per path length k = 1..maxDepth
+    int strategyImages = 0;               // > 0: weighted and unweighted layers per strategy with k ≤ this
+    // The random streams the samples draw from: renders use CameraSample; references Reference, so
+    // that a reference and a render with the same seed share no random numbers.
+    StreamDomain domain = StreamDomain::CameraSample;
+};
+
+// How a front end spells the request's parameters in its messages: "--max-depth" on the command
+// line, "max_depth" in Python.
+enum class Spelling { CommandLine, Python };
+
+// Throws InputError, one line naming the parameter as `spelling` writes it, for a value out of
+// range, before any work is done.
+void validate(const RenderRequest& r, Spelling spelling);
+
+IntegratorSettings integratorSettings(const RenderRequest& r);
+// Budget, seed, threads, timing, streams and layers as the render loop takes them (16 passes
+// when neither spp nor seconds is given); one process: a team is the caller's to add.
+RenderSettings renderSettings(const RenderRequest& r);
+// The scene at the request's image size; InputError for an unknown name or a bad file.
+std::unique_ptr<Scene> loadScene(const RenderRequest& r, const WarningSink& warn = printWarning);
+
+// "render" or "reference", as tripath:streams records a domain.
+const char* streamsName(StreamDomain d);
+// What decides the image a render converges to, as EXR metadata: tripath:scene, integrator,
+// max-depth, rr-depth and mis. Every check that a file may be added to or measured against
+// (references, checkpoints, the benchmark's reference cache) starts from these.
+Metadata convergenceSettings(const RenderRequest& r, const std::string& integrator);
+// The EXR metadata describing a finished render by `ranks` processes.
+Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator, const RenderResult& result,
+                        int ranks = 1);
+// The part of it that describes the light phase: light paths per pass, and for the merging
+// integrators the first pass's radius in world units and alpha (the radius schedule).
+Metadata lightPhaseMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator);
+
+}  // namespace tripath
