@@ -1,5 +1,8 @@
-// glTF loader tests: each writes its own small .gltf / .glb into a fresh temporary directory.
+// glTF loader tests: each writes its own small .gltf / .glb into a fresh temporary directory,
+// filled as a tinygltf::Model and written by the project's glTF writer (geometry/gltf_model.h);
+// only JSON that no model can hold (a syntax error, a buffer naming a file) is written by hand.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cmath>
@@ -7,59 +10,100 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "geometry/error.h"
 #include "geometry/gltf_loader.h"
-#include "geometry/gltf_writer.h"
+#include "geometry/gltf_model.h"
 
 namespace tripath {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kUnsignedByte = 5121;
-constexpr int kUnsignedShort = 5123;
-constexpr int kUnsignedInt = 5125;
-constexpr int kFloat = 5126;
-const float kSin45 = std::sqrt(0.5f);
+constexpr int kUnsignedByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+constexpr int kUnsignedShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+constexpr int kUnsignedInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+const double kSin45 = std::sqrt(0.5);
 
+// A node's fields, to be written as designated initialisers: {.mesh = 0, .translation = {1, 2, 3}}.
+struct NodeSpec {
+    int mesh = -1;
+    int camera = -1;
+    int light = -1;  // KHR_lights_punctual
+    std::vector<double> translation{}, rotation{}, scale{}, matrix{};
+    std::vector<int> children{};
+};
 
-std::string join(const std::vector<std::string>& items) {
-    std::string out;
-    for (const std::string& item : items) out += (out.empty() ? "" : ",") + item;
-    return out;
+tinygltf::Node node(const NodeSpec& spec) {
+    tinygltf::Node n;
+    n.mesh = spec.mesh;
+    n.camera = spec.camera;
+    if (spec.light >= 0) setExtension(n.extensions, "KHR_lights_punctual", "light", tinygltf::Value(spec.light));
+    n.translation = spec.translation;
+    n.rotation = spec.rotation;
+    n.scale = spec.scale;
+    n.matrix = spec.matrix;
+    n.children = spec.children;
+    return n;
 }
 
-// Assembles a glTF document: binary data goes into buffer 0, everything else is raw JSON added
-// to top-level arrays ("nodes", "meshes", ...). Without explicit "scenes", scene 0 holds `roots`.
+tinygltf::Primitive primitive(int positions, int indices = -1, int material = -1, int normals = -1,
+                              int mode = TINYGLTF_MODE_TRIANGLES) {
+    tinygltf::Primitive p;
+    p.attributes["POSITION"] = positions;
+    if (normals >= 0) p.attributes["NORMAL"] = normals;
+    p.indices = indices;
+    p.material = material;
+    p.mode = mode;
+    return p;
+}
+
+tinygltf::Material pbrMaterial(const std::string& name, std::vector<double> baseColor, double metallic,
+                               double roughness) {
+    tinygltf::Material m;
+    m.name = name;
+    m.pbrMetallicRoughness.baseColorFactor = std::move(baseColor);
+    m.pbrMetallicRoughness.metallicFactor = metallic;
+    m.pbrMetallicRoughness.roughnessFactor = roughness;
+    return m;
+}
+
+// Image 0 with `uri`, texture 0 on it, and a material whose base colour is that texture.
+void addTexturedMaterial(tinygltf::Model& model, const std::string& uri) {
+    model.images.emplace_back().uri = uri;
+    model.textures.emplace_back().source = 0;
+    model.materials.emplace_back().pbrMetallicRoughness.baseColorTexture.index = 0;
+}
+
+template <class T>
+int append(std::vector<T>& items, T item) {
+    items.push_back(std::move(item));
+    return int(items.size()) - 1;
+}
+
+std::string writeText(const fs::path& file, const std::string& text) {
+    std::ofstream(file) << text;
+    return file.string();
+}
+
+// A test's document: binary data goes into buffer 0, anything else straight into `model`.
+// Without scenes, write() adds scene 0 holding `roots`.
 class GltfBuilder {
 public:
-    // Appends bytes (padded to 4) as a new bufferView; returns its index.
     int addView(const void* data, size_t size, size_t byteStride = 0) {
-        const size_t offset = bin_.size();
-        bin_.insert(bin_.end(), static_cast<const unsigned char*>(data),
-                    static_cast<const unsigned char*>(data) + size);
-        while (bin_.size() % 4 != 0) bin_.push_back(0);
-        std::string view = R"({"buffer":0,"byteOffset":)" + std::to_string(offset) +
-                           R"(,"byteLength":)" + std::to_string(size);
-        if (byteStride != 0) view += R"(,"byteStride":)" + std::to_string(byteStride);
-        return add("bufferViews", view + "}");
+        return appendBufferView(model, data, size, byteStride);
     }
-    int addAccessor(int view, int componentType, size_t count, const std::string& type,
-                    size_t byteOffset = 0) {
-        return add("accessors", R"({"bufferView":)" + std::to_string(view) + R"(,"byteOffset":)" +
-                                    std::to_string(byteOffset) + R"(,"componentType":)" +
-                                    std::to_string(componentType) + R"(,"count":)" +
-                                    std::to_string(count) + R"(,"type":")" + type + "\"}");
+    int addAccessor(int view, int componentType, size_t count, int type, size_t byteOffset = 0) {
+        return appendAccessor(model, view, componentType, count, type, byteOffset);
     }
     int addVec3(const std::vector<Vec3>& values) {
         std::vector<float> flat;
         for (Vec3 v : values) flat.insert(flat.end(), {v.x, v.y, v.z});
-        return addAccessor(addView(flat.data(), flat.size() * sizeof(float)), kFloat, values.size(), "VEC3");
+        return addAccessor(addView(flat.data(), flat.size() * sizeof(float)), kFloat, values.size(), TINYGLTF_TYPE_VEC3);
     }
     int addIndices(const std::vector<uint32_t>& indices, int componentType) {
         std::vector<unsigned char> bytes;
@@ -67,97 +111,48 @@ public:
             const size_t size = componentType == kUnsignedByte ? 1 : componentType == kUnsignedShort ? 2 : 4;
             for (size_t b = 0; b < size; ++b) bytes.push_back((i >> (8 * b)) & 0xff);
         }
-        return addAccessor(addView(bytes.data(), bytes.size()), componentType, indices.size(), "SCALAR");
+        return addAccessor(addView(bytes.data(), bytes.size()), componentType, indices.size(), TINYGLTF_TYPE_SCALAR);
+    }
+    int addMesh(const std::vector<tinygltf::Primitive>& primitives) {
+        tinygltf::Mesh mesh;
+        mesh.primitives = primitives;
+        return append(model.meshes, mesh);
     }
     // One-primitive mesh from already added accessors; material < 0 leaves it out.
     int addTriangleMesh(int positions, int indices = -1, int material = -1, int normals = -1) {
-        std::string attributes = R"("POSITION":)" + std::to_string(positions);
-        if (normals >= 0) attributes += R"(,"NORMAL":)" + std::to_string(normals);
-        std::string primitive = R"({"attributes":{)" + attributes + "}";
-        if (indices >= 0) primitive += R"(,"indices":)" + std::to_string(indices);
-        if (material >= 0) primitive += R"(,"material":)" + std::to_string(material);
-        return add("meshes", R"({"primitives":[)" + primitive + "}]}");
+        return addMesh({primitive(positions, indices, material, normals)});
     }
-    int add(const std::string& array, const std::string& json) {
-        arrays_[array].push_back(json);
-        return int(arrays_[array].size()) - 1;
-    }
-    int addRoot(const std::string& nodeJson) {
-        const int node = add("nodes", nodeJson);
-        roots.push_back(node);
-        return node;
-    }
+    int addNode(const NodeSpec& spec) { return append(model.nodes, node(spec)); }
+    int addRoot(const NodeSpec& spec) { return append(roots, addNode(spec)); }
 
-    std::string json(const std::string* bufferUri) const {
-        std::vector<std::string> members = {R"("asset":{"version":"2.0"})"};
-        if (!bin_.empty()) {
-            std::string buffer = R"({"byteLength":)" + std::to_string(bin_.size());
-            if (bufferUri) buffer += R"(,"uri":")" + *bufferUri + "\"";
-            if (!bufferName.empty()) buffer += R"(,"name":")" + bufferName + "\"";
-            members.push_back(R"("buffers":[)" + buffer + "}]");
+    // A .gltf with the buffer embedded, or a .glb with it in the BIN chunk.
+    std::string write(const fs::path& file) const {
+        tinygltf::Model out = model;
+        if (out.scenes.empty()) {
+            out.scenes.emplace_back().nodes = roots;
+            out.defaultScene = 0;
         }
-        for (const auto& [name, items] : arrays_) members.push_back("\"" + name + "\":[" + join(items) + "]");
-        if (!arrays_.count("scenes")) {
-            std::vector<std::string> ids;
-            for (int r : roots) ids.push_back(std::to_string(r));
-            members.push_back(R"("scene":0,"scenes":[{"nodes":[)" + join(ids) + "]}]");
-        }
-        if (!topLevel.empty()) members.push_back(topLevel);
-        return "{" + join(members) + "}";
+        writeGltfModel(out, file.string());
+        return file.string();
     }
-
-    std::string writeEmbedded(const fs::path& file) const {
-        const std::string uri = "data:application/octet-stream;base64," + base64(bin_);
-        return writeText(file, json(&uri));
-    }
-    std::string writeWithBin(const fs::path& file) const {
-        const std::string uri = file.stem().string() + ".bin";
-        std::ofstream(file.parent_path() / uri, std::ios::binary)
-            .write(reinterpret_cast<const char*>(bin_.data()), std::streamsize(bin_.size()));
-        return writeText(file, json(&uri));
-    }
-    // The binary data in `binFile` (folders created) and a .gltf whose buffer has the given uri.
+    // The binary data in `binFile` (folders created) and a .gltf whose buffer has the given uri:
+    // tinygltf embeds every buffer it writes, so the uri is set in the written JSON afterwards.
     std::string writeWithUri(const fs::path& file, const std::string& uri, const fs::path& binFile) const {
+        const std::vector<unsigned char>& bytes = model.buffers.at(0).data;
         fs::create_directories(binFile.parent_path());
         std::ofstream(binFile, std::ios::binary)
-            .write(reinterpret_cast<const char*>(bin_.data()), std::streamsize(bin_.size()));
-        return writeText(file, json(&uri));
+            .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        nlohmann::json json = nlohmann::json::parse(std::ifstream(write(file)));
+        json["buffers"][0]["uri"] = uri;
+        return writeText(file, json.dump());
     }
-    std::string writeGlb(const fs::path& file) const {
-        std::string text = json(nullptr);
-        while (text.size() % 4 != 0) text += ' ';
-        std::vector<unsigned char> out;
-        auto u32 = [&out](uint32_t v) {
-            for (int b = 0; b < 4; ++b) out.push_back((v >> (8 * b)) & 0xff);
-        };
-        const size_t total = 12 + 8 + text.size() + (bin_.empty() ? 0 : 8 + bin_.size());
-        u32(0x46546C67);  // "glTF"
-        u32(2);
-        u32(uint32_t(total));
-        u32(uint32_t(text.size()));
-        u32(0x4E4F534A);  // "JSON"
-        out.insert(out.end(), text.begin(), text.end());
-        if (!bin_.empty()) {
-            u32(uint32_t(bin_.size()));
-            u32(0x004E4942);  // "BIN"
-            out.insert(out.end(), bin_.begin(), bin_.end());
-        }
-        std::ofstream(file, std::ios::binary)
-            .write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()));
-        return file.string();
-    }
-    static std::string writeText(const fs::path& file, const std::string& text) {
-        std::ofstream(file) << text;
-        return file.string();
+    std::string writeWithBin(const fs::path& file) const {
+        const std::string bin = file.stem().string() + ".bin";
+        return writeWithUri(file, bin, file.parent_path() / bin);
     }
 
+    tinygltf::Model model;
     std::vector<int> roots;
-    std::string topLevel;  // extra top-level members, e.g. "extensionsRequired":[...]
-    std::string bufferName;  // buffer 0's name, none when empty
-
-private:
-    std::vector<unsigned char> bin_;
-    std::map<std::string, std::vector<std::string>> arrays_;
 };
 
 using Triangle = std::array<Vec3, 3>;
@@ -198,12 +193,13 @@ protected:
     SceneDesc load(const std::string& path) {
         return loadGltf(path, [this](const std::string& w) { warnings.push_back(w); });
     }
-    // Loads a single-triangle scene whose one node is `nodeJson` + "mesh":0.
-    SceneDesc loadTriangleUnder(const std::string& nodeFields) {
+    // Loads a single-triangle scene whose one node is `spec` with mesh 0.
+    SceneDesc loadTriangleUnder(NodeSpec spec) {
         GltfBuilder b;
         b.addTriangleMesh(b.addVec3(kTriangle));
-        b.addRoot("{" + nodeFields + R"(,"mesh":0})");
-        return load(b.writeEmbedded(file("node.gltf")));
+        spec.mesh = 0;
+        b.addRoot(spec);
+        return load(b.write(file("node.gltf")));
     }
     size_t warningsContaining(const std::string& fragment) const {
         size_t n = 0;
@@ -234,9 +230,8 @@ private:
 const std::vector<Vec3> kTransformedTriangle = {{1, 4, 3}, {-2, 2, 3}, {1, 2, 7}};
 
 TEST_F(GltfTest, TrsTransformPlacesVertices) {
-    const SceneDesc scene = loadTriangleUnder(R"("translation":[1,2,3],"rotation":[0,0,)" +
-                                              std::to_string(kSin45) + "," + std::to_string(kSin45) +
-                                              R"(],"scale":[2,3,4])");
+    const SceneDesc scene =
+        loadTriangleUnder({.translation = {1, 2, 3}, .rotation = {0, 0, kSin45, kSin45}, .scale = {2, 3, 4}});
     const auto tris = triangles(scene);
     ASSERT_EQ(tris.size(), 1u);
     for (int i = 0; i < 3; ++i) expectNear(tris[0][i], kTransformedTriangle[i], 1e-4f);
@@ -244,7 +239,7 @@ TEST_F(GltfTest, TrsTransformPlacesVertices) {
 
 TEST_F(GltfTest, MatrixTransformPlacesVertices) {
     // The same transform as a column-major matrix.
-    const SceneDesc scene = loadTriangleUnder(R"("matrix":[0,2,0,0, -3,0,0,0, 0,0,4,0, 1,2,3,1])");
+    const SceneDesc scene = loadTriangleUnder({.matrix = {0, 2, 0, 0, -3, 0, 0, 0, 0, 0, 4, 0, 1, 2, 3, 1}});
     const auto tris = triangles(scene);
     ASSERT_EQ(tris.size(), 1u);
     for (int i = 0; i < 3; ++i) expectNear(tris[0][i], kTransformedTriangle[i]);
@@ -253,10 +248,10 @@ TEST_F(GltfTest, MatrixTransformPlacesVertices) {
 TEST_F(GltfTest, NestedNodesComposeParentTimesChild) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.addRoot(R"({"translation":[10,0,0],"scale":[2,2,2],"children":[1]})");
-    b.add("nodes", R"({"translation":[1,0,0],"children":[2]})");
-    b.add("nodes", R"({"translation":[0,0,1],"mesh":0})");
-    const auto tris = triangles(load(b.writeEmbedded(file("nested.gltf"))));
+    b.addRoot({.translation = {10, 0, 0}, .scale = {2, 2, 2}, .children = {1}});
+    b.addNode({.translation = {1, 0, 0}, .children = {2}});
+    b.addNode({.mesh = 0, .translation = {0, 0, 1}});
+    const auto tris = triangles(load(b.write(file("nested.gltf"))));
     ASSERT_EQ(tris.size(), 1u);
     // parent(scale 2, +10x) × child(+1x) × grandchild(+1z): (1,0,0) → (1+1, 0, 1)·2 + (10,0,0)
     expectNear(tris[0][0], {14, 0, 2});
@@ -267,12 +262,13 @@ TEST_F(GltfTest, NestedNodesComposeParentTimesChild) {
 TEST_F(GltfTest, LoadsOnlyTheDefaultScene) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.add("nodes", R"({"mesh":0})");
-    b.add("nodes", R"({"mesh":0,"translation":[0,0,5]})");
-    b.add("scenes", R"({"nodes":[0]})");
-    b.add("scenes", R"({"nodes":[1]})");
-    b.topLevel = R"("scene":1)";
-    const auto tris = triangles(load(b.writeEmbedded(file("scenes.gltf"))));
+    b.addNode({.mesh = 0});
+    b.addNode({.mesh = 0, .translation = {0, 0, 5}});
+    b.model.scenes.resize(2);
+    b.model.scenes[0].nodes = {0};
+    b.model.scenes[1].nodes = {1};
+    b.model.defaultScene = 1;
+    const auto tris = triangles(load(b.write(file("scenes.gltf"))));
     ASSERT_EQ(tris.size(), 1u);
     expectNear(tris[0][2], {0, 0, 6});
 }
@@ -280,9 +276,9 @@ TEST_F(GltfTest, LoadsOnlyTheDefaultScene) {
 TEST_F(GltfTest, MeshInstancedByTwoNodesGivesTwoMeshes) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.addRoot(R"({"mesh":0})");
-    b.addRoot(R"({"mesh":0,"translation":[0,3,0]})");
-    const auto tris = triangles(load(b.writeEmbedded(file("instanced.gltf"))));
+    b.addRoot({.mesh = 0});
+    b.addRoot({.mesh = 0, .translation = {0, 3, 0}});
+    const auto tris = triangles(load(b.write(file("instanced.gltf"))));
     ASSERT_EQ(tris.size(), 2u);
     expectNear(tris[1][1], {0, 4, 0});
 }
@@ -298,8 +294,8 @@ TEST_F(GltfTest, IndexTypesAndNonIndexedGiveTheSameTriangles) {
     std::vector<Vec3> unrolled;
     for (uint32_t i : kQuadIndices) unrolled.push_back(kQuad[i]);
     b.addTriangleMesh(b.addVec3(unrolled));
-    for (int m = 0; m < 4; ++m) b.addRoot(R"({"mesh":)" + std::to_string(m) + "}");
-    const SceneDesc scene = load(b.writeEmbedded(file("indices.gltf")));
+    for (int m = 0; m < 4; ++m) b.addRoot({.mesh = m});
+    const SceneDesc scene = load(b.write(file("indices.gltf")));
     ASSERT_EQ(scene.meshes.size(), 4u);
     std::vector<Triangle> expected;
     for (size_t t = 0; t < kQuadIndices.size(); t += 3)
@@ -321,14 +317,14 @@ TEST_F(GltfTest, InterleavedAttributesWithByteStrideAndOffsets) {
     for (Vec3 p : kQuad) interleaved.insert(interleaved.end(), {p.x, p.y, p.z, 0, 0, 1});
     GltfBuilder b;
     const int view = b.addView(interleaved.data(), interleaved.size() * sizeof(float), 24);
-    const int positions = b.addAccessor(view, kFloat, 4, "VEC3", 8);
-    const int normals = b.addAccessor(view, kFloat, 4, "VEC3", 20);
+    const int positions = b.addAccessor(view, kFloat, 4, TINYGLTF_TYPE_VEC3, 8);
+    const int normals = b.addAccessor(view, kFloat, 4, TINYGLTF_TYPE_VEC3, 20);
     const std::vector<uint16_t> indices = {99, 0, 1, 2, 0, 2, 3};  // skip the first by byteOffset
     const int indexView = b.addView(indices.data(), indices.size() * 2);
-    const int indexAccessor = b.addAccessor(indexView, kUnsignedShort, 6, "SCALAR", 2);
+    const int indexAccessor = b.addAccessor(indexView, kUnsignedShort, 6, TINYGLTF_TYPE_SCALAR, 2);
     b.addTriangleMesh(positions, indexAccessor, -1, normals);
-    b.addRoot(R"({"mesh":0})");
-    const SceneDesc scene = load(b.writeEmbedded(file("interleaved.gltf")));
+    b.addRoot({.mesh = 0});
+    const SceneDesc scene = load(b.write(file("interleaved.gltf")));
     const auto tris = triangles(scene);
     ASSERT_EQ(tris.size(), 2u);
     EXPECT_TRUE(tris[0][2] == kQuad[2]);
@@ -344,9 +340,9 @@ TEST_F(GltfTest, NormalsUseTheInverseTransposeAndAreUnit) {
     const Vec3 n = normalize(Vec3(1, 1, 0));
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(positions), -1, -1, b.addVec3({n, n, n}));
-    b.addRoot(R"({"scale":[2,1,1],"translation":[5,5,5],"children":[1]})");
-    b.add("nodes", R"({"mesh":0})");
-    const SceneDesc scene = load(b.writeEmbedded(file("normals.gltf")));
+    b.addRoot({.translation = {5, 5, 5}, .scale = {2, 1, 1}, .children = {1}});
+    b.addNode({.mesh = 0});
+    const SceneDesc scene = load(b.write(file("normals.gltf")));
     ASSERT_EQ(scene.meshes.size(), 1u);
     ASSERT_EQ(scene.meshes[0].normals.size(), 3u);
     const Vec3 expected = normalize(Vec3(1, 2, 0));  // diag(1/2,1,1)·(1,1,0), normalised
@@ -358,8 +354,8 @@ TEST_F(GltfTest, MirroringTransformKeepsWindingConsistentWithNormals) {
     const std::vector<Vec3> positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};  // counter-clockwise, +z
     const Vec3 up(0, 0, 1);
     b.addTriangleMesh(b.addVec3(positions), -1, -1, b.addVec3({up, up, up}));
-    b.addRoot(R"({"scale":[-1,1,1],"mesh":0})");
-    const SceneDesc scene = load(b.writeEmbedded(file("mirror.gltf")));
+    b.addRoot({.mesh = 0, .scale = {-1, 1, 1}});
+    const SceneDesc scene = load(b.write(file("mirror.gltf")));
     const auto tris = triangles(scene);
     ASSERT_EQ(tris.size(), 1u);
     const Vec3 geometric = cross(tris[0][1] - tris[0][0], tris[0][2] - tris[0][0]);
@@ -371,25 +367,23 @@ TEST_F(GltfTest, MirroringTransformKeepsWindingConsistentWithNormals) {
 
 TEST_F(GltfTest, MaterialsMapToTypesAndParameters) {
     GltfBuilder b;
-    b.topLevel = R"("extensionsUsed":["KHR_materials_transmission","KHR_materials_ior"])";
-    b.add("materials", R"({"name":"glass","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.95,1,1],
-        "roughnessFactor":0},"extensions":{"KHR_materials_transmission":{"transmissionFactor":1},
-        "KHR_materials_ior":{"ior":1.33}}})");
-    b.add("materials", R"({"name":"mirror","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],
-        "metallicFactor":1,"roughnessFactor":0}})");
-    b.add("materials", R"({"name":"metal","pbrMetallicRoughness":{"baseColorFactor":[1,0.8,0.5,1],
-        "metallicFactor":1,"roughnessFactor":0.3}})");
-    b.add("materials", R"({"name":"diffuse","pbrMetallicRoughness":{"baseColorFactor":[0.2,0.4,0.6,1],
-        "metallicFactor":0,"roughnessFactor":1}})");
-    b.add("materials", R"({"name":"plastic","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.1,0.1,1],
-        "metallicFactor":0,"roughnessFactor":0.4}})");
-    b.add("materials", R"({"name":"thin glass","pbrMetallicRoughness":{"roughnessFactor":0,"metallicFactor":0},
-        "extensions":{"KHR_materials_transmission":{"transmissionFactor":1}}})");
+    b.model.extensionsUsed = {"KHR_materials_transmission", "KHR_materials_ior"};
+    tinygltf::Material glass = pbrMaterial("glass", {0.9, 0.95, 1, 1}, 1, 0);  // metallicFactor left at 1
+    setExtension(glass.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(1));
+    setExtension(glass.extensions, "KHR_materials_ior", "ior", tinygltf::Value(1.33));
+    tinygltf::Material thinGlass = pbrMaterial("thin glass", {1, 1, 1, 1}, 0, 0);
+    setExtension(thinGlass.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(1));
+    b.model.materials = {glass,
+                         pbrMaterial("mirror", {0.9, 0.9, 0.9, 1}, 1, 0),
+                         pbrMaterial("metal", {1, 0.8, 0.5, 1}, 1, 0.3),
+                         pbrMaterial("diffuse", {0.2, 0.4, 0.6, 1}, 0, 1),
+                         pbrMaterial("plastic", {0.5, 0.1, 0.1, 1}, 0, 0.4),
+                         thinGlass};
     const int positions = b.addVec3(kTriangle);
     for (int m = 0; m < 6; ++m) b.addTriangleMesh(positions, -1, m);
     b.addTriangleMesh(positions);  // no material
-    for (int m = 0; m < 7; ++m) b.addRoot(R"({"mesh":)" + std::to_string(m) + "}");
-    const SceneDesc scene = load(b.writeEmbedded(file("materials.gltf")));
+    for (int m = 0; m < 7; ++m) b.addRoot({.mesh = m});
+    const SceneDesc scene = load(b.write(file("materials.gltf")));
 
     ASSERT_EQ(scene.meshes.size(), 7u);
     ASSERT_EQ(scene.materials.size(), 7u);
@@ -419,15 +413,18 @@ TEST_F(GltfTest, MaterialsMapToTypesAndParameters) {
 
 TEST_F(GltfTest, EmissionIsFactorTimesStrengthAndDoubleSidedIsTwoSided) {
     GltfBuilder b;
-    b.add("materials", R"({"emissiveFactor":[1,0.5,0.25],"doubleSided":true,
-        "extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":10}}})");
-    b.add("materials", R"({"emissiveFactor":[0.5,0.5,0.5]})");
+    tinygltf::Material strong, plain;
+    strong.emissiveFactor = {1, 0.5, 0.25};
+    strong.doubleSided = true;
+    setExtension(strong.extensions, "KHR_materials_emissive_strength", "emissiveStrength", tinygltf::Value(10));
+    plain.emissiveFactor = {0.5, 0.5, 0.5};
+    b.model.materials = {strong, plain};
     const int positions = b.addVec3(kTriangle);
     b.addTriangleMesh(positions, -1, 0);
     b.addTriangleMesh(positions, -1, 1);
-    b.addRoot(R"({"mesh":0})");
-    b.addRoot(R"({"mesh":1})");
-    const SceneDesc scene = load(b.writeEmbedded(file("emission.gltf")));
+    b.addRoot({.mesh = 0});
+    b.addRoot({.mesh = 1});
+    const SceneDesc scene = load(b.write(file("emission.gltf")));
     ASSERT_EQ(scene.materials.size(), 2u);
     expectNear(scene.materials[0].emission, {10, 5, 2.5f});
     EXPECT_TRUE(scene.materials[0].twoSidedEmission);
@@ -440,16 +437,23 @@ TEST_F(GltfTest, EmissionIsFactorTimesStrengthAndDoubleSidedIsTwoSided) {
 TEST_F(GltfTest, FirstPerspectiveCameraInTheHierarchy) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.add("cameras", R"({"type":"orthographic","orthographic":{"xmag":1,"ymag":1,"znear":0.1,"zfar":10}})");
-    b.add("cameras", R"({"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}})");
-    b.add("cameras", R"({"type":"perspective","perspective":{"yfov":0.3,"znear":0.1}})");
-    b.addRoot(R"({"mesh":0})");
-    b.addRoot(R"({"camera":0})");
-    b.addRoot(R"({"translation":[0,10,0],"children":[3]})");
-    b.add("nodes", R"({"translation":[1,2,3],"rotation":[0,)" + std::to_string(kSin45) + ",0," +
-                       std::to_string(kSin45) + R"(],"camera":1})");
-    b.addRoot(R"({"camera":2})");
-    const SceneDesc scene = load(b.writeEmbedded(file("camera.gltf")));
+    b.model.cameras.resize(3);
+    tinygltf::Camera& orthographic = b.model.cameras[0];
+    orthographic.type = "orthographic";
+    orthographic.orthographic.xmag = orthographic.orthographic.ymag = 1;
+    orthographic.orthographic.znear = 0.1;
+    orthographic.orthographic.zfar = 10;
+    for (int c : {1, 2}) {
+        b.model.cameras[c].type = "perspective";
+        b.model.cameras[c].perspective.yfov = c == 1 ? 0.8 : 0.3;
+        b.model.cameras[c].perspective.znear = 0.1;
+    }
+    b.addRoot({.mesh = 0});
+    b.addRoot({.camera = 0});
+    b.addRoot({.translation = {0, 10, 0}, .children = {3}});
+    b.addNode({.camera = 1, .translation = {1, 2, 3}, .rotation = {0, kSin45, 0, kSin45}});
+    b.addRoot({.camera = 2});
+    const SceneDesc scene = load(b.write(file("camera.gltf")));
     ASSERT_TRUE(scene.camera.present);
     expectNear(scene.camera.position, {1, 12, 3});
     expectNear(scene.camera.forward, {-1, 0, 0}, 1e-4f);  // -z turned 90° about +y
@@ -461,21 +465,24 @@ TEST_F(GltfTest, FirstPerspectiveCameraInTheHierarchy) {
 TEST_F(GltfTest, NoCameraLeavesCameraAbsent) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.addRoot(R"({"mesh":0})");
-    EXPECT_FALSE(load(b.writeEmbedded(file("nocamera.gltf"))).camera.present);
+    b.addRoot({.mesh = 0});
+    EXPECT_FALSE(load(b.write(file("nocamera.gltf"))).camera.present);
 }
 
 TEST_F(GltfTest, PointLightFromKhrLightsPunctual) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.topLevel = R"("extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[
-        {"type":"point","color":[1,0.5,0.25],"intensity":100},
-        {"type":"spot","intensity":5,"spot":{}}]}})";
-    b.addRoot(R"({"mesh":0})");
-    b.addRoot(R"({"translation":[0,5,0],"children":[2]})");
-    b.add("nodes", R"({"translation":[1,0,0],"extensions":{"KHR_lights_punctual":{"light":0}}})");
-    b.addRoot(R"({"extensions":{"KHR_lights_punctual":{"light":1}}})");
-    const SceneDesc scene = load(b.writeEmbedded(file("lights.gltf")));
+    b.model.lights.resize(2);  // tinygltf lists KHR_lights_punctual in extensionsUsed
+    b.model.lights[0].type = "point";
+    b.model.lights[0].color = {1, 0.5, 0.25};
+    b.model.lights[0].intensity = 100;
+    b.model.lights[1].type = "spot";
+    b.model.lights[1].intensity = 5;
+    b.addRoot({.mesh = 0});
+    b.addRoot({.translation = {0, 5, 0}, .children = {2}});
+    b.addNode({.light = 0, .translation = {1, 0, 0}});
+    b.addRoot({.light = 1});
+    const SceneDesc scene = load(b.write(file("lights.gltf")));
     ASSERT_EQ(scene.pointLights.size(), 1u);
     expectNear(scene.pointLights[0].position, {1, 5, 0});
     expectNear(scene.pointLights[0].intensity, {100, 50, 25});
@@ -487,7 +494,7 @@ TEST_F(GltfTest, PointLightFromKhrLightsPunctual) {
 GltfBuilder quadScene() {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kQuad), b.addIndices(kQuadIndices, kUnsignedShort));
-    b.addRoot(R"({"mesh":0,"translation":[0,0,-2]})");
+    b.addRoot({.mesh = 0, .translation = {0, 0, -2}});
     return b;
 }
 
@@ -500,10 +507,10 @@ void expectSameTriangles(const SceneDesc& a, const SceneDesc& b) {
 
 TEST_F(GltfTest, GlbWithEmbeddedBinChunk) {
     const GltfBuilder b = quadScene();
-    const SceneDesc glb = load(b.writeGlb(file("quad.glb")));
+    const SceneDesc glb = load(b.write(file("quad.glb")));
     EXPECT_EQ(triangles(glb).size(), 2u);
     expectNear(triangles(glb)[0][1], {1, 0, -2});
-    expectSameTriangles(glb, load(b.writeEmbedded(file("quad.gltf"))));
+    expectSameTriangles(glb, load(b.write(file("quad.gltf"))));
     EXPECT_EQ(glb.name, file("quad.glb").string());
 }
 
@@ -511,7 +518,7 @@ TEST_F(GltfTest, GltfWithBinFileBesideIt) {
     const GltfBuilder b = quadScene();
     const SceneDesc separate = load(b.writeWithBin(file("quad.gltf")));
     EXPECT_EQ(triangles(separate).size(), 2u);
-    expectSameTriangles(separate, load(b.writeGlb(file("quad.glb"))));
+    expectSameTriangles(separate, load(b.write(file("quad.glb"))));
 }
 
 // --- which files a buffer URI may name --------------------------------------------------------
@@ -547,7 +554,7 @@ TEST_F(GltfTest, BufferUriNamingTheScenesFolderIsRefused) {
                         "which is a directory, not a file");
 
     GltfBuilder b = quadScene();
-    b.bufferName = "geometry";
+    b.model.buffers[0].name = "geometry";
     const fs::path folder = sceneFolder(testDir());
     for (const std::string uri : {"%2E", "%2e/", ".", "%2E%2Fsub%2F%2E%2E"}) {
         fs::create_directories(folder / "sub");
@@ -587,7 +594,7 @@ TEST_F(GltfTest, SymlinkLeavingTheFolderIsRefused) {
 TEST_F(GltfTest, BufferInASubfolderLoads) {
     const GltfBuilder b = quadScene();
     const fs::path folder = sceneFolder(testDir());
-    const SceneDesc embedded = load(b.writeEmbedded(file("quad.gltf")));
+    const SceneDesc embedded = load(b.write(file("quad.gltf")));
     expectSameTriangles(load(b.writeWithUri(folder / "quad.gltf", "data/quad%20file.bin", folder / "data" / "quad file.bin")),
                         embedded);
     expectSameTriangles(load(b.writeWithUri(folder / "quad.gltf", "data/../data/quad+file.bin", folder / "data" / "quad file.bin")),
@@ -601,7 +608,7 @@ TEST_F(GltfTest, BufferInASubfolderLoads) {
 TEST_F(GltfTest, OutsideFilesLoadWhenAllowed) {
     const GltfBuilder b = quadScene();
     const fs::path folder = sceneFolder(testDir());
-    const SceneDesc embedded = load(b.writeEmbedded(file("quad.gltf")));
+    const SceneDesc embedded = load(b.write(file("quad.gltf")));
     const GltfOptions allow{.allowExternalFiles = true};
     const auto silent = [](const std::string&) {};
     const fs::path outside = fs::canonical(testDir()) / "quad.bin";
@@ -637,11 +644,9 @@ TEST_F(GltfTest, ImageFilesAreNeverOpened) {
     for (const std::string uri : {"%2E", "/proc/self/environ", "/dev/zero"}) {
         GltfBuilder b;
         b.addTriangleMesh(b.addVec3(kTriangle));
-        b.add("images", R"({"uri":")" + uri + "\"}");
-        b.add("textures", R"({"source":0})");
-        b.add("materials", R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}})");
-        b.addRoot(R"({"mesh":0})");
-        EXPECT_EQ(triangles(load(b.writeEmbedded(file("image.gltf")))).size(), 1u) << uri;
+        addTexturedMaterial(b.model, uri);
+        b.addRoot({.mesh = 0});
+        EXPECT_EQ(triangles(load(b.write(file("image.gltf")))).size(), 1u) << uri;
     }
 }
 
@@ -655,9 +660,9 @@ TEST_F(GltfTest, DegenerateTrianglesDroppedWithOneWarning) {
     const int p = b.addVec3(positions);
     b.addTriangleMesh(p, b.addIndices(indices, kUnsignedShort));
     b.addTriangleMesh(p, b.addIndices(indices, kUnsignedInt));
-    b.addRoot(R"({"mesh":0})");
-    b.addRoot(R"({"mesh":1})");
-    const SceneDesc scene = load(b.writeEmbedded(file("degenerate.gltf")));
+    b.addRoot({.mesh = 0});
+    b.addRoot({.mesh = 1});
+    const SceneDesc scene = load(b.write(file("degenerate.gltf")));
     EXPECT_EQ(triangles(scene).size(), 2u);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("dropped 4 degenerate"), std::string::npos) << warnings[0];
@@ -667,19 +672,16 @@ TEST_F(GltfTest, DegenerateTrianglesDroppedWithOneWarning) {
 TEST_F(GltfTest, IgnoredFeaturesWarnOnceEach) {
     GltfBuilder b;
     const int p = b.addVec3(kTriangle);
-    b.add("meshes", R"({"primitives":[{"attributes":{"POSITION":0},"mode":1},
-        {"attributes":{"POSITION":0},"mode":1},{"attributes":{"POSITION":0}}]})");
-    (void)p;
-    b.add("images", R"({"uri":"missing.png"})");
-    b.add("textures", R"({"source":0})");
-    b.add("materials", R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},
-        "extensions":{"KHR_materials_specular":{"specularFactor":0.5}}})");
-    b.add("materials", R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},
-        "extensions":{"KHR_materials_specular":{"specularFactor":0.2}}})");
-    b.topLevel = R"("extensionsUsed":["KHR_materials_specular"])";
-    b.addRoot(R"({"mesh":0})");
-    b.addRoot(R"({"mesh":0})");
-    const SceneDesc scene = load(b.writeEmbedded(file("ignored.gltf")));
+    b.addMesh({primitive(p, -1, -1, -1, TINYGLTF_MODE_LINE), primitive(p, -1, -1, -1, TINYGLTF_MODE_LINE),
+               primitive(p)});
+    addTexturedMaterial(b.model, "missing.png");
+    b.model.materials.push_back(b.model.materials[0]);
+    setExtension(b.model.materials[0].extensions, "KHR_materials_specular", "specularFactor", tinygltf::Value(0.5));
+    setExtension(b.model.materials[1].extensions, "KHR_materials_specular", "specularFactor", tinygltf::Value(0.2));
+    b.model.extensionsUsed = {"KHR_materials_specular"};
+    b.addRoot({.mesh = 0});
+    b.addRoot({.mesh = 0});
+    const SceneDesc scene = load(b.write(file("ignored.gltf")));
     EXPECT_EQ(triangles(scene).size(), 2u);
     EXPECT_EQ(warningsContaining("LINES primitives are skipped"), 1u);
     EXPECT_EQ(warnings.size(), 3u);
@@ -691,8 +693,8 @@ TEST_F(GltfTest, IgnoredFeaturesWarnOnceEach) {
 TEST_F(GltfTest, DefaultWarningSinkPrintsWarningPrefix) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
-    b.addRoot(R"({"mesh":0})");
-    const std::string path = b.writeEmbedded(file("stderr.gltf"));
+    b.addRoot({.mesh = 0});
+    const std::string path = b.write(file("stderr.gltf"));
     ::testing::internal::CaptureStderr();
     loadGltf(path);
     const std::string err = ::testing::internal::GetCapturedStderr();
@@ -706,115 +708,119 @@ TEST_F(GltfTest, MissingFileThrows) {
 }
 
 TEST_F(GltfTest, TruncatedGlbThrows) {
-    const std::string path = quadScene().writeGlb(file("truncated.glb"));
+    const std::string path = quadScene().write(file("truncated.glb"));
     fs::resize_file(path, fs::file_size(path) / 2);
     expectInputError(path, "glTF binary");
 }
 
 TEST_F(GltfTest, BrokenJsonThrows) {
     const std::string path =
-        GltfBuilder::writeText(file("broken.gltf"), R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[)");
+        writeText(file("broken.gltf"), R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[)");
     expectInputError(path, "parse error");
 }
 
 TEST_F(GltfTest, AccessorReadingPastTheBufferThrows) {
     GltfBuilder b;
     const int view = b.addView(kTriangle.data(), 3 * sizeof(Vec3));
-    b.addAccessor(view, kFloat, 3, "VEC3", 4);  // the last vertex runs 4 bytes past the view
+    b.addAccessor(view, kFloat, 3, TINYGLTF_TYPE_VEC3, 4);  // the last vertex runs 4 bytes past the view
     b.addTriangleMesh(0);
-    b.addRoot(R"({"mesh":0})");
-    expectInputError(b.writeEmbedded(file("accessor.gltf")), "accessor 0 reads past the end");
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("accessor.gltf")), "accessor 0 reads past the end");
 }
 
 TEST_F(GltfTest, BufferViewPastTheBufferThrows) {
     GltfBuilder b;
     b.addVec3(kTriangle);
-    b.add("bufferViews", R"({"buffer":0,"byteOffset":0,"byteLength":4096})");
-    b.addAccessor(1, kFloat, 3, "VEC3");
+    b.model.bufferViews.push_back(b.model.bufferViews[0]);
+    b.model.bufferViews[1].byteLength = 4096;
+    b.addAccessor(1, kFloat, 3, TINYGLTF_TYPE_VEC3);
     b.addTriangleMesh(1);
-    b.addRoot(R"({"mesh":0})");
-    expectInputError(b.writeEmbedded(file("view.gltf")), "bufferView 1 reads past the end of buffer 0");
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("view.gltf")), "bufferView 1 reads past the end of buffer 0");
 }
 
 TEST_F(GltfTest, BufferIndexOutOfRangeThrows) {
     GltfBuilder b;
     b.addVec3(kTriangle);
-    b.add("bufferViews", R"({"buffer":5,"byteOffset":0,"byteLength":36})");
-    b.addAccessor(1, kFloat, 3, "VEC3");
+    b.model.bufferViews.push_back(b.model.bufferViews[0]);
+    b.model.bufferViews[1].buffer = 5;
+    b.addAccessor(1, kFloat, 3, TINYGLTF_TYPE_VEC3);
     b.addTriangleMesh(1);
-    b.addRoot(R"({"mesh":0})");
-    expectInputError(b.writeEmbedded(file("bufferindex.gltf")), "buffer 5, which does not exist");
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("bufferindex.gltf")), "buffer 5, which does not exist");
 }
 
 TEST_F(GltfTest, VertexIndexOutOfRangeThrows) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle), b.addIndices({0, 1, 7}, kUnsignedByte));
-    b.addRoot(R"({"mesh":0})");
-    expectInputError(b.writeEmbedded(file("index.gltf")), "index 7 is out of range");
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("index.gltf")), "index 7 is out of range");
 }
 
 TEST_F(GltfTest, NonFiniteBaseColorThrows) {
     GltfBuilder b;
-    b.add("materials", R"({"name":"bad","pbrMetallicRoughness":{"baseColorFactor":[1e39,0.5,0.5,1]}})");
+    b.model.materials = {pbrMaterial("bad", {1e39, 0.5, 0.5, 1}, 1, 1)};
     b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
-    b.addRoot(R"({"mesh":0})");
-    expectInputError(b.writeEmbedded(file("nan.gltf")), "material 'bad': baseColorFactor is not finite");
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("nan.gltf")), "material 'bad': baseColorFactor is not finite");
 }
 
 TEST_F(GltfTest, NegativeEmissionThrows) {
     GltfBuilder b;
-    b.add("materials", R"({"name":"neg","emissiveFactor":[1,-0.5,0]})");
+    b.model.materials.emplace_back().name = "neg";
+    b.model.materials[0].emissiveFactor = {1, -0.5, 0};
     b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
-    b.addRoot(R"({"mesh":0})");
-    expectInputError(b.writeEmbedded(file("negative.gltf")), "material 'neg': emission is negative");
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("negative.gltf")), "material 'neg': emission is negative");
 }
 
 TEST_F(GltfTest, NegativeEmissiveStrengthThrows) {
     GltfBuilder b;
-    b.add("materials", R"({"name":"neg","emissiveFactor":[1,1,1],
-        "extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":-2}}})");
+    b.model.materials.emplace_back().name = "neg";
+    b.model.materials[0].emissiveFactor = {1, 1, 1};
+    setExtension(b.model.materials[0].extensions, "KHR_materials_emissive_strength", "emissiveStrength",
+                 tinygltf::Value(-2));
     b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
-    b.addRoot(R"({"mesh":0})");
-    expectInputError(b.writeEmbedded(file("strength.gltf")), "material 'neg': emissiveStrength is negative");
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("strength.gltf")), "material 'neg': emissiveStrength is negative");
 }
 
 TEST_F(GltfTest, MaterialRejectedByValidateMaterialThrows) {
     GltfBuilder b;
-    b.add("materials", R"({"name":"bright","pbrMetallicRoughness":{"baseColorFactor":[2,0.5,0.5,1]}})");
+    b.model.materials = {pbrMaterial("bright", {2, 0.5, 0.5, 1}, 1, 1)};
     b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
-    b.addRoot(R"({"mesh":0})");
-    expectInputError(b.writeEmbedded(file("albedo.gltf")), "material 'bright': ");
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("albedo.gltf")), "material 'bright': ");
 }
 
 TEST_F(GltfTest, ZeroScaleTransformThrows) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.addRoot(R"({"scale":[1,0,1],"mesh":0})");
-    expectInputError(b.writeEmbedded(file("collapse.gltf")), "collapses mesh 0");
+    b.addRoot({.mesh = 0, .scale = {1, 0, 1}});
+    expectInputError(b.write(file("collapse.gltf")), "collapses mesh 0");
 }
 
 TEST_F(GltfTest, UnsupportedRequiredExtensionThrows) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.addRoot(R"({"mesh":0})");
-    b.topLevel = R"("extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"])";
-    expectInputError(b.writeEmbedded(file("draco.gltf")), "KHR_draco_mesh_compression");
+    b.addRoot({.mesh = 0});
+    b.model.extensionsUsed = b.model.extensionsRequired = {"KHR_draco_mesh_compression"};
+    expectInputError(b.write(file("draco.gltf")), "KHR_draco_mesh_compression");
 }
 
 TEST_F(GltfTest, SceneWithoutTrianglesThrows) {
     GltfBuilder b;
-    b.addVec3(kTriangle);
-    b.add("meshes", R"({"primitives":[{"attributes":{"POSITION":0},"mode":0}]})");
-    b.addRoot(R"({"mesh":0})");
-    expectInputError(b.writeEmbedded(file("points.gltf")), "no triangles");
+    b.addMesh({primitive(b.addVec3(kTriangle), -1, -1, -1, TINYGLTF_MODE_POINTS)});
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("points.gltf")), "no triangles");
 }
 
 TEST_F(GltfTest, CycleInNodeHierarchyThrows) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.addRoot(R"({"mesh":0,"children":[1]})");
-    b.add("nodes", R"({"children":[0]})");
-    expectInputError(b.writeEmbedded(file("cycle.gltf")), "cycle");
+    b.addRoot({.mesh = 0, .children = {1}});
+    b.addNode({.children = {0}});
+    expectInputError(b.write(file("cycle.gltf")), "cycle");
 }
 
 }  // namespace

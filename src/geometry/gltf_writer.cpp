@@ -1,56 +1,33 @@
 #include "geometry/gltf_writer.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <bit>
+#include <charconv>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <set>
 
 #include "geometry/error.h"
+#include "geometry/gltf_model.h"
 
 namespace tripath {
 
 namespace {
 
-// ---- JSON text --------------------------------------------------------------------------------
+// ---- numbers ----------------------------------------------------------------------------------
 
-std::string quoted(const std::string& s) {
-    std::string out = "\"";
-    for (const char ch : s) {
-        const auto c = static_cast<unsigned char>(ch);
-        switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\t': out += "\\t"; break;
-            case '\r': out += "\\r"; break;
-            default:
-                if (c < 0x20) out += fmt::format("\\u{:04x}", c);
-                else out += ch;  // UTF-8 passes through: JSON text is UTF-8
-        }
-    }
-    return out + "\"";
-}
-
-// The shortest decimal that reads back as the same float (fmt's default for float). JSON has no
-// NaN or infinity, so a non-finite value is an error here rather than a broken file later.
-std::string num(float x) {
+// The double nearest the shortest decimal that reads back as x (fmt's default for float): the
+// file says 0.8, not 0.800000011920929, and the loader, reading it as a float, gets x back. JSON
+// has no NaN or infinity, so a non-finite value is an error here rather than a broken file later.
+double number(float x) {
     if (!std::isfinite(x)) throw InputError("cannot export a non-finite number to glTF");
-    return fmt::format("{}", x);
+    const std::string text = fmt::format("{}", x);
+    double d = 0;
+    std::from_chars(text.data(), text.data() + text.size(), d);
+    return d;
 }
 
-std::string vec3(Vec3 v) { return fmt::format("[{},{},{}]", num(v.x), num(v.y), num(v.z)); }
-
-std::string join(const std::vector<std::string>& items) {
-    std::string out;
-    for (const std::string& item : items) out += (out.empty() ? "" : ",") + item;
-    return out;
-}
-
+std::vector<double> numbers(Vec3 v) { return {number(v.x), number(v.y), number(v.z)}; }
 
 // ---- splitting a radiance or intensity into a factor in [0, 1] and a scale --------------------
 
@@ -59,58 +36,53 @@ struct Scaled {
     float scale = 1;
 };
 
-// scale = the smallest power of two ≥ the largest component (1 when it is ≤ 1): dividing by a
-// power of two only changes the exponent, so factor × scale is exactly v again after loading.
+// tinygltf leaves out an emissiveFactor within 1e-12 of black, so a faint one is scaled up too.
+constexpr float kFaint = 1e-6f;
+
+// scale = the smallest power of two ≥ the largest component (1 when that is in [kFaint, 1]):
+// dividing by a power of two only changes the exponent, so factor × scale is exactly v again.
 Scaled splitScale(Vec3 v) {
     const float m = maxComponent(v);
-    if (!(m > 1.0f)) return {v, 1.0f};
+    if (!(m > 1.0f) && !(m > 0.0f && m < kFaint)) return {v, 1.0f};
     const float scale = std::exp2(std::ceil(std::log2(m)));
     return {v / scale, scale};
 }
 
 // ---- the document -----------------------------------------------------------------------------
 
-class Writer {
+// glTF cameras have no "infinitely far": tinygltf always writes zfar (0 when unset, which glTF
+// forbids), so the camera gets a far plane beyond any scene. The loader ignores it.
+constexpr float kFar = 1e30f;
+
+class ModelBuilder {
 public:
-    Writer(const SceneDesc& scene, const WarningSink& warn) : scene_(scene), warn_(warn) {}
-    std::string json();
+    ModelBuilder(const SceneDesc& scene, const WarningSink& warn) : scene_(scene), warn_(warn) {}
+    tinygltf::Model build();
 
 private:
     void warn(const std::string& what) {
         if (warn_) warn_(scene_.name + ": " + what);
     }
-    int addView(const void* data, size_t bytes);
-    int addAccessor(int view, int componentType, size_t count, const std::string& type, const std::string& extra = "");
-    std::string material(const Material& m);
+    int addArray(const void* data, size_t bytes, int componentType, size_t count, int type);
+    tinygltf::Material material(const Material& m);
     void addMesh(const MeshDesc& m);
+    int addNode(tinygltf::Node node);
     void addCamera();
     void addLights();
 
     const SceneDesc& scene_;
     const WarningSink& warn_;
-    std::vector<unsigned char> bin_;
-    std::vector<std::string> views_, accessors_, meshes_, nodes_, lights_;
-    std::string camera_;
+    tinygltf::Model model_;
     std::set<std::string> extensions_;
 };
 
-int Writer::addView(const void* data, size_t bytes) {
-    const size_t offset = bin_.size();
-    const auto* p = static_cast<const unsigned char*>(data);
-    bin_.insert(bin_.end(), p, p + bytes);  // every element is 4 bytes: offsets stay aligned
-    views_.push_back(fmt::format(R"({{"buffer":0,"byteOffset":{},"byteLength":{}}})", offset, bytes));
-    return static_cast<int>(views_.size()) - 1;
+int ModelBuilder::addArray(const void* data, size_t bytes, int componentType, size_t count, int type) {
+    return appendAccessor(model_, appendBufferView(model_, data, bytes), componentType, count, type);
 }
 
-int Writer::addAccessor(int view, int componentType, size_t count, const std::string& type, const std::string& extra) {
-    accessors_.push_back(fmt::format(R"({{"bufferView":{},"componentType":{},"count":{},"type":"{}"{}}})", view,
-                                     componentType, count, type, extra));
-    return static_cast<int>(accessors_.size()) - 1;
-}
-
-std::string Writer::material(const Material& m) {
+tinygltf::Material ModelBuilder::material(const Material& m) {
     float metallic = 0, roughness = 1;
-    std::vector<std::string> ext;
+    tinygltf::Material g;
     switch (m.type) {
         case MaterialType::Lambertian: break;
         case MaterialType::Plastic:
@@ -126,34 +98,32 @@ std::string Writer::material(const Material& m) {
             break;
         case MaterialType::Dielectric:
             roughness = 0;
-            ext.push_back(R"("KHR_materials_transmission":{"transmissionFactor":1})");
-            extensions_.insert("KHR_materials_transmission");
+            setExtension(g.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(1.0));
             break;
     }
     const bool usesIor = m.type == MaterialType::Dielectric || m.type == MaterialType::Plastic;
-    if (usesIor && (m.type == MaterialType::Dielectric || m.ior != 1.5f)) {
-        ext.push_back(R"("KHR_materials_ior":{"ior":)" + num(m.ior) + "}");
-        extensions_.insert("KHR_materials_ior");
-    }
+    if (usesIor && (m.type == MaterialType::Dielectric || m.ior != 1.5f))
+        setExtension(g.extensions, "KHR_materials_ior", "ior", tinygltf::Value(number(m.ior)));
     const Scaled e = splitScale(m.emission);
-    if (e.scale != 1.0f) {
-        ext.push_back(R"("KHR_materials_emissive_strength":{"emissiveStrength":)" + num(e.scale) + "}");
-        extensions_.insert("KHR_materials_emissive_strength");
-    }
-    std::string out = "{\"name\":" + quoted(m.name) + ",\"pbrMetallicRoughness\":{\"baseColorFactor\":[" +
-                      num(m.albedo.x) + "," + num(m.albedo.y) + "," + num(m.albedo.z) + ",1],\"metallicFactor\":" +
-                      num(metallic) + ",\"roughnessFactor\":" + num(roughness) + "}";
-    if (!isBlack(m.emission)) out += ",\"emissiveFactor\":" + vec3(e.factor);
-    if (m.twoSidedEmission) out += ",\"doubleSided\":true";
-    if (!ext.empty()) out += ",\"extensions\":{" + join(ext) + "}";
-    return out + "}";
+    if (e.scale != 1.0f)
+        setExtension(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength",
+                     tinygltf::Value(number(e.scale)));
+    for (const auto& [name, value] : g.extensions) extensions_.insert(name);
+    g.name = m.name;
+    g.pbrMetallicRoughness.baseColorFactor = numbers(m.albedo);
+    g.pbrMetallicRoughness.baseColorFactor.push_back(1.0);
+    g.pbrMetallicRoughness.metallicFactor = number(metallic);
+    g.pbrMetallicRoughness.roughnessFactor = number(roughness);
+    g.emissiveFactor = numbers(e.factor);
+    g.doubleSided = m.twoSidedEmission;
+    return g;
 }
 
 // The buffer holds the scene's arrays as they lie in memory: glTF wants packed little-endian floats.
 static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floats");
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
 
-void Writer::addMesh(const MeshDesc& m) {
+void ModelBuilder::addMesh(const MeshDesc& m) {
     // glTF forbids empty accessors; a mesh without triangles has nothing to say anyway.
     if (m.indices.empty() || m.positions.empty()) {
         warn(fmt::format("mesh '{}' has no triangles and is left out", m.name));
@@ -165,122 +135,98 @@ void Writer::addMesh(const MeshDesc& m) {
         lo = min(lo, p);
         hi = max(hi, p);
     }
-    constexpr int kFloat = 5126, kUnsignedInt = 5125;
-    const int position = addAccessor(addView(m.positions.data(), m.positions.size() * sizeof(Vec3)), kFloat,
-                                     m.positions.size(), "VEC3", ",\"min\":" + vec3(lo) + ",\"max\":" + vec3(hi));
-    std::string attributes = "\"POSITION\":" + std::to_string(position);
-    if (!m.normals.empty()) {
-        const int normal = addAccessor(addView(m.normals.data(), m.normals.size() * sizeof(Vec3)), kFloat,
-                                       m.normals.size(), "VEC3");
-        attributes += ",\"NORMAL\":" + std::to_string(normal);
-    }
-    const int indices = addAccessor(addView(m.indices.data(), m.indices.size() * sizeof(uint32_t)), kUnsignedInt,
-                                    m.indices.size(), "SCALAR");
-    meshes_.push_back(fmt::format(R"({{"name":{},"primitives":[{{"attributes":{{{}}},"indices":{},"material":{},"mode":4}}]}})",
-                                  quoted(m.name), attributes, indices, m.material));
-    nodes_.push_back(fmt::format(R"({{"name":{},"mesh":{}}})", quoted(m.name), meshes_.size() - 1));
+    tinygltf::Primitive primitive;
+    const int position = addArray(m.positions.data(), m.positions.size() * sizeof(Vec3),
+                                  TINYGLTF_COMPONENT_TYPE_FLOAT, m.positions.size(), TINYGLTF_TYPE_VEC3);
+    model_.accessors[size_t(position)].minValues = numbers(lo);
+    model_.accessors[size_t(position)].maxValues = numbers(hi);
+    primitive.attributes["POSITION"] = position;
+    if (!m.normals.empty())
+        primitive.attributes["NORMAL"] = addArray(m.normals.data(), m.normals.size() * sizeof(Vec3),
+                                                  TINYGLTF_COMPONENT_TYPE_FLOAT, m.normals.size(), TINYGLTF_TYPE_VEC3);
+    primitive.indices = addArray(m.indices.data(), m.indices.size() * sizeof(uint32_t),
+                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, m.indices.size(), TINYGLTF_TYPE_SCALAR);
+    primitive.material = m.material;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    tinygltf::Mesh mesh;
+    mesh.name = m.name;
+    mesh.primitives.push_back(primitive);
+    model_.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.name = m.name;
+    node.mesh = static_cast<int>(model_.meshes.size()) - 1;
+    addNode(node);
+}
+
+// Every node is a root of the one scene.
+int ModelBuilder::addNode(tinygltf::Node node) {
+    model_.nodes.push_back(std::move(node));
+    const int index = static_cast<int>(model_.nodes.size()) - 1;
+    model_.scenes[0].nodes.push_back(index);
+    return index;
 }
 
 // glTF cameras look down their node's −z with +y up: the node matrix's columns are the scene's
 // right, up and −forward, and the position.
-void Writer::addCamera() {
+void ModelBuilder::addCamera() {
     const CameraDesc& c = scene_.camera;
     if (!c.present) return;
     const Vec3 f = normalize(c.forward), r = normalize(cross(f, c.up)), u = cross(r, f);
-    const std::vector<std::string> matrix = {num(r.x),  num(r.y),  num(r.z),  "0", num(u.x),          num(u.y),
-                                             num(u.z),  "0",       num(-f.x), num(-f.y), num(-f.z), "0",
-                                             num(c.position.x), num(c.position.y), num(c.position.z), "1"};
-    camera_ = R"({"type":"perspective","perspective":{"yfov":)" + num(c.yfov) + R"(,"znear":0.001}})";
-    nodes_.push_back(R"({"name":"camera","camera":0,"matrix":[)" + join(matrix) + "]}");
+    tinygltf::Camera camera;
+    camera.type = "perspective";
+    camera.perspective.yfov = number(c.yfov);
+    camera.perspective.znear = number(0.001f);
+    camera.perspective.zfar = number(kFar);
+    model_.cameras.push_back(camera);
+    tinygltf::Node node;
+    node.name = "camera";
+    node.camera = 0;
+    for (const Vec3 column : {r, u, -f}) {
+        const std::vector<double> xyz = numbers(column);
+        node.matrix.insert(node.matrix.end(), xyz.begin(), xyz.end());
+        node.matrix.push_back(0.0);
+    }
+    const std::vector<double> position = numbers(c.position);
+    node.matrix.insert(node.matrix.end(), position.begin(), position.end());
+    node.matrix.push_back(1.0);
+    addNode(node);
 }
 
-void Writer::addLights() {
+void ModelBuilder::addLights() {
     for (const PointLightDesc& l : scene_.pointLights) {
         const Scaled i = splitScale(l.intensity);
-        const int index = static_cast<int>(lights_.size());
-        lights_.push_back(R"({"type":"point","color":)" + vec3(isBlack(i.factor) ? Vec3(1.0f) : i.factor) +
-                          ",\"intensity\":" + num(isBlack(i.factor) ? 0.0f : i.scale) + "}");
-        nodes_.push_back(fmt::format(R"({{"name":"point light {}","translation":{},"extensions":{{"KHR_lights_punctual":{{"light":{}}}}}}})",
-                                     index, vec3(l.position), index));
+        const int index = static_cast<int>(model_.lights.size());
+        tinygltf::Light light;
+        light.type = "point";
+        light.color = numbers(isBlack(i.factor) ? Vec3(1.0f) : i.factor);
+        light.intensity = number(isBlack(i.factor) ? 0.0f : i.scale);
+        model_.lights.push_back(light);
+        tinygltf::Node node;
+        node.name = fmt::format("point light {}", index);
+        node.translation = numbers(l.position);
+        setExtension(node.extensions, "KHR_lights_punctual", "light", tinygltf::Value(index));
+        addNode(node);
     }
-    if (!lights_.empty()) extensions_.insert("KHR_lights_punctual");
+    if (!model_.lights.empty()) extensions_.insert("KHR_lights_punctual");
 }
 
-std::string Writer::json() {
-    std::vector<std::string> materials;
-    for (const Material& m : scene_.materials) materials.push_back(material(m));
+tinygltf::Model ModelBuilder::build() {
+    model_.asset.generator = "tripath export";
+    model_.scenes.emplace_back();
+    model_.scenes[0].name = scene_.name;
+    model_.defaultScene = 0;
+    for (const Material& m : scene_.materials) model_.materials.push_back(material(m));
     for (const MeshDesc& m : scene_.meshes) addMesh(m);
     addCamera();
     addLights();
-
-    std::vector<std::string> roots, used;
-    for (size_t i = 0; i < nodes_.size(); ++i) roots.push_back(std::to_string(i));
-    for (const std::string& e : extensions_) used.push_back(quoted(e));
-
-    std::vector<std::string> members = {R"("asset":{"version":"2.0","generator":"tripath export"})"};
-    if (!used.empty()) members.push_back("\"extensionsUsed\":[" + join(used) + "]");
-    members.push_back("\"scene\":0");
-    members.push_back("\"scenes\":[{\"name\":" + quoted(scene_.name) + ",\"nodes\":[" + join(roots) + "]}]");
-    if (!nodes_.empty()) members.push_back("\"nodes\":[\n" + join(nodes_) + "\n]");
-    if (!meshes_.empty()) members.push_back("\"meshes\":[\n" + join(meshes_) + "\n]");
-    if (!materials.empty()) members.push_back("\"materials\":[\n" + join(materials) + "\n]");
-    if (!camera_.empty()) members.push_back("\"cameras\":[" + camera_ + "]");
-    if (!lights_.empty()) members.push_back("\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[" + join(lights_) + "]}}");
-    if (!bin_.empty()) {
-        members.push_back("\"accessors\":[\n" + join(accessors_) + "\n]");
-        members.push_back("\"bufferViews\":[\n" + join(views_) + "\n]");
-        members.push_back(fmt::format(R"("buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}])",
-                                      bin_.size(), base64(bin_)));
-    }
-    std::string out = "{\n";
-    for (size_t i = 0; i < members.size(); ++i) out += members[i] + (i + 1 < members.size() ? ",\n" : "\n");
-    return out + "}\n";
+    model_.extensionsUsed.assign(extensions_.begin(), extensions_.end());
+    return std::move(model_);
 }
 
 }  // namespace
 
-std::string base64(const std::vector<unsigned char>& data) {
-    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((data.size() + 2) / 3 * 4);
-    for (size_t i = 0; i < data.size(); i += 3) {
-        const uint32_t b0 = data[i];
-        const uint32_t b1 = i + 1 < data.size() ? data[i + 1] : 0;
-        const uint32_t b2 = i + 2 < data.size() ? data[i + 2] : 0;
-        const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
-        out += table[(triple >> 18) & 63];
-        out += table[(triple >> 12) & 63];
-        out += i + 1 < data.size() ? table[(triple >> 6) & 63] : '=';
-        out += i + 2 < data.size() ? table[triple & 63] : '=';
-    }
-    return out;
-}
-
-std::string gltfJson(const SceneDesc& scene, const WarningSink& warn) { return Writer(scene, warn).json(); }
-
 void writeGltf(const SceneDesc& scene, const std::string& path, const WarningSink& warn) {
-    const std::string text = gltfJson(scene, warn);
-    namespace fs = std::filesystem;
-    const fs::path target(path);
-    const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    const fs::path temp = dir / fmt::format(".{}.tmp{}", target.filename().string(), static_cast<long>(getpid()));
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out) throw InputError(path + ": cannot write (missing or read-only folder?)");
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.close();
-        if (!out) {
-            std::error_code ec;
-            fs::remove(temp, ec);
-            throw InputError(path + ": write failed (disk full?)");
-        }
-    }
-    std::error_code ec;
-    fs::rename(temp, target, ec);
-    if (ec) {
-        fs::remove(temp, ec);
-        throw InputError(path + ": cannot replace the file: " + ec.message());
-    }
+    writeGltfModel(ModelBuilder(scene, warn).build(), path);
 }
 
 }  // namespace tripath

@@ -1,5 +1,6 @@
 // SceneDesc → glTF 2.0 (.gltf JSON with one embedded base64 buffer): the inverse of gltf_loader,
 // so that a built-in scene can be shipped as a file and loaded like any user's (scenes/*.gltf).
+// The scene becomes a tinygltf::Model, which tinygltf writes (gltf_model.h).
 //
 // Materials are written so that the loader's mapping (top of gltf_loader.cpp) gives them back:
 //   Lambertian  metallic 0, roughness 1
@@ -11,28 +12,22 @@
 // so the factor (≤ 1, as glTF requires) times the strength gives the radiance back exactly; point
 // lights likewise split into KHR_lights_punctual colour × intensity. Positions and normals go into
 // the buffer as the floats they are, one node per mesh with no transform, so triangles come back
-// bit for bit. The camera becomes a perspective camera on a node whose matrix maps glTF's −z/+y
-// view to the scene's forward/up.
+// bit for bit; other numbers as the shortest decimals that read back as the same floats. The
+// camera becomes a perspective camera on a node whose matrix maps glTF's −z/+y view to the
+// scene's forward/up.
 #pragma once
 #include <string>
-#include <vector>
 
 #include "geometry/scene_desc.h"
 #include "geometry/warnings.h"
 
 namespace tripath {
 
-// Standard base64 (RFC 4648, with padding), for data: URIs.
-std::string base64(const std::vector<unsigned char>& data);
-
-
-// The glTF JSON text. Warns (once per material) where the file cannot say exactly what the scene
-// holds: a Conductor smoother than 0.01 (it would load as a Mirror) or a Plastic rougher than 0.99
-// (it would load as Lambertian). Throws InputError for non-finite values, which JSON cannot hold.
-std::string gltfJson(const SceneDesc& scene, const WarningSink& warn);
-
-// Writes gltfJson to `path` through a temporary file renamed over it, so a failed write never
-// leaves a truncated file. Throws InputError (one line naming the path) when it cannot write.
+// Writes the scene to `path` through writeGltfModel (gltf_model.h: a temporary file renamed over
+// it; InputError, one line naming the path, when it cannot write). Warns (once per material) where
+// the file cannot say exactly what the scene holds: a Conductor smoother than 0.01 (it would load
+// as a Mirror) or a Plastic rougher than 0.99 (it would load as Lambertian). Throws InputError for
+// non-finite values, which JSON cannot hold.
 void writeGltf(const SceneDesc& scene, const std::string& path, const WarningSink& warn);
 
 }  // namespace tripath
