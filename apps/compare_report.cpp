@@ -83,11 +83,7 @@ void writeCsv(const Report& r, const std::string& path) {
 
 std::string counterColumns() {
     std::string s;
-    for (int i = 0; i < kEventCount; ++i) {
-        std::string key(eventName(static_cast<Event>(i)));
-        std::replace_if(key.begin(), key.end(), [](char c) { return c == ' ' || c == '-'; }, '_');
-        s += "," + key;
-    }
+    for (int i = 0; i < kEventCount; ++i) s += "," + eventKey(static_cast<Event>(i));
     return s;
 }
 

@@ -9,6 +9,7 @@ packages=(build-essential cmake pkg-config
   fonts-dejavu-core  # the labels of `tripath compare`'s charts and side-by-side images
   libcairo2-dev  # draws `tripath compare`'s chart once, onto an SVG and an image surface
   libopenmpi-dev openmpi-bin  # distributed rendering under mpirun (docs/distributed.md)
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests (docs/python.md)
   "$@")
 missing=()
 for p in "${packages[@]}"; do

@@ -3,8 +3,9 @@
 #include <signal.h>
 #include <sys/time.h>
 
-#include <vector>
+#include <algorithm>
 #include <mutex>
+#include <vector>
 
 namespace tripath {
 
@@ -75,6 +76,12 @@ std::string_view eventName(Event e) {
     case Event::Count: break;
     }
     return "?";
+}
+
+std::string eventKey(Event e) {
+    std::string key(eventName(e));
+    std::replace_if(key.begin(), key.end(), [](char c) { return c == ' ' || c == '-'; }, '_');
+    return key;
 }
 
 std::string_view phaseName(Phase p) {

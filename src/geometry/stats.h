@@ -21,6 +21,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace tripath {
@@ -42,6 +43,8 @@ enum class Event : int {
 };
 inline constexpr int kEventCount = static_cast<int>(Event::Count);
 std::string_view eventName(Event e);
+// The name as an identifier (spaces and hyphens as underscores): CSV columns, Python's dict keys.
+std::string eventKey(Event e);
 
 enum class Phase : int {
     Idle,        // outside any scope: not working on a render

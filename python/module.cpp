@@ -1,0 +1,291 @@
+// tripath's Python module: load a scene, render it, measure images. `render` fills the library's
+// render request (integrators/render_request.h) from its keyword arguments, so the same settings
+// give the same bits as `tripath render`, and bad values are refused with the same reasons (as
+// ValueError, in Python's spelling of the parameters). The image comes back as a NumPy array over
+// the film's own memory, without a copy. The GIL is released while rendering; between passes the
+// render takes it back to run the progress callback and Python's signal handlers, so Ctrl-C stops
+// the render at the next pass and the partial image is returned.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/builtin_scenes.h"
+#include "geometry/error.h"
+#include "geometry/scene_source.h"
+#include "geometry/stats.h"
+#include "image/flip.h"
+#include "image/metrics.h"
+#include "integrators/render_request.h"
+
+namespace py = pybind11;
+
+namespace tripath::python {
+
+namespace {
+
+// Warnings gathered while the library works (without the GIL, perhaps), then raised in Python as
+// UserWarning once it is back.
+struct Warnings {
+    std::vector<std::string> messages;
+    WarningSink sink() {
+        return [this](const std::string& m) { messages.push_back(m); };
+    }
+    void raise() const {
+        for (const std::string& m : messages)
+            if (PyErr_WarnEx(PyExc_UserWarning, m.c_str(), 2) != 0) throw py::error_already_set();
+    }
+};
+
+// A loaded scene. The library bakes the image size into its ray-tracing scene, so the scene is
+// kept as its description and built again when a render asks for another size (the last size
+// built is kept: a series of renders at one size builds once). Loading builds it at the default
+// size, so a scene that cannot be rendered is refused by load().
+class PyScene {
+public:
+    PyScene(std::string name, GltfOptions gltf, Warnings& warnings)
+        : name_(std::move(name)), gltf_(gltf), desc_(loadSceneDesc(name_, gltf_, warnings.sink())) {
+        at(RenderRequest{}.width, RenderRequest{}.height, warnings);
+    }
+    const std::string& name() const { return name_; }
+    const GltfOptions& gltf() const { return gltf_; }
+    const Scene& at(int width, int height, Warnings& warnings) {
+        if (!built_ || built_->camera().width() != width || built_->camera().height() != height) {
+            built_.reset();
+            built_ = std::make_unique<Scene>(desc_, width, height, warnings.sink());
+        }
+        return *built_;
+    }
+    size_t triangles() const { return built_->triangles().size(); }
+
+private:
+    std::string name_;
+    GltfOptions gltf_;
+    SceneDesc desc_;
+    std::unique_ptr<Scene> built_;
+};
+
+// An H×W×3 float32 array that owns `image`'s pixels (moved, not copied).
+py::array_t<float> toArray(Image image) {
+    auto* owned = new Image(std::move(image));
+    py::capsule free(owned, [](void* p) { delete static_cast<Image*>(p); });
+    const auto h = py::ssize_t(owned->height), w = py::ssize_t(owned->width);
+    return py::array_t<float>({h, w, py::ssize_t(3)}, owned->rgb.data(), free);
+}
+
+// An H×W×3 array (any float type) as an Image; ValueError for another shape.
+Image fromArray(const py::array_t<float, py::array::c_style | py::array::forcecast>& a, const char* what) {
+    if (a.ndim() != 3 || a.shape(2) != 3)
+        throw InputError(std::string(what) + " must be an array of shape (height, width, 3)");
+    Image img(int(a.shape(1)), int(a.shape(0)));
+    std::copy(a.data(), a.data() + img.rgb.size(), img.rgb.begin());
+    return img;
+}
+
+// The integrator options `render` takes as keywords beyond its named parameters.
+void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
+    for (const auto& [key, value] : options) {
+        const std::string k = py::str(key);
+        if (k == "rr_depth") r.rrDepth = value.cast<int>();
+        else if (k == "radius") r.merge.radius = value.cast<float>(), r.radiusGiven = true;
+        else if (k == "radius_factor") r.merge.radiusFactor = value.cast<float>(), r.radiusFactorGiven = true;
+        else if (k == "radius_pixels") r.merge.radiusPixels = value.cast<float>();
+        else if (k == "alpha") r.merge.alpha = value.cast<float>();
+        else
+            throw InputError("unknown option '" + k +
+                             "' (the integrator options are rr_depth, radius, radius_factor, radius_pixels and alpha)");
+    }
+}
+
+py::dict counters(const StatsSnapshot& stats) {
+    py::dict d;
+    for (int e = 0; e < kEventCount; ++e) d[py::str(eventKey(Event(e)))] = stats.events[e];
+    return d;
+}
+
+py::dict strategyLayers(const RenderResult& r) {
+    py::dict layers;
+    for (const Strategy& st : r.film.strategies()) {
+        py::dict both;
+        both["weighted"] = toArray(r.film.strategyImage(st, true, r.passes));
+        both["unweighted"] = toArray(r.film.strategyImage(st, false, r.passes));
+        layers[py::make_tuple(st.s, st.t, st.merge ? "merge" : "connect")] = both;
+    }
+    return layers;
+}
+
+py::dict renderScene(PyScene& scene, const std::string& integrator, std::optional<int> spp, std::optional<double> seconds,
+                int width, int height, uint64_t seed, int maxDepth, const std::string& mis, int threads, bool depthImages,
+                int strategyImages, const std::function<void(int, double)>& progress, const py::kwargs& options) {
+    RenderRequest request;
+    request.scene = scene.name();
+    request.gltf = scene.gltf();
+    request.integrator = integrator;
+    if (spp) request.spp = *spp, request.sppGiven = true;
+    if (seconds) request.seconds = *seconds, request.timeGiven = true;
+    request.width = width;
+    request.height = height;
+    request.seed = seed;
+    request.maxDepth = maxDepth;
+    request.mis = mis;
+    request.threads = threads;
+    request.depthImages = depthImages;
+    request.strategyImages = strategyImages;
+    applyIntegratorOptions(request, options);
+    if (request.sppGiven && request.timeGiven) throw InputError("spp and seconds exclude each other: give one");
+    validate(request, Spelling::Python);
+
+    Warnings warnings;
+    const Scene& built = scene.at(width, height, warnings);
+    warnings.raise();
+    const auto method = makeIntegrator(request.integrator, integratorSettings(request));
+    RenderSettings settings = renderSettings(request);
+    std::atomic<bool> stop{false};
+    bool interrupted = false;
+    std::optional<py::error_already_set> failure;  // raised by the progress callback
+    settings.stop = &stop;
+    settings.progress = [&](int passes, double elapsed) {
+        const py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) {  // Ctrl-C: KeyboardInterrupt raised by Python's handler
+            PyErr_Clear();
+            interrupted = true;
+            stop = true;
+            return;
+        }
+        if (!progress) return;
+        try {
+            progress(passes, elapsed);
+        } catch (py::error_already_set& e) {
+            failure.emplace(std::move(e));
+            stop = true;
+        }
+    };
+    std::optional<RenderResult> result;
+    {
+        const py::gil_scoped_release released;
+        result.emplace(tripath::render(built, *method, settings));
+    }
+    if (failure) throw std::move(*failure);
+    py::dict out;
+    out["image"] = toArray(result->image());
+    if (depthImages) {
+        py::list depth;
+        for (int k = 1; k <= settings.layers.depthImages; ++k) depth.append(toArray(result->film.depthImage(k, result->passes)));
+        out["depth"] = depth;
+    }
+    if (strategyImages > 0) out["strategies"] = strategyLayers(*result);
+    out["spp"] = result->passes;
+    out["seconds"] = result->seconds;
+    out["interrupted"] = interrupted;
+    out["dropped_samples"] = result->droppedSamples;
+    out["guarded_weights"] = result->guardedWeights;
+    out["counters"] = counters(result->stats);
+    py::dict metadata;
+    for (const auto& [key, value] : renderMetadata(request, built, *method, *result)) metadata[py::str(key)] = value;
+    out["metadata"] = metadata;
+    return out;
+}
+
+py::tuple readExrFile(const std::string& path) {
+    Metadata meta;
+    Image img = readExr(path, &meta);
+    py::dict d;
+    for (const auto& [key, value] : meta) d[py::str(key)] = value;
+    return py::make_tuple(toArray(std::move(img)), d);
+}
+
+ErrorMetrics errors(const py::array_t<float, py::array::c_style | py::array::forcecast>& image,
+                    const py::array_t<float, py::array::c_style | py::array::forcecast>& reference, double epsilon) {
+    return compareImages(fromArray(image, "image"), fromArray(reference, "reference"), epsilon);
+}
+
+}  // namespace
+
+}  // namespace tripath::python
+
+PYBIND11_MODULE(tripath, m) {
+    using namespace tripath;
+    using namespace tripath::python;
+    using Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
+    m.doc() = "tripath: light transport in the three-point form (path tracing, light tracing, BDPT, VCM, BPM, PPM)";
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const InputError& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        }
+    });
+
+    py::class_<PyScene>(m, "Scene", "A loaded scene: load() makes one; render() renders it at any size")
+        .def_property_readonly("name", &PyScene::name)
+        .def_property_readonly("triangles", &PyScene::triangles)
+        .def("__repr__", [](const PyScene& s) { return "<tripath.Scene '" + s.name() + "'>"; });
+
+    m.def(
+        "load",
+        [](const std::string& nameOrPath, bool allowExternalFiles) {
+            Warnings warnings;
+            GltfOptions gltf;
+            gltf.allowExternalFiles = allowExternalFiles;
+            auto scene = std::make_unique<PyScene>(nameOrPath, gltf, warnings);
+            warnings.raise();
+            return scene;
+        },
+        py::arg("path_or_builtin"), py::arg("allow_external_files") = false,
+        "Loads a built-in scene by name (see scenes()) or a .gltf/.glb file. ValueError for an unknown name or a bad "
+        "file, with the command line's one-line message; what the loader ignored or dropped comes as UserWarning. "
+        "allow_external_files lets a glTF file's buffers name files outside its folder.");
+
+    m.def("scenes", [] {
+        py::dict d;
+        for (const BuiltinInfo& b : builtinScenes()) d[py::str(b.name)] = b.description;
+        return d;
+    }, "The built-in scenes: name -> what each one is for");
+
+    m.def("render", &renderScene, py::arg("scene"), py::arg("integrator") = "bdpt", py::arg("spp") = py::none(),
+          py::arg("seconds") = py::none(), py::arg("width") = 512, py::arg("height") = 512, py::arg("seed") = 1,
+          py::arg("max_depth") = 16, py::arg("mis") = "power", py::arg("threads") = 0, py::arg("depth_images") = false,
+          py::arg("strategy_images") = 0, py::arg("progress") = py::none(),
+          "Renders scene with one integrator (pt, lt, bdpt, vcm, bpm, ppm) for spp passes or seconds of wall-clock time "
+          "(16 passes when neither is given). Returns a dict: image (float32 array, height x width x 3, linear "
+          "radiance, no copy), depth (with depth_images: one image per path length k = 1..max_depth), strategies (with "
+          "strategy_images = K: {(s, t, 'connect' | 'merge'): {'weighted', 'unweighted'}} for k <= K), spp, seconds, "
+          "interrupted, dropped_samples, guarded_weights, counters (rays, BSDF calls, ...), metadata (as the EXR's). "
+          "Keyword options: rr_depth (3), and for vcm, bpm, ppm radius, radius_factor, radius_pixels (0.75), alpha "
+          "(0.75). progress(passes, seconds) is called after each pass. The same settings give the same image as "
+          "`tripath render`, whatever the thread count. Ctrl-C stops at the next pass and returns what is done "
+          "(interrupted = True).");
+
+    m.def("read_exr", &readExrFile, py::arg("path"),
+          "Reads an EXR as (float32 array height x width x 3, {'tripath:...': value} metadata)");
+
+    py::module_ metrics = m.def_submodule("metrics", "Error metrics of an image against a reference (arrays h x w x 3)");
+    metrics.def("relmse", [](const Array& a, const Array& r, double eps) { return errors(a, r, eps).relMse; },
+                py::arg("image"), py::arg("reference"), py::arg("epsilon") = 0.01,
+                "Mean over pixels and channels of (x - r)^2 / (r^2 + epsilon)");
+    metrics.def("mse", [](const Array& a, const Array& r) { return errors(a, r, 0.01).mse; }, py::arg("image"),
+                py::arg("reference"), "Mean over pixels and channels of (x - r)^2");
+    metrics.def("mae", [](const Array& a, const Array& r) { return errors(a, r, 0.01).mae; }, py::arg("image"),
+                py::arg("reference"), "Mean over pixels and channels of |x - r|");
+    metrics.def("tail_share", [](const Array& a, const Array& r) { return errors(a, r, 0.01).tailShare; },
+                py::arg("image"), py::arg("reference"),
+                "Share of the relMSE sum carried by the worst 0.1 % of pixels (at least one)");
+    metrics.def(
+        "relmse_without_tail",
+        [](const Array& a, const Array& r) { return relMseWithoutTail(errors(a, r, 0.01), size_t(a.shape(0) * a.shape(1))); },
+        py::arg("image"), py::arg("reference"), "relMSE with the worst 0.1 % of pixels left out");
+    metrics.def(
+        "hdr_flip",
+        [](const Array& a, const Array& r) {
+            const Image reference = fromArray(r, "reference");
+            return hdrFlip(fromArray(a, "image"), reference, flipExposures(reference));
+        },
+        py::arg("image"), py::arg("reference"),
+        "Mean HDR-FLIP (Andersson et al. 2021) at exposures set from the reference, 67 pixels per degree");
+}

@@ -1,0 +1,222 @@
+"""The Python module against the library's promises: every integrator renders, the white furnace
+reads its analytic radiance, bad input is a ValueError with the command line's message, Python and
+`tripath render` give the same bits, the image is the film's memory without a copy, Ctrl-C returns
+the partial image. Run by CTest (Python.Module) with PYTHONPATH=build/python and TRIPATH_BINARY
+set to the command line."""
+import base64
+import gc
+import json
+import math
+import os
+import signal
+import struct
+import subprocess
+import sys
+import textwrap
+import warnings
+
+import numpy as np
+import pytest
+
+import tripath
+
+TRIPATH = os.environ.get("TRIPATH_BINARY", "")
+INTEGRATORS = ["pt", "lt", "bdpt", "vcm", "bpm", "ppm"]
+
+
+@pytest.fixture(scope="module")
+def cornell():
+    return tripath.load("cornell")
+
+
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_every_integrator_renders_a_builtin(cornell, integrator):
+    r = tripath.render(cornell, integrator, spp=2, width=20, height=12)
+    image = r["image"]
+    assert image.shape == (12, 20, 3) and image.dtype == np.float32
+    assert np.isfinite(image).all() and image.mean() > 0.01
+    assert r["spp"] == 2 and r["dropped_samples"] == 0 and not r["interrupted"]
+    assert r["metadata"]["tripath:integrator"] == integrator
+    # Every sample of every method casts at least one closest-hit ray (its camera ray or its light
+    # path's first): catches counters not taken from this render.
+    assert r["counters"]["closest_hit_rays"] >= 2 * 20 * 12
+
+
+def test_white_furnace_reads_its_analytic_radiance():
+    # Albedo 0.5, emission 1 inside a closed sphere: the radiance is 1 / (1 - 0.5) = 2 everywhere.
+    # Eight independent renders; their means scatter with the standard error, so 4 of it is a
+    # sound bound, and the error itself must be small for the test to mean anything.
+    furnace = tripath.load("furnace")
+    means = [tripath.render(furnace, "pt", spp=16, width=8, height=8, seed=s, max_depth=1000)["image"].mean()
+             for s in range(1, 9)]
+    mean, stderr = np.mean(means), np.std(means, ddof=1) / math.sqrt(len(means))
+    assert stderr < 0.02 * 2
+    assert abs(mean - 2) < 4 * stderr, (mean, stderr)
+
+
+def cli_error(*args):
+    """The one line `tripath` prints on stderr for bad input, without its 'error: ' prefix."""
+    p = subprocess.run([TRIPATH, *args], capture_output=True, text=True)
+    assert p.returncode != 0
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), p.stderr
+    return lines[0][len("error: "):]
+
+
+def test_bad_input_is_a_value_error_with_the_command_lines_message(tmp_path, cornell):
+    missing = str(tmp_path / "missing.gltf")
+    with pytest.raises(ValueError) as e:
+        tripath.load(missing)
+    assert str(e.value) == cli_error("render", "--scene", missing, "--out", str(tmp_path / "x.exr"))
+    with pytest.raises(ValueError, match="unknown scene"):
+        tripath.load("no-such-scene")
+    with pytest.raises(ValueError, match="^spp must be between 1 and 1000000"):
+        tripath.render(cornell, "pt", spp=0)
+    with pytest.raises(ValueError, match="^max_depth must be"):
+        tripath.render(cornell, "pt", max_depth=0)
+    with pytest.raises(ValueError, match="magic"):
+        tripath.render(cornell, "magic")
+    with pytest.raises(ValueError, match="unknown option 'radious'"):
+        tripath.render(cornell, "vcm", radious=0.1)
+    with pytest.raises(ValueError, match="exclude each other"):
+        tripath.render(cornell, "pt", spp=1, seconds=1)
+    with pytest.raises(ValueError, match="^strategy_images needs"):
+        tripath.render(cornell, "pt", strategy_images=2)
+
+
+def write_gltf_with_degenerate_triangle(path):
+    """A quad light facing a floor, plus one zero-area triangle the loader drops with a warning."""
+    positions = [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1),  # floor
+                 (-0.2, 1, -0.2), (0.2, 1, -0.2), (0.2, 1, 0.2), (-0.2, 1, 0.2),  # light, facing down
+                 (0, 0.5, 0), (0, 0.5, 0), (1, 0.5, 0)]  # degenerate
+    indices = [0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 8, 9, 10]
+    data = b"".join(struct.pack("<3f", *p) for p in positions) + b"".join(struct.pack("<H", i) for i in indices)
+    data += b"\0" * (-len(data) % 4)
+    gltf = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 12 * len(positions)},
+                        {"buffer": 0, "byteOffset": 12 * len(positions), "byteLength": 2 * len(indices)}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                       "min": [-1, 0, -1], "max": [1, 1, 1]},
+                      {"bufferView": 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1], "metallicFactor": 0}},
+                      {"emissiveFactor": [1, 1, 1]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+        "nodes": [{"mesh": 0}],
+        "scenes": [{"nodes": [0]}],
+    }
+    # The light's two triangles get the emissive material: split the index range in three primitives.
+    gltf["accessors"][1]["count"] = 6
+    gltf["accessors"].append({"bufferView": 1, "byteOffset": 12, "componentType": 5123, "count": 6, "type": "SCALAR"})
+    gltf["accessors"].append({"bufferView": 1, "byteOffset": 24, "componentType": 5123, "count": 3, "type": "SCALAR"})
+    gltf["meshes"][0]["primitives"] += [{"attributes": {"POSITION": 0}, "indices": 2, "material": 1},
+                                        {"attributes": {"POSITION": 0}, "indices": 3, "material": 0}]
+    path.write_text(json.dumps(gltf))
+
+
+def test_loader_warnings_are_python_warnings(tmp_path):
+    path = tmp_path / "degenerate.gltf"
+    write_gltf_with_degenerate_triangle(path)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        scene = tripath.load(str(path))
+    messages = [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+    assert any("dropped 1 degenerate" in m for m in messages), messages
+    assert scene.triangles == 4
+
+
+def test_python_and_the_command_line_give_the_same_bits(tmp_path):
+    out = tmp_path / "cli.exr"
+    args = ["--scene", "cornell-spheres", "--integrator", "bdpt", "--spp", "3", "--width", "24", "--height", "16",
+            "--seed", "5", "--max-depth", "8"]
+    subprocess.run([TRIPATH, "render", *args, "--out", str(out)], check=True, capture_output=True)
+    cli, meta = tripath.read_exr(str(out))
+    scene = tripath.load("cornell-spheres")
+    for threads in (1, 0):
+        r = tripath.render(scene, "bdpt", spp=3, width=24, height=16, seed=5, max_depth=8, threads=threads)
+        assert np.array_equal(r["image"], cli), threads
+    assert meta["tripath:seed"] == "5" and meta["tripath:spp"] == "3"
+    # A different seed differs: the comparison can fail.
+    other = tripath.render(scene, "bdpt", spp=3, width=24, height=16, seed=6, max_depth=8)["image"]
+    assert not np.array_equal(other, cli)
+
+
+def test_one_loaded_scene_renders_at_any_size(cornell):
+    small = tripath.render(cornell, "pt", spp=1, width=8, height=6)["image"]
+    large = tripath.render(cornell, "pt", spp=1, width=16, height=12)["image"]
+    assert small.shape == (6, 8, 3) and large.shape == (12, 16, 3)
+    again = tripath.render(cornell, "pt", spp=1, width=8, height=6)["image"]
+    assert np.array_equal(small, again)
+
+
+def test_the_image_is_the_films_memory_without_a_copy(cornell):
+    r = tripath.render(cornell, "pt", spp=1, width=16, height=8, depth_images=True, max_depth=3)
+    image = r["image"]
+    # A view over memory the module handed over (its base owns it), not an array NumPy allocated.
+    assert not image.flags.owndata and image.base is not None and image.flags.c_contiguous
+    kept = image.copy()
+    del r
+    gc.collect()
+    assert np.array_equal(image, kept)  # the array keeps its memory alive on its own
+    # The depth layers add up to the image (k = 1..3 with max_depth 3).
+    r = tripath.render(cornell, "pt", spp=1, width=16, height=8, depth_images=True, max_depth=3)
+    assert len(r["depth"]) == 3
+    assert np.allclose(sum(r["depth"]), r["image"], rtol=1e-5, atol=1e-6)
+
+
+def test_strategy_layers_are_keyed_by_s_t_and_technique(cornell):
+    r = tripath.render(cornell, "vcm", spp=1, width=16, height=8, strategy_images=3)
+    keys = set(r["strategies"])
+    assert (0, 2, "connect") in keys and (1, 2, "connect") in keys and (2, 2, "merge") in keys
+    assert all(set(v) == {"weighted", "unweighted"} for v in r["strategies"].values())
+
+
+def test_progress_is_called_after_each_pass_and_its_exception_stops_the_render(cornell):
+    seen = []
+    tripath.render(cornell, "pt", spp=5, width=8, height=8, progress=lambda p, s: seen.append(p))
+    assert seen == [1, 2, 3, 4, 5]
+
+    def fail(passes, seconds):
+        if passes == 2:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        tripath.render(cornell, "pt", spp=50, width=8, height=8, progress=fail)
+
+
+def test_ctrl_c_stops_at_the_next_pass_and_returns_the_partial_image():
+    script = textwrap.dedent("""
+        import sys, tripath
+        scene = tripath.load("cornell")
+        def started(passes, seconds):
+            if passes == 1:
+                print("started", flush=True)
+        r = tripath.render(scene, "bdpt", seconds=120, width=64, height=64, threads=1, progress=started)
+        print("interrupted" if r["interrupted"] else "finished", r["spp"], float(r["image"].mean()), flush=True)
+    """)
+    p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True, env=os.environ)
+    assert p.stdout.readline().strip() == "started"
+    p.send_signal(signal.SIGINT)
+    out, _ = p.communicate(timeout=60)
+    assert p.returncode == 0
+    word, spp, mean = out.split()
+    assert word == "interrupted" and int(spp) >= 1 and float(mean) > 0
+
+
+def test_metrics_on_hand_made_images():
+    reference = np.ones((4, 5, 3), np.float32)
+    assert tripath.metrics.relmse(reference, reference) == 0
+    assert tripath.metrics.hdr_flip(reference, reference) == 0
+    off = reference + np.float32(0.1)
+    # (0.1)^2 / (1^2 + 0.01) in every pixel and channel.
+    assert tripath.metrics.relmse(off, reference) == pytest.approx(0.01 / 1.01, rel=1e-5)
+    assert tripath.metrics.mse(off, reference) == pytest.approx(0.01, rel=1e-5)
+    assert tripath.metrics.mae(off, reference) == pytest.approx(0.1, rel=1e-5)
+    one = reference.copy()
+    one[2, 3] += 1  # one pixel of 20 carries all the error: the worst 0.1 % (one pixel) has all of it
+    assert tripath.metrics.tail_share(one, reference) == pytest.approx(1)
+    assert tripath.metrics.relmse_without_tail(one, reference) == 0
+    assert tripath.metrics.hdr_flip(one, reference) > 0
+    with pytest.raises(ValueError, match="shape"):
+        tripath.metrics.relmse(np.ones((4, 5)), reference)
