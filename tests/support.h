@@ -12,36 +12,24 @@
 
 #include "geometry/builtin_scenes.h"
 #include "integrators/render.h"
+#include "integrators/render_request.h"
 
 namespace tripath::test {
 
-struct RenderRequest {
-    std::string integrator = "pt";
-    int width = 16, height = 16;
-    int spp = 4;
-    uint64_t seed = 1;
-    int maxDepth = 16;
-    int rrDepth = 3;
-    MisHeuristic mis = MisHeuristic::Power;
-    int threads = 0;
-    FilmLayers layers;
-    MergeSettings merge;
-};
+// The library's render request (integrators/render_request.h) at the tests' usual size: pt,
+// 16×16 pixels, 4 passes; tests set what they need on top.
+inline RenderRequest smallRequest() {
+    RenderRequest r;
+    r.integrator = "pt";
+    r.width = r.height = 16;
+    r.spp = 4;
+    return r;
+}
 
-// Renders a scene built by the caller (at r.width x r.height).
+// Renders a scene built by the caller (at r.width x r.height) as the command line would.
 inline RenderResult renderScene(const Scene& scene, const RenderRequest& r) {
-    IntegratorSettings is;
-    is.walk.maxDepth = r.maxDepth;
-    is.walk.rrDepth = r.rrDepth;
-    is.mis = r.mis;
-    is.merge = r.merge;
-    const auto integrator = makeIntegrator(r.integrator, is);
-    RenderSettings rs;
-    rs.spp = r.spp;
-    rs.seed = r.seed;
-    rs.threads = r.threads;
-    rs.layers = r.layers;
-    return render(scene, *integrator, rs);
+    const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
+    return render(scene, *integrator, renderSettings(r));
 }
 
 inline RenderResult renderDesc(const SceneDesc& desc, const RenderRequest& r) {

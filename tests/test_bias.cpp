@@ -72,7 +72,7 @@ TEST(Bias, AMapFindsTheOffsetBlockAndNothingElse) {
 std::vector<Image> renders(const std::string& scene, const std::string& integrator, int runs, int spp) {
     std::vector<Image> out;
     for (int r = 0; r < runs; ++r) {
-        test::RenderRequest q;
+        RenderRequest q = test::smallRequest();
         q.integrator = integrator;
         q.width = q.height = 32;
         q.spp = spp;

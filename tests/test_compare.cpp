@@ -131,7 +131,7 @@ const std::string kSmall = "--scene cornell --width 32 --height 32";
 }  // namespace
 
 TEST(RenderLoop, OnPassSeesEveryPassAndTheFilmSoFar) {
-    test::RenderRequest req;
+    RenderRequest req = test::smallRequest();
     req.spp = 5;
     const Scene scene(builtinScene("cornell"), req.width, req.height);
     const auto integrator = makeIntegrator("pt", {});

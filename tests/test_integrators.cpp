@@ -15,7 +15,6 @@ namespace tripath {
 namespace {
 
 using test::meanAndError;
-using test::RenderRequest;
 
 const char* kIntegrators[] = {"pt", "lt", "bdpt"};
 // With the merging ones, where every method must hold: analytic answers, determinism, robustness.
@@ -32,7 +31,7 @@ void expectFurnace(float albedo) {
     for (const char* integrator : kAllIntegrators) {
         std::vector<double> runs;
         for (uint64_t seed = 1; seed <= 8; ++seed) {
-            RenderRequest r;
+            RenderRequest r = test::smallRequest();
             r.integrator = integrator;
             r.width = r.height = 8;
             r.spp = 32;
@@ -56,7 +55,7 @@ TEST(Furnace, AlbedoNineTenths) { expectFurnace(0.9f); }
 std::vector<std::vector<double>> blockRuns(const SceneDesc& desc, const char* integrator, int runs, int spp) {
     std::vector<std::vector<double>> blocks;
     for (int run = 0; run < runs; ++run) {
-        RenderRequest r;
+        RenderRequest r = test::smallRequest();
         r.integrator = integrator;
         r.width = r.height = 32;
         r.spp = spp;
@@ -132,7 +131,7 @@ TEST(Agreement, EmissiveGlassLight) {
 // normal, the front of the wall is exactly black under every integrator.
 TEST(ShadingNormals, NoLightLeaksThroughASmoothShadedWall) {
     for (const char* integrator : kIntegrators) {
-        RenderRequest r;
+        RenderRequest r = test::smallRequest();
         r.integrator = integrator;
         r.spp = 16;
         const Image img = test::renderDesc(test::lightBehindASmoothShadedWall(), r).image();
@@ -146,14 +145,14 @@ TEST(Bdpt, EachStrategyUnweightedAgreesWithItsPathLength) {
     const SceneDesc desc = builtinScene("cornell");
     std::map<Strategy, std::vector<double>> diffs;
     for (uint64_t seed = 1; seed <= 16; ++seed) {
-        RenderRequest r;
+        RenderRequest r = test::smallRequest();
         r.integrator = "bdpt";
         r.width = r.height = 16;
         r.spp = 8;
         r.seed = seed;
         r.maxDepth = 3;
-        r.layers.depthImages = 3;
-        r.layers.strategyLength = 3;
+        r.depthImages = true;  // layers k = 1..maxDepth
+        r.strategyImages = 3;
         const RenderResult res = test::renderDesc(desc, r);
         for (const Strategy& st : res.film.strategies()) {
             const double strategy = imageMean(res.film.strategyImage(st, false, res.passes));
@@ -191,13 +190,13 @@ TEST(Film, DepthImagesAreTheDifferencesOfMaxDepthRenders) {
         std::vector<std::vector<RenderResult>> renders(kTop + 2);
         for (int depth = 1; depth <= kTop + 1; ++depth)
             for (int run = 0; run < kRuns; ++run) {
-                RenderRequest r;
+                RenderRequest r = test::smallRequest();
                 r.integrator = integrator;
                 r.width = r.height = kSize;
                 r.spp = spp;
                 r.seed = 5000 + 10 * run + depth;
                 r.maxDepth = depth;
-                r.layers.depthImages = depth;
+                r.depthImages = true;  // layers k = 1..maxDepth
                 renders[depth].push_back(test::renderDesc(builtinScene("cornell"), r));
             }
         for (int k = 1; k <= kTop; ++k) {
@@ -228,7 +227,7 @@ TEST(Film, DepthImagesAreTheDifferencesOfMaxDepthRenders) {
 }
 
 // The image of `desc` with its BVH built on `buildThreads` threads, rendered on `renderThreads`.
-Image renderBuiltWith(const SceneDesc& desc, test::RenderRequest r, int buildThreads, int renderThreads) {
+Image renderBuiltWith(const SceneDesc& desc, RenderRequest r, int buildThreads, int renderThreads) {
     const auto scene = test::buildWithThreads(desc, r.width, r.height, buildThreads);
     r.threads = renderThreads;
     return test::renderScene(*scene, r).image();
@@ -253,7 +252,7 @@ TEST(Determinism, SameSeedSameImageWhateverTheThreadCount) {
     const std::pair<int, int> others[] = {{2, 1}, {1, 2}, {2, 2}, {4, 3}};
     for (const auto& [name, desc] : scenes)
         for (const char* integrator : kAllIntegrators) {
-            RenderRequest r;
+            RenderRequest r = test::smallRequest();
             r.integrator = integrator;
             r.width = 40;  // not a multiple of the tile size
             r.height = 24;
@@ -273,7 +272,7 @@ TEST(Determinism, SameSeedSameImageWhateverTheThreadCount) {
 TEST(Robustness, NoNanOrInfOnAnyBuiltinScene) {
     for (const BuiltinInfo& info : builtinScenes())
         for (const char* integrator : kAllIntegrators) {
-            RenderRequest r;
+            RenderRequest r = test::smallRequest();
             r.integrator = integrator;
             r.spp = 2;
             const RenderResult res = test::renderDesc(builtinScene(info.name), r);

@@ -15,7 +15,6 @@ namespace tripath {
 namespace {
 
 using test::meanAndError;
-using test::RenderRequest;
 
 // ---- the range search -------------------------------------------------------------------------
 
@@ -114,7 +113,7 @@ Runs renderRuns(const SceneDesc& desc, RenderRequest r, int runs) {
 }
 
 RenderRequest request(const std::string& integrator, int spp, float radiusFactor, float alpha) {
-    RenderRequest r;
+    RenderRequest r = test::smallRequest();
     r.integrator = integrator;
     r.width = r.height = 32;
     r.spp = spp;

@@ -10,7 +10,7 @@ namespace {
 TEST(Stats, OneClosestHitRayPerCameraSampleAtPathLengthOne) {
     // At --max-depth 1 a camera walk is the sensor and one hit: exactly one ray per sample, no
     // BSDF sampled, no next-event estimation (its paths have k >= 2), no shadow ray.
-    RenderRequest r;
+    RenderRequest r = test::smallRequest();
     r.maxDepth = 1;
     r.spp = 3;
     const Scene scene(builtinScene("cornell"), r.width, r.height);
@@ -25,7 +25,7 @@ TEST(Stats, OneClosestHitRayPerCameraSampleAtPathLengthOne) {
 TEST(Stats, CountsAreTheSameWhateverTheThreadCount) {
     // Counts are of events the seed determines; a thread whose counts no snapshot sees (a task
     // that never enrolled) would lose some of them on more threads.
-    RenderRequest r;
+    RenderRequest r = test::smallRequest();
     r.integrator = "vcm";
     r.width = r.height = 32;
     r.spp = 2;
@@ -43,7 +43,7 @@ TEST(Stats, CountsAreTheSameWhateverTheThreadCount) {
 }
 
 TEST(Stats, PhasesAreSampledOnlyWhenAskedAndWhereTheWorkIs) {
-    RenderRequest r;
+    RenderRequest r = test::smallRequest();
     r.width = r.height = 64;
     r.spp = 0;
     const Scene scene(builtinScene("cornell"), r.width, r.height);
