@@ -11,6 +11,14 @@ namespace tripath {
 
 namespace {
 
+// The front ends' names of the heuristics; the path core knows only the enum.
+MisHeuristic parseMisHeuristic(const std::string& name) {
+    if (name == "balance") return MisHeuristic::Balance;
+    if (name == "power") return MisHeuristic::Power;
+    if (name == "none") return MisHeuristic::Uniform;
+    throw InputError("unknown MIS heuristic '" + name + "' (balance, power or none)");
+}
+
 // A parameter's name as the front end spells it: the command line's flag, Python's keyword.
 std::string named(const char* flag, Spelling spelling) {
     if (spelling == Spelling::CommandLine) return std::string("--") + flag;

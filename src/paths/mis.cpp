@@ -2,18 +2,10 @@
 
 #include <cmath>
 
-#include "geometry/error.h"
 #include "geometry/stats.h"
 #include "paths/kernels.h"
 
 namespace tripath {
-
-MisHeuristic parseMisHeuristic(const std::string& name) {
-    if (name == "balance") return MisHeuristic::Balance;
-    if (name == "power") return MisHeuristic::Power;
-    if (name == "none") return MisHeuristic::Uniform;
-    throw InputError("unknown MIS heuristic '" + name + "' (balance, power or none)");
-}
 
 namespace {
 

@@ -51,7 +51,6 @@
 // tests hold the running sums to, and serves the uniform heuristic and the bounded sets.
 #pragma once
 #include <span>
-#include <string>
 
 #include "paths/roulette.h"
 #include "paths/vertex.h"
@@ -59,7 +58,6 @@
 namespace tripath {
 
 enum class MisHeuristic { Balance, Power, Uniform };
-MisHeuristic parseMisHeuristic(const std::string& name);  // "balance" | "power" | "none"
 
 // Which pdfs a subpath walk records for MIS: every vertex's pdfFwd and pdfRev, only the pdfFwd
 // of vertices that lie on an emitter, or none.
