@@ -23,6 +23,11 @@
 // says which), through the file-system callbacks below; image files are never opened.
 #include "geometry/gltf_loader.h"
 
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_access.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
@@ -64,98 +69,67 @@ const std::set<std::string> kIgnorableExtensions = {
     "KHR_materials_dispersion", "KHR_materials_variants",  "KHR_texture_transform",
     "KHR_texture_basisu",       "EXT_texture_webp",        "EXT_texture_avif"};
 
-// Column-major 4×4 affine transform as glTF stores node.matrix: (row r, column c) is m[4c + r].
-struct Mat4 {
-    std::array<double, 16> m{};
-    double operator()(int r, int c) const { return m[4 * c + r]; }
-    double& operator()(int r, int c) { return m[4 * c + r]; }
-};
+// Node transforms are glm::dmat4, column-major like glTF's node.matrix: (row r, column c) is m[c][r].
 
-Mat4 identityMatrix() {
-    Mat4 a;
-    for (int i = 0; i < 4; ++i) a(i, i) = 1;
-    return a;
-}
+glm::dvec3 toGlm(Vec3 v) { return {v.x, v.y, v.z}; }
+Vec3 toVec3(glm::dvec3 v) { return {float(v.x), float(v.y), float(v.z)}; }
 
-Mat4 operator*(const Mat4& a, const Mat4& b) {
-    Mat4 p;
-    for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c)
-            for (int k = 0; k < 4; ++k) p(r, c) += a(r, k) * b(k, c);
-    return p;
-}
-
-bool allFinite(const Mat4& a) {
-    for (double x : a.m)
-        if (!std::isfinite(x)) return false;
+bool allFinite(const glm::dmat4& a) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(a[c][r])) return false;
     return true;
 }
 
-bool isAffine(const Mat4& a) {
-    return a(3, 0) == 0 && a(3, 1) == 0 && a(3, 2) == 0 && a(3, 3) == 1;
-}
+bool isAffine(const glm::dmat4& a) { return glm::row(a, 3) == glm::dvec4(0, 0, 0, 1); }
 
-double determinant3(const Mat4& a) {
-    return a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) -
-           a(0, 1) * (a(1, 0) * a(2, 2) - a(1, 2) * a(2, 0)) +
-           a(0, 2) * (a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
-}
-
-double columnLength(const Mat4& a, int c) {
-    return std::sqrt(a(0, c) * a(0, c) + a(1, c) * a(1, c) + a(2, c) * a(2, c));
-}
+// The upper 3×3: the linear part that directions, normals and the winding see.
+glm::dmat3 linearPart(const glm::dmat4& a) { return glm::dmat3(a); }
 
 // True when the upper 3×3 squashes space onto a plane, line or point (or is not finite).
-bool collapsesSpace(const Mat4& a) {
-    const double scale = columnLength(a, 0) * columnLength(a, 1) * columnLength(a, 2);
-    return !(std::abs(determinant3(a)) > kCollapseRatio * scale);
+bool collapsesSpace(const glm::dmat4& a) {
+    const glm::dmat3 m = linearPart(a);
+    const double scale = glm::length(m[0]) * glm::length(m[1]) * glm::length(m[2]);
+    return !(std::abs(glm::determinant(m)) > kCollapseRatio * scale);
 }
 
-std::array<double, 3> applyLinear(const Mat4& a, Vec3 v) {
-    std::array<double, 3> out{};
-    for (int r = 0; r < 3; ++r) out[r] = a(r, 0) * v.x + a(r, 1) * v.y + a(r, 2) * v.z;
-    return out;
+// The linear part, then the translation: ((a x + b y) + c z) + t, where glm's dmat4 × dvec4 would
+// add in pairs, (a x + b y) + (c z + t), and round differently.
+Vec3 transformPoint(const glm::dmat4& a, Vec3 p) {
+    return toVec3(linearPart(a) * toGlm(p) + glm::dvec3(a[3]));
 }
 
-Vec3 transformPoint(const Mat4& a, Vec3 p) {
-    const auto v = applyLinear(a, p);
-    return {float(v[0] + a(0, 3)), float(v[1] + a(1, 3)), float(v[2] + a(2, 3))};
+// Inverse transpose of the linear part, as cofactors over the determinant: row i of the cofactor
+// matrix is the cross product of the rows after it (cyclically). glm::inverseTranspose would
+// expand the determinant along the other axis and negate cofactors, which moves last bits and
+// turns +0 entries into -0; the tangent frames built around normals (copysign in vec.h) see both.
+glm::dmat3 normalMatrix(const glm::dmat3& m) {
+    const glm::dmat3 rows = glm::transpose(m);
+    const glm::dmat3 cofactorRows(glm::cross(rows[1], rows[2]), glm::cross(rows[2], rows[0]),
+                                  glm::cross(rows[0], rows[1]));
+    return glm::transpose(cofactorRows) / glm::determinant(m);
 }
 
-// Unit direction of the linear part applied to v; zero vector when it vanishes or is not finite.
-Vec3 transformDirection(const Mat4& a, Vec3 v) {
-    const auto d = applyLinear(a, v);
-    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+// parent × child, the world transform of the child. Zero entries come out as +0 whatever the
+// signs of their products (x + 0 is x for any other x): a vertex coordinate at zero keeps one
+// sign, and with it the tangent frames built from the triangle's normal (copysign in vec.h).
+glm::dmat4 compose(const glm::dmat4& parent, const glm::dmat4& child) {
+    return parent * child + glm::dmat4(0.0);
+}
+
+// Unit direction of m × v; zero vector when it vanishes or is not finite.
+Vec3 transformDirection(const glm::dmat3& m, Vec3 v) {
+    const glm::dvec3 d = m * toGlm(v);
+    const double len = glm::length(d);
     if (!(len > 0) || !std::isfinite(len)) return Vec3(0.0f);
-    return {float(d[0] / len), float(d[1] / len), float(d[2] / len)};
+    return toVec3(d / len);
 }
 
-// Inverse transpose of the upper 3×3: cofactors divided by the determinant.
-Mat4 normalMatrix(const Mat4& a) {
-    Mat4 n;
-    const double det = determinant3(a);
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) {
-            const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-            n(r, c) = (a(r1, c1) * a(r2, c2) - a(r1, c2) * a(r2, c1)) / det;
-        }
-    }
-    n(3, 3) = 1;
-    return n;
-}
-
-// T × R × S of a node without a matrix; inputs already checked for length and finiteness.
-Mat4 composeTrs(const std::vector<double>& t, const std::vector<double>& q,
-                const std::vector<double>& s) {
-    const double x = q[0], y = q[1], z = q[2], w = q[3];
-    const double rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                              {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                              {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-    Mat4 m = identityMatrix();
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) m(r, c) = rot[r][c] * s[c];
-        m(r, 3) = t[r];
-    }
+// T × R × S of a node without a matrix; inputs already checked for length and finiteness, the
+// rotation normalised.
+glm::dmat4 composeTrs(const glm::dvec3& t, const glm::dquat& r, const glm::dvec3& s) {
+    glm::dmat4 m = glm::scale(glm::dmat4(glm::mat3_cast(r)), s);  // R × S: columns scaled
+    m[3] = glm::dvec4(t, 1.0);                                      // T × (R × S)
     return m;
 }
 
@@ -335,13 +309,13 @@ private:
 
     std::vector<int> rootNodes() const;
     void traverseScene();
-    Mat4 visitNode(int index, const Mat4& parent);
-    Mat4 localTransform(const tinygltf::Node& node, int index) const;
+    glm::dmat4 visitNode(int index, const glm::dmat4& parent);
+    glm::dmat4 localTransform(const tinygltf::Node& node, int index) const;
 
-    void addMesh(int meshIndex, const Mat4& world, int nodeIndex);
-    void addPrimitive(const tinygltf::Primitive& prim, const std::string& name, const Mat4& world);
+    void addMesh(int meshIndex, const glm::dmat4& world, int nodeIndex);
+    void addPrimitive(const tinygltf::Primitive& prim, const std::string& name, const glm::dmat4& world);
     std::vector<Vec3> worldNormals(const tinygltf::Primitive& prim, size_t vertexCount,
-                                   const Mat4& world, const std::string& what);
+                                   const glm::dmat4& world, const std::string& what);
     MeshDesc keepGoodTriangles(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
                                const std::vector<uint32_t>& indices, bool flipWinding);
 
@@ -350,8 +324,8 @@ private:
     std::vector<Vec3> readVec3(int index, const std::string& what) const;
     std::vector<uint32_t> readIndices(int index, const std::string& what) const;
 
-    void addCamera(int cameraIndex, const Mat4& world, int nodeIndex);
-    void addLight(const tinygltf::Node& node, const Mat4& world, int nodeIndex);
+    void addCamera(int cameraIndex, const glm::dmat4& world, int nodeIndex);
+    void addLight(const tinygltf::Node& node, const glm::dmat4& world, int nodeIndex);
 
     std::string path_;
     WarningSink warn_;
@@ -594,13 +568,13 @@ std::vector<int> GltfLoader::rootNodes() const {
 void GltfLoader::traverseScene() {
     struct Frame {
         int node;
-        Mat4 world;
+        glm::dmat4 world;
         size_t nextChild;
     };
     std::vector<char> onPath(model_.nodes.size(), 0);
     for (int root : rootNodes()) {
         std::vector<Frame> stack;
-        stack.push_back({root, visitNode(root, identityMatrix()), 0});
+        stack.push_back({root, visitNode(root, glm::dmat4(1.0)), 0});
         onPath[size_t(root)] = 1;
         while (!stack.empty()) {
             Frame& top = stack.back();
@@ -611,8 +585,8 @@ void GltfLoader::traverseScene() {
                 continue;
             }
             const int child = children[top.nextChild++];
-            const Mat4 parentWorld = top.world;
-            const Mat4 world = visitNode(child, parentWorld);
+            const glm::dmat4 parentWorld = top.world;
+            const glm::dmat4 world = visitNode(child, parentWorld);
             if (onPath[size_t(child)])
                 fail("node " + std::to_string(child) + " is its own ancestor (cycle in the node hierarchy)");
             onPath[size_t(child)] = 1;
@@ -622,11 +596,11 @@ void GltfLoader::traverseScene() {
 }
 
 // Adds what the node carries and returns its world transform.
-Mat4 GltfLoader::visitNode(int index, const Mat4& parent) {
+glm::dmat4 GltfLoader::visitNode(int index, const glm::dmat4& parent) {
     if (index < 0 || size_t(index) >= model_.nodes.size())
         fail("node " + std::to_string(index) + " does not exist");
     const tinygltf::Node& node = model_.nodes[size_t(index)];
-    const Mat4 world = parent * localTransform(node, index);
+    const glm::dmat4 world = compose(parent, localTransform(node, index));
     if (!allFinite(world)) fail("node " + std::to_string(index) + " has a non-finite world transform");
     if (node.mesh >= 0) addMesh(node.mesh, world, index);
     if (node.camera >= 0) addCamera(node.camera, world, index);
@@ -634,31 +608,29 @@ Mat4 GltfLoader::visitNode(int index, const Mat4& parent) {
     return world;
 }
 
-Mat4 GltfLoader::localTransform(const tinygltf::Node& node, int index) const {
+glm::dmat4 GltfLoader::localTransform(const tinygltf::Node& node, int index) const {
     const std::string what = "node " + std::to_string(index);
     if (!node.matrix.empty()) {
         if (node.matrix.size() != 16) fail(what + " matrix does not have 16 entries");
         if (!allFinite(node.matrix)) fail(what + " has a non-finite matrix");
-        Mat4 m;
-        std::copy(node.matrix.begin(), node.matrix.end(), m.m.begin());
+        const glm::dmat4 m = glm::make_mat4(node.matrix.data());
         if (!isAffine(m)) fail(what + " matrix is not affine (last row must be 0 0 0 1)");
         return m;
     }
     const std::vector<double> t = node.translation.empty() ? std::vector<double>{0, 0, 0} : node.translation;
-    std::vector<double> q = node.rotation.empty() ? std::vector<double>{0, 0, 0, 1} : node.rotation;
+    const std::vector<double> q = node.rotation.empty() ? std::vector<double>{0, 0, 0, 1} : node.rotation;
     const std::vector<double> s = node.scale.empty() ? std::vector<double>{1, 1, 1} : node.scale;
     if (t.size() != 3 || q.size() != 4 || s.size() != 3) fail(what + " has a malformed translation, rotation or scale");
     if (!allFinite(t) || !allFinite(q) || !allFinite(s)) fail(what + " has a non-finite translation, rotation or scale");
-    const double qLength = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    if (!(qLength > 0)) fail(what + " rotation quaternion has zero length");
-    for (double& x : q) x /= qLength;
-    return composeTrs(t, q, s);
+    const glm::dquat rotation(q[3], q[0], q[1], q[2]);  // glTF stores (x, y, z, w); glm takes w first
+    if (!(glm::length(rotation) > 0)) fail(what + " rotation quaternion has zero length");
+    return composeTrs(glm::make_vec3(t.data()), glm::normalize(rotation), glm::make_vec3(s.data()));
 }
 
 // ---------------------------------------------------------------------------------------------
 // Meshes
 
-void GltfLoader::addMesh(int meshIndex, const Mat4& world, int nodeIndex) {
+void GltfLoader::addMesh(int meshIndex, const glm::dmat4& world, int nodeIndex) {
     const std::string node = "node " + std::to_string(nodeIndex);
     if (size_t(meshIndex) >= model_.meshes.size())
         fail(node + " references mesh " + std::to_string(meshIndex) + ", which does not exist");
@@ -672,7 +644,7 @@ void GltfLoader::addMesh(int meshIndex, const Mat4& world, int nodeIndex) {
     }
 }
 
-void GltfLoader::addPrimitive(const tinygltf::Primitive& prim, const std::string& name, const Mat4& world) {
+void GltfLoader::addPrimitive(const tinygltf::Primitive& prim, const std::string& name, const glm::dmat4& world) {
     if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {
         warnOnce(primitiveModeName(prim.mode) + " primitives are skipped (only TRIANGLES is supported)");
         return;
@@ -701,7 +673,7 @@ void GltfLoader::addPrimitive(const tinygltf::Primitive& prim, const std::string
             fail(name + " index " + std::to_string(i) + " is out of range (" +
                  std::to_string(positions.size()) + " vertices)");
 
-    MeshDesc mesh = keepGoodTriangles(positions, normals, indices, determinant3(world) < 0);
+    MeshDesc mesh = keepGoodTriangles(positions, normals, indices, glm::determinant(linearPart(world)) < 0);
     if (mesh.indices.empty()) return;
     mesh.name = name;
     mesh.material = materialIndex(prim.material, name);
@@ -710,14 +682,14 @@ void GltfLoader::addPrimitive(const tinygltf::Primitive& prim, const std::string
 
 // World-space unit shading normals, or none when the primitive has no usable NORMAL attribute.
 std::vector<Vec3> GltfLoader::worldNormals(const tinygltf::Primitive& prim, size_t vertexCount,
-                                           const Mat4& world, const std::string& what) {
+                                           const glm::dmat4& world, const std::string& what) {
     const auto attribute = prim.attributes.find("NORMAL");
     if (attribute == prim.attributes.end()) return {};
     std::vector<Vec3> normals = readVec3(attribute->second, what + " NORMAL");
     if (normals.size() != vertexCount)
         fail(what + " has " + std::to_string(normals.size()) + " normals for " +
              std::to_string(vertexCount) + " positions");
-    const Mat4 toWorld = normalMatrix(world);
+    const glm::dmat3 toWorld = normalMatrix(linearPart(world));
     for (Vec3& n : normals) {
         n = transformDirection(toWorld, n);
         if (isBlack(n)) {
@@ -837,7 +809,7 @@ std::vector<uint32_t> GltfLoader::readIndices(int index, const std::string& what
 // ---------------------------------------------------------------------------------------------
 // Camera and lights
 
-void GltfLoader::addCamera(int cameraIndex, const Mat4& world, int nodeIndex) {
+void GltfLoader::addCamera(int cameraIndex, const glm::dmat4& world, int nodeIndex) {
     const std::string node = "node " + std::to_string(nodeIndex);
     if (size_t(cameraIndex) >= model_.cameras.size())
         fail(node + " references camera " + std::to_string(cameraIndex) + ", which does not exist");
@@ -850,8 +822,8 @@ void GltfLoader::addCamera(int cameraIndex, const Mat4& world, int nodeIndex) {
     const double yfov = camera.perspective.yfov;
     if (!std::isfinite(yfov) || yfov <= 0 || yfov >= kPi)
         fail("camera " + std::to_string(cameraIndex) + " yfov " + formatNumber(yfov) + " is not in (0, pi)");
-    const Vec3 forward = transformDirection(world, Vec3(0, 0, -1));
-    const Vec3 upHint = transformDirection(world, Vec3(0, 1, 0));
+    const Vec3 forward = transformDirection(linearPart(world), Vec3(0, 0, -1));
+    const Vec3 upHint = transformDirection(linearPart(world), Vec3(0, 1, 0));
     const Vec3 upOrtho = upHint - forward * dot(upHint, forward);
     if (isBlack(forward) || !(length(upOrtho) > 1e-6f))
         fail(node + " camera transform is degenerate");
@@ -866,7 +838,7 @@ void GltfLoader::addCamera(int cameraIndex, const Mat4& world, int nodeIndex) {
 
 // glTF gives a point light's intensity in candela (lm/sr). This renderer has no photometric
 // units, so the number is taken as radiant intensity in W/sr: I = color × intensity.
-void GltfLoader::addLight(const tinygltf::Node& node, const Mat4& world, int nodeIndex) {
+void GltfLoader::addLight(const tinygltf::Node& node, const glm::dmat4& world, int nodeIndex) {
     const auto ext = node.extensions.find("KHR_lights_punctual");
     if (ext == node.extensions.end()) return;
     const std::string nodeName = "node " + std::to_string(nodeIndex);
