@@ -7,6 +7,7 @@ packages=(build-essential cmake pkg-config
   libembree-dev libopenexr-dev libopenimageio-dev libtinygltf-dev nlohmann-json3-dev
   libbenchmark-dev libgtest-dev libtbb-dev libcli11-dev libfmt-dev
   fonts-dejavu-core  # the labels of `tripath compare`'s charts and side-by-side images
+  libglm-dev  # the glTF loader's node transforms: 4×4 matrices and quaternions in double precision
   libcairo2-dev  # draws `tripath compare`'s chart once, onto an SVG and an image surface
   libopenmpi-dev openmpi-bin  # distributed rendering under mpirun (docs/distributed.md)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests (docs/python.md)

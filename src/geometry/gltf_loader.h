@@ -1,6 +1,6 @@
 // glTF 2.0 loading (.gltf with embedded or external buffers, and .glb) into a plain SceneDesc.
 // What each glTF feature becomes, and what is ignored, is listed in docs/gltf.md and in the
-// comment at the top of gltf_loader.cpp.
+// comments at the top of gltf_loader.cpp and gltf_materials.cpp.
 #pragma once
 #include <string>
 

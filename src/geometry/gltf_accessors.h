@@ -1,0 +1,45 @@
+// Typed reads of a glTF model's accessors, as the loader needs them: float VEC3 attributes
+// (POSITION, NORMAL) and unsigned byte, short or int indices. Every accessor, bufferView and
+// buffer index, the stride and the whole byte range are checked before a byte is read, so a
+// hostile file fails with a message instead of reading out of bounds. Sparse accessors and
+// accessors without a bufferView are refused. A header of the geometry library's own (the
+// loader's interface is gltf_loader.h).
+#pragma once
+#include <tiny_gltf.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/gltf_checks.h"
+#include "geometry/vec.h"
+
+namespace tripath::gltf {
+
+class Accessors {
+public:
+    Accessors(const tinygltf::Model& model, const Report& report) : model_(model), report_(report) {}
+
+    // The elements of float VEC3 accessor `index`; `what` names the attribute in messages.
+    std::vector<Vec3> readVec3(int index, const std::string& what) const;
+    // The elements of unsigned byte, short or int SCALAR accessor `index`, widened; `what` names
+    // the primitive in messages.
+    std::vector<uint32_t> readIndices(int index, const std::string& what) const;
+
+private:
+    // The bytes of an accessor's first element and the distance between elements.
+    struct Bytes {
+        const unsigned char* first = nullptr;
+        size_t stride = 0;
+        size_t count = 0;
+    };
+
+    const tinygltf::Accessor& accessor(int index, const std::string& what) const;
+    Bytes accessorBytes(int index, size_t elementSize) const;
+
+    const tinygltf::Model& model_;
+    const Report& report_;
+};
+
+}  // namespace tripath::gltf

@@ -1,0 +1,39 @@
+// The checks and message helpers that the pieces of the glTF loader share (gltf_checks.h).
+#include "geometry/gltf_checks.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace tripath::gltf {
+
+namespace {
+
+// Extensions whose content the loader reads.
+const std::set<std::string> kHandledExtensions = {
+    "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_emissive_strength"};
+
+}  // namespace
+
+std::string formatNumber(double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+bool allFinite(const std::vector<double>& values) {
+    for (double x : values)
+        if (!std::isfinite(float(x))) return false;
+    return true;
+}
+
+Vec3 finiteVec3(const std::vector<double>& values, Vec3 fallback, const std::string& what, const Report& report) {
+    if (values.empty()) return fallback;
+    if (values.size() < 3) report.fail(what + " has " + std::to_string(values.size()) + " components");
+    if (!allFinite(values)) report.fail(what + " is not finite");
+    return {float(values[0]), float(values[1]), float(values[2])};
+}
+
+bool isHandledExtension(const std::string& name) { return kHandledExtensions.count(name) > 0; }
+
+}  // namespace tripath::gltf

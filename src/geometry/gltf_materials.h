@@ -1,0 +1,22 @@
+// glTF materials → the scene's Materials: which of the renderer's few BSDFs each glTF material
+// becomes, from its pbrMetallicRoughness factors and a few KHR_materials extensions (the table
+// at the top of gltf_materials.cpp; docs/gltf.md for users). A header of the geometry library's
+// own (the loader's interface is gltf_loader.h).
+#pragma once
+#include <tiny_gltf.h>
+
+#include <vector>
+
+#include "geometry/gltf_checks.h"
+#include "geometry/material.h"
+
+namespace tripath::gltf {
+
+// The model's materials, in order; warns once about each feature they lose, fails on a factor
+// out of range or a material validateMaterial refuses.
+std::vector<Material> convertMaterials(const tinygltf::Model& model, Report& report);
+
+// The material of primitives that name none.
+Material defaultMaterial();
+
+}  // namespace tripath::gltf
