@@ -2,7 +2,7 @@
 // so that a built-in scene can be shipped as a file and loaded like any user's (scenes/*.gltf).
 // The scene becomes a tinygltf::Model, which tinygltf writes (gltf_model.h).
 //
-// Materials are written so that the loader's mapping (top of gltf_loader.cpp) gives them back:
+// Materials are written so that the loader's mapping (the table atop gltf_materials.cpp) gives them back:
 //   Lambertian  metallic 0, roughness 1
 //   Plastic     metallic 0, roughness r (< 0.99), KHR_materials_ior when ior ≠ 1.5
 //   Mirror      metallic 1, roughness 0
