@@ -5,7 +5,7 @@
 #   scripts/failure-table.sh [SECONDS] [SIZE] [RUNS]     defaults: 3 seconds per run, 128x128, 3 runs
 #
 # The benchmark (README, "Over many scenes") renders every failure scene
-# (src/geometry/failure_scenes.h) with pt, lt, bdpt, vcm, bpm and ppm, RUNS runs of SECONDS each
+# (src/scenes/failure_scenes.h) with pt, lt, bdpt, vcm, bpm and ppm, RUNS runs of SECONDS each
 # (equal time), against a vcm reference of 10 x SECONDS per scene (vcm samples every path here,
 # the caustics seen through glass or a mirror included), and tests each method for bias against
 # bdpt's runs. Its report stays in build/failures/ (index.html: the table, a page per scene, the
