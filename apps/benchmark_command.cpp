@@ -20,7 +20,7 @@
 
 #include "commands.h"
 #include "compare.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "image/bias.h"
 #include "image/markup.h"
 #include "image/text.h"
@@ -52,7 +52,7 @@ struct Cell {
     double speedUp = 0;            // the baseline's relMSE × seconds over this method's
     int biasedBlocks = 0, blocks = 0;
     std::string biasMap{};         // PNG, relative to the output directory
-    std::array<double, kEventCount> events{};  // every counter of geometry/stats.h, mean per run
+    std::array<double, kEventCount> events{};  // every counter of core/stats.h, mean per run
 };
 
 std::vector<std::string> splitList(const std::string& text, const char* what) {
@@ -273,8 +273,8 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
     for (const Cell& x : cells) {
         csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.1f},{:.3f},{:.6g},{:.4g},{},{},{:.4g}", x.scene,
                            x.method, x.summary.error.relMse, x.summary.relMseStd, x.relMseWithoutTail, x.summary.error.mse,
-                           x.summary.error.mae, x.summary.flip, x.summary.spp, x.summary.seconds, x.summary.error.relMse * x.summary.seconds,
-                           x.speedUp, x.biasedBlocks, x.blocks, x.summary.raysPerSecond);
+                           x.summary.error.mae, x.summary.flip, x.summary.spp, x.summary.seconds,
+                           x.summary.error.relMse * x.summary.seconds, x.speedUp, x.biasedBlocks, x.blocks, x.summary.raysPerSecond);
         for (double e : x.events) csv += fmt::format(",{:.0f}", e);
         csv += "\n";
     }
@@ -303,7 +303,8 @@ void writeResults(const BenchmarkCommand& c, const std::vector<Cell>& cells) {
                         "<td{}><a href=\"{}/index.html\">{:.4g} ± {:.2g}</a><br><small>w/o tail {:.3g} · FLIP {:.3g} · "
                         "{:.0f} spp · {:.3g} Mrays/s · ×{:.3g}{}</small></td>",
                         x.summary.error.relMse == best ? " class=\"best\"" : "", slug(s), x.summary.error.relMse,
-                        x.summary.relMseStd, x.relMseWithoutTail, x.summary.flip, x.summary.spp, x.summary.raysPerSecond / 1e6, x.speedUp,
+                        x.summary.relMseStd, x.relMseWithoutTail, x.summary.flip, x.summary.spp,
+                        x.summary.raysPerSecond / 1e6, x.speedUp,
                         x.blocks > 0 ? fmt::format(" · <b>{}</b>/{} biased", x.biasedBlocks, x.blocks) : std::string(""));
         }
         html += "</tr>\n";

@@ -12,7 +12,7 @@
 #include <map>
 
 #include "geometry/embree_isa.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "processes.h"
 
 namespace tripath::app {

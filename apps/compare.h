@@ -122,9 +122,9 @@ struct Report {
     Region inset;
 };
 void writeCsv(const Report& r, const std::string& path);
-// ",closest_hit_rays,shadow_rays,…": a CSV column per event counter of geometry/stats.h.
+// ",closest_hit_rays,shadow_rays,…": a CSV column per event counter of core/stats.h.
 std::string counterColumns();
-// counters.csv: one row per run, every event counter of geometry/stats.h in total.
+// counters.csv: one row per run, every event counter of core/stats.h in total.
 void writeCountersCsv(const Report& r, const std::string& path);
 void writeChart(const Report& r, const std::string& svgPath, const std::string& pngPath);
 void writeSideBySide(const Report& r, const std::string& path);

@@ -10,7 +10,7 @@
 #include "commands.h"
 #include "compare.h"
 #include "processes.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "image/text.h"
 
 namespace tripath::app {

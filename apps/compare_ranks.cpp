@@ -20,7 +20,8 @@ void get(WireReader& r, Image& image) {
 }
 
 void put(WireWriter& w, const RunOutput& out) {
-    w.put(out.run.method).put(out.run.index).put(out.run.seed).put(out.run.checkpoints).put(out.run.stats).put(out.run.flip);
+    w.put(out.run.method).put(out.run.index).put(out.run.seed).put(out.run.checkpoints).put(out.run.stats);
+    w.put(out.run.flip);
     put(w, out.image);
     w.put(uint64_t(out.meta.size()));
     for (const auto& [key, value] : out.meta) w.put(key).put(value);

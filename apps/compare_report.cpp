@@ -10,7 +10,7 @@
 #include <fstream>
 
 #include "compare.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "image/chart.h"
 #include "image/compose.h"
 #include "image/error_map.h"

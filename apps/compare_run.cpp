@@ -9,7 +9,7 @@
 
 #include "compare.h"
 #include "processes.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "image/flip.h"
 
 namespace tripath::app {

@@ -6,10 +6,10 @@
 #include <iostream>
 
 #include "commands.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "geometry/gltf_loader.h"
 #include "geometry/gltf_writer.h"
-#include "geometry/scene_source.h"
+#include "scenes/scene_source.h"
 #include "image/image.h"
 #include "render_options.h"
 

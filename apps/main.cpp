@@ -5,7 +5,7 @@
 
 #include "commands.h"
 #include "processes.h"
-#include "geometry/error.h"
+#include "core/error.h"
 
 int main(int argc, char** argv) {
     tripath::app::Processes processes(argc, argv);  // under mpirun: one of N ranks (processes.h)

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "commands.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "image/draw.h"
 #include "image/image.h"
 #include "image/text.h"

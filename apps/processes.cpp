@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "geometry/embree_isa.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "integrators/film.h"
 
 namespace tripath::app {

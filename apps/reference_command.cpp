@@ -16,7 +16,7 @@
 #include "checkpoint.h"
 #include "commands.h"
 #include "geometry/embree_isa.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "processes.h"
 #include "reference_file.h"
 #include "render_options.h"
@@ -113,7 +113,9 @@ void run(const ReferenceCommand& c) {
     const std::string label = fmt::format("reference {} {}", o.integrator, o.scene);
     rs.progress = progressReporter(rs, o.width, o.height, label);
     Resumable how{c.out, checkpointSettings(o, *scene, *integrator, rs.layers), false, true, {}};
-    how.writeImage = [&](const RenderResult& sofar) { writeExr(c.out, sofar.image(), renderMetadata(o, *scene, *integrator, sofar, team().size())); };
+    how.writeImage = [&](const RenderResult& sofar) {
+        writeExr(c.out, sofar.image(), renderMetadata(o, *scene, *integrator, sofar, team().size()));
+    };
     const RenderResult r = renderResumable(*scene, *integrator, rs, o, how);
     if (!isRankZero()) return;
     printSummary(label, r, o);

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "geometry/error.h"
+#include "core/error.h"
 
 namespace tripath::app {
 

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/rng.h"
+#include "core/rng.h"
 #include "image/image.h"
 
 namespace tripath::app {

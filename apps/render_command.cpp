@@ -7,7 +7,7 @@
 
 #include "checkpoint.h"
 #include "commands.h"
-#include "geometry/error.h"
+#include "core/error.h"
 #include "processes.h"
 #include "render_options.h"
 
@@ -120,7 +120,9 @@ void run(const RenderCommand& c) {
     rs.progress = progressReporter(rs, o.width, o.height, label);
 
     Resumable how{c.out, checkpointSettings(o, *scene, *integrator, rs.layers), true, false, {}};
-    how.writeImage = [&](const RenderResult& sofar) { write(c, rs, renderMetadata(o, *scene, *integrator, sofar, team().size()), sofar); };
+    how.writeImage = [&](const RenderResult& sofar) {
+        write(c, rs, renderMetadata(o, *scene, *integrator, sofar, team().size()), sofar);
+    };
     const RenderResult r = renderResumable(*scene, *integrator, rs, o, how);
     if (!isRankZero()) return;
     printSummary(label, r, o);

@@ -6,7 +6,7 @@
 #include <csignal>
 #include <iostream>
 
-#include "geometry/error.h"
+#include "core/error.h"
 #include "processes.h"
 #include "stats_report.h"
 

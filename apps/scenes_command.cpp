@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 
 namespace tripath::app {
 

@@ -10,7 +10,7 @@
 #include <memory>
 #include <mutex>
 
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 
 namespace tripath::bench {
 

@@ -14,8 +14,8 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_scenes.h"
-#include "geometry/rng.h"
-#include "geometry/sampling.h"
+#include "core/rng.h"
+#include "core/sampling.h"
 
 namespace tripath::bench {
 

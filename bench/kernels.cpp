@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "bench_scenes.h"
-#include "geometry/rng.h"
-#include "geometry/sampling.h"
+#include "core/rng.h"
+#include "core/sampling.h"
 #include "paths/connect.h"
 #include "paths/kernels.h"
 #include "paths/mis.h"

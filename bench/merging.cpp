@@ -15,7 +15,7 @@
 #include <memory>
 
 #include "bench_scenes.h"
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 #include "integrators/light_phase.h"
 #include "integrators/render.h"
 

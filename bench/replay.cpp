@@ -19,7 +19,7 @@
 #include <memory>
 
 #include "bench_scenes.h"
-#include "geometry/rng.h"
+#include "core/rng.h"
 #include "integrators/render.h"
 
 namespace tripath::bench {

@@ -14,9 +14,9 @@
 #include <filesystem>
 #include <string>
 
-#include "geometry/error.h"
+#include "core/error.h"
 #include "geometry/gltf_loader.h"
-#include "geometry/rng.h"
+#include "core/rng.h"
 #include "geometry/scene.h"
 #include "integrators/integrator.h"
 

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/builtin_scenes.h"
-#include "geometry/error.h"
-#include "geometry/scene_source.h"
-#include "geometry/stats.h"
+#include "scenes/builtin_scenes.h"
+#include "core/error.h"
+#include "scenes/scene_source.h"
+#include "core/stats.h"
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "integrators/render_request.h"

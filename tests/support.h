@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 #include "integrators/render.h"
 #include "integrators/render_request.h"
 

@@ -8,7 +8,7 @@
 #include <numbers>
 #include <random>
 
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 #include "image/bias.h"
 #include "support.h"
 

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "geometry/material.h"
-#include "geometry/rng.h"
-#include "geometry/sampling.h"
+#include "core/rng.h"
+#include "core/sampling.h"
 
 namespace tripath {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 #include "geometry/gltf_writer.h"
 
 namespace tripath {

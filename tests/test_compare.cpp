@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/builtin_scenes.h"
-#include "geometry/error.h"
+#include "scenes/builtin_scenes.h"
+#include "core/error.h"
 #include "image/chart.h"
 #include "image/compose.h"
 #include "image/flip.h"

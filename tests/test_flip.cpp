@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "geometry/error.h"
+#include "core/error.h"
 #include "image/flip.h"
 #include "image/image.h"
 

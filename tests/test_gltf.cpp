@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/error.h"
+#include "core/error.h"
 #include "geometry/gltf_loader.h"
 #include "geometry/gltf_model.h"
 

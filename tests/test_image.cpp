@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/error.h"
+#include "core/error.h"
 #include "image/image.h"
 #include "image/error_map.h"
 #include "image/metrics.h"

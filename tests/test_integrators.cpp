@@ -5,8 +5,8 @@
 #include <string>
 #include <utility>
 
-#include "geometry/builtin_scenes.h"
-#include "geometry/vec.h"
+#include "scenes/builtin_scenes.h"
+#include "core/vec.h"
 #include "image/bias.h"
 #include "support.h"
 #include "test_scenes.h"

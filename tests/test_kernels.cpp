@@ -24,7 +24,7 @@
 #include <string>
 
 #include "geometry/scene.h"
-#include "geometry/scene_builder.h"
+#include "scenes/scene_builder.h"
 #include "paths/oracle.h"
 
 namespace tripath {

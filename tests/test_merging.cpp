@@ -5,9 +5,9 @@
 #include <cmath>
 #include <string>
 
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 #include "geometry/point_grid.h"
-#include "geometry/rng.h"
+#include "core/rng.h"
 #include "integrators/integrator.h"
 #include "support.h"
 

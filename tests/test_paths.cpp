@@ -2,7 +2,7 @@
 // MIS weights checked against a brute-force computation over whole paths.
 #include <gtest/gtest.h>
 
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 #include "paths/connect.h"
 #include "paths/kernels.h"
 #include "paths/merge.h"

@@ -5,7 +5,7 @@
 // from another pass's stream, or jittered the raster differently, fails.
 #include <gtest/gtest.h>
 
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 #include "integrators/render.h"
 
 namespace tripath {

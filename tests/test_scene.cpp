@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/builtin_scenes.h"
-#include "geometry/rng.h"
-#include "geometry/sampling.h"
+#include "scenes/builtin_scenes.h"
+#include "core/rng.h"
+#include "core/sampling.h"
 #include "geometry/scene.h"
 #include "support.h"
 

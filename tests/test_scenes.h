@@ -3,8 +3,8 @@
 // every material), so an emitter can be a mirror, a pane of glass or a rough metal: a camera walk
 // scatters off such a point, yet the same point is x0 of the path that ends there (mis.h).
 #pragma once
-#include "geometry/builtin_scenes.h"
-#include "geometry/scene_builder.h"
+#include "scenes/builtin_scenes.h"
+#include "scenes/scene_builder.h"
 
 namespace tripath::test {
 

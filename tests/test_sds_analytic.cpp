@@ -32,11 +32,11 @@
 #include <string>
 #include <vector>
 
-#include "geometry/builtin_scenes.h"
-#include "geometry/failure_scenes.h"
+#include "scenes/builtin_scenes.h"
+#include "scenes/failure_scenes.h"
 #include "geometry/gltf_loader.h"
 #include "geometry/scene.h"
-#include "geometry/scene_builder.h"
+#include "scenes/scene_builder.h"
 #include "integrators/integrator.h"
 #include "integrators/render.h"
 #include "support.h"

@@ -1,4 +1,4 @@
-// Stability where methods fail (issue 6): the failure scenes of geometry/failure_scenes.h under
+// Stability where methods fail (issue 6): the failure scenes of scenes/failure_scenes.h under
 // every integrator. What must hold everywhere: no NaN or infinite sample, bounded work per sample.
 // What must hold where a method can sample the light: agreement with the others within
 // statistical error. Where a method provably cannot, the test states it and measures it (a
@@ -20,12 +20,12 @@
 #include <string>
 #include <vector>
 
-#include "geometry/builtin_scenes.h"
-#include "geometry/error.h"
-#include "geometry/failure_scenes.h"
+#include "scenes/builtin_scenes.h"
+#include "core/error.h"
+#include "scenes/failure_scenes.h"
 #include "geometry/gltf_loader.h"
 #include "geometry/gltf_writer.h"
-#include "geometry/rng.h"
+#include "core/rng.h"
 #include "geometry/scene.h"
 #include "integrators/integrator.h"
 #include "integrators/light_phase.h"

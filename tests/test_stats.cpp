@@ -1,4 +1,4 @@
-// The render's own accounting (geometry/stats.h, `--stats`): counts that a missing, doubled or
+// The render's own accounting (core/stats.h, `--stats`): counts that a missing, doubled or
 // lost increment would change, and phase samples that land where the time goes.
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 #include "integrators/render.h"
 #include "thread_team.h"
 

@@ -1,4 +1,4 @@
-#include "geometry/sampling.h"
+#include "core/sampling.h"
 
 #include <algorithm>
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/vec.h"
+#include "core/vec.h"
 
 namespace tripath {
 

@@ -1,4 +1,4 @@
-#include "geometry/stats.h"
+#include "core/stats.h"
 
 #include <signal.h>
 #include <sys/time.h>

@@ -1,4 +1,4 @@
-#include "geometry/warnings.h"
+#include "core/warnings.h"
 
 #include <iostream>
 

@@ -11,7 +11,7 @@
 #include <optional>
 
 #include "geometry/scene_desc.h"
-#include "geometry/vec.h"
+#include "core/vec.h"
 
 namespace tripath {
 

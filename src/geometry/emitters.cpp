@@ -1,7 +1,7 @@
 #include "geometry/emitters.h"
 
 #include "geometry/scene.h"
-#include "geometry/stats.h"
+#include "core/stats.h"
 
 namespace tripath {
 

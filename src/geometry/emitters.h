@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "geometry/material.h"
-#include "geometry/sampling.h"
-#include "geometry/vec.h"
+#include "core/sampling.h"
+#include "core/vec.h"
 
 namespace tripath {
 

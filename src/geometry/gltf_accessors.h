@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "geometry/gltf_checks.h"
-#include "geometry/vec.h"
+#include "core/vec.h"
 
 namespace tripath::gltf {
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/error.h"
-#include "geometry/vec.h"
-#include "geometry/warnings.h"
+#include "core/error.h"
+#include "core/vec.h"
+#include "core/warnings.h"
 
 namespace tripath::gltf {
 

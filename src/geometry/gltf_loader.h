@@ -5,7 +5,7 @@
 #include <string>
 
 #include "geometry/scene_desc.h"
-#include "geometry/warnings.h"
+#include "core/warnings.h"
 
 namespace tripath {
 

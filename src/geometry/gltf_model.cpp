@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "geometry/error.h"
+#include "core/error.h"
 
 namespace tripath {
 

@@ -9,7 +9,7 @@
 #include <tiny_gltf.h>
 
 #include "geometry/gltf_checks.h"
-#include "geometry/vec.h"
+#include "core/vec.h"
 
 namespace tripath::gltf {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <set>
 
-#include "geometry/error.h"
+#include "core/error.h"
 #include "geometry/gltf_model.h"
 
 namespace tripath {

@@ -19,7 +19,7 @@
 #include <string>
 
 #include "geometry/scene_desc.h"
-#include "geometry/warnings.h"
+#include "core/warnings.h"
 
 namespace tripath {
 

@@ -15,8 +15,8 @@
 
 #include "geometry/coat_albedo.h"
 #include "geometry/microfacet.h"
-#include "geometry/sampling.h"
-#include "geometry/stats.h"
+#include "core/sampling.h"
+#include "core/stats.h"
 
 namespace tripath {
 

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "geometry/vec.h"
+#include "core/vec.h"
 
 namespace tripath {
 

@@ -10,7 +10,7 @@
 #pragma once
 #include <optional>
 
-#include "geometry/vec.h"
+#include "core/vec.h"
 
 namespace tripath {
 

@@ -18,7 +18,7 @@
 #include <span>
 #include <vector>
 
-#include "geometry/vec.h"
+#include "core/vec.h"
 
 namespace tripath {
 

@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "geometry/embree_isa.h"
-#include "geometry/error.h"
-#include "geometry/stats.h"
+#include "core/error.h"
+#include "core/stats.h"
 
 namespace tripath {
 

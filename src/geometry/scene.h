@@ -10,7 +10,7 @@
 #include "geometry/camera.h"
 #include "geometry/emitters.h"
 #include "geometry/scene_desc.h"
-#include "geometry/warnings.h"
+#include "core/warnings.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "geometry/material.h"
-#include "geometry/vec.h"
+#include "core/vec.h"
 
 namespace tripath {
 

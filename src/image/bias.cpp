@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "geometry/error.h"
+#include "core/error.h"
 
 namespace tripath {
 

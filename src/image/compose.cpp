@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "geometry/error.h"
+#include "core/error.h"
 #include "image/metrics.h"
 #include "image/text.h"
 

@@ -6,7 +6,7 @@
 #include <array>
 #include <cmath>
 
-#include "geometry/error.h"
+#include "core/error.h"
 #include "image/text.h"
 
 namespace tripath {

@@ -14,7 +14,7 @@
 #include <numbers>
 #include <utility>
 
-#include "geometry/error.h"
+#include "core/error.h"
 
 namespace tripath {
 namespace {

@@ -14,7 +14,7 @@
 #include <string_view>
 #include <system_error>
 
-#include "geometry/error.h"
+#include "core/error.h"
 
 namespace tripath {
 

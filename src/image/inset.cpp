@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "geometry/error.h"
+#include "core/error.h"
 
 namespace tripath {
 

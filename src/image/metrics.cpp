@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "geometry/error.h"
+#include "core/error.h"
 
 namespace tripath {
 

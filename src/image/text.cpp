@@ -4,7 +4,7 @@
 
 #include <OpenImageIO/imagebufalgo.h>
 
-#include "geometry/error.h"
+#include "core/error.h"
 
 namespace tripath {
 

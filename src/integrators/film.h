@@ -11,7 +11,7 @@
 #include <map>
 #include <vector>
 
-#include "geometry/vec.h"
+#include "core/vec.h"
 #include "integrators/exact_sum.h"
 #include "image/image.h"
 #include "paths/connect.h"

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/error.h"
+#include "core/error.h"
 #include "paths/kernels.h"
 
 namespace tripath {

@@ -3,7 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "geometry/stats.h"
+#include "core/stats.h"
 #include "paths/kernels.h"
 
 namespace tripath {

@@ -10,7 +10,7 @@
 #include <optional>
 #include <tuple>
 
-#include "geometry/stats.h"
+#include "core/stats.h"
 #include "integrators/light_phase.h"
 #include "paths/kernels.h"
 

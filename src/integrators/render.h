@@ -12,8 +12,8 @@
 #include <functional>
 #include <vector>
 
-#include "geometry/rng.h"
-#include "geometry/stats.h"
+#include "core/rng.h"
+#include "core/stats.h"
 #include "integrators/film.h"
 #include "integrators/integrator.h"
 #include "integrators/team.h"
@@ -44,7 +44,7 @@ struct RenderSettings {
     StreamDomain domain = StreamDomain::CameraSample;
     uint64_t firstPass = 0;       // sample index of the first pass: lets a reference add fresh samples
     int threads = 0;              // 0: all cores
-    bool timing = false;          // run the phase timers (geometry/stats.h) for RenderResult::stats
+    bool timing = false;          // run the phase timers (core/stats.h) for RenderResult::stats
     FilmLayers layers;
     // Called after each pass with (passes done, seconds so far); may be empty.
     std::function<void(int, double)> progress;
@@ -77,7 +77,7 @@ struct RenderResult {
     // The team's first kDroppedLogSize dropped samples in pass, tile and pixel order: the same log
     // for any number of ranks and threads.
     std::vector<DroppedSample> droppedLog{};
-    // What the render did (geometry/stats.h): its events, and with timing on its cycles per phase.
+    // What the render did (core/stats.h): its events, and with timing on its cycles per phase.
     // Taken as the difference of two process-wide snapshots, so renders must not overlap.
     StatsSnapshot stats{};
     Image image() const { return film.image(passes); }

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "geometry/embree_isa.h"
-#include "geometry/error.h"
-#include "geometry/scene_source.h"
+#include "core/error.h"
+#include "scenes/scene_source.h"
 #include "paths/kernels.h"
 
 namespace tripath {

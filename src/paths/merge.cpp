@@ -1,6 +1,6 @@
 #include "paths/merge.h"
 
-#include "geometry/stats.h"
+#include "core/stats.h"
 #include "paths/kernels.h"
 
 namespace tripath {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/stats.h"
+#include "core/stats.h"
 #include "paths/kernels.h"
 
 namespace tripath {

@@ -8,8 +8,8 @@
 #pragma once
 #include <algorithm>
 
-#include "geometry/rng.h"
-#include "geometry/stats.h"
+#include "core/rng.h"
+#include "core/stats.h"
 #include "paths/connect.h"
 #include "paths/light_store.h"
 #include "paths/merge.h"

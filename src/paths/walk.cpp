@@ -1,6 +1,6 @@
 #include "paths/walk.h"
 
-#include "geometry/stats.h"
+#include "core/stats.h"
 #include "paths/kernels.h"
 #include "paths/roulette.h"
 

@@ -2,7 +2,7 @@
 // subpaths). Each vertex gets its throughput beta, and the forward and reverse area pdfs that
 // the integrator's MIS weights read (StrategySet::cameraWalkPdfs / lightWalkPdfs).
 #pragma once
-#include "geometry/rng.h"
+#include "core/rng.h"
 #include "paths/mis.h"
 #include "paths/vertex.h"
 

@@ -1,12 +1,12 @@
-#include "geometry/builtin_scenes.h"
+#include "scenes/builtin_scenes.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "geometry/error.h"
-#include "geometry/scene_builder.h"
-#include "geometry/failure_scenes.h"
+#include "core/error.h"
+#include "scenes/scene_builder.h"
+#include "scenes/failure_scenes.h"
 
 namespace tripath {
 

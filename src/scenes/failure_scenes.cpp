@@ -1,9 +1,9 @@
 // The failure scenes of failure_scenes.h, top to bottom, from the blocks of scene_builder.h.
-#include "geometry/failure_scenes.h"
+#include "scenes/failure_scenes.h"
 
 #include <cmath>
 
-#include "geometry/scene_builder.h"
+#include "scenes/scene_builder.h"
 
 namespace tripath {
 

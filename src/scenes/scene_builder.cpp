@@ -1,4 +1,4 @@
-#include "geometry/scene_builder.h"
+#include "scenes/scene_builder.h"
 
 #include <cmath>
 

@@ -1,9 +1,9 @@
-#include "geometry/scene_source.h"
+#include "scenes/scene_source.h"
 
 #include <filesystem>
 
-#include "geometry/builtin_scenes.h"
-#include "geometry/error.h"
+#include "scenes/builtin_scenes.h"
+#include "core/error.h"
 #include "geometry/gltf_loader.h"
 
 namespace tripath {

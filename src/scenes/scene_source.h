@@ -4,7 +4,7 @@
 
 #include "geometry/gltf_loader.h"
 #include "geometry/scene_desc.h"
-#include "geometry/warnings.h"
+#include "core/warnings.h"
 
 namespace tripath {
 
