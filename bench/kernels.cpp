@@ -262,21 +262,22 @@ SyntheticPath syntheticPath(int s, int t, Rng& rng) {
 
 struct MisSeries {
     MisHeuristic heuristic;
-    StrategySet::Kind kind;
+    StrategySet set;
     bool runningSums = false;  // the O(1) form (mis.h): the vertices carry recorded sums
     bool merge = false;        // the weight of a merge of y_{s−1} with z_{t−1} (vcm) instead of a connection
+    bool pt = false;           // pt's next-event estimation (s = 1, t = k) instead of the middle split
 };
 
 void runMis(benchmark::State& state, int k, MisSeries series) {
     // BDPT and VCM: the middle split, every strategy enabled. PT: next-event estimation (s = 1,
     // t = k), the connection pt makes at every bounce; its loop walks the same k vertices. A merge
     // of s light and t camera vertices has k = s + t − 2.
-    const bool pt = series.kind == StrategySet::Kind::PathTracing;
+    const bool pt = series.pt;
     const int s = pt ? 1 : (k + 1) / 2 + (series.merge ? 1 : 0), t = k + (series.merge ? 2 : 1) - s;
     constexpr size_t kPaths = 64;
     std::vector<SyntheticPath> paths;
     Rng rng = testRng(static_cast<uint64_t>(k));
-    MisContext mis{series.heuristic, {series.kind}, Roulette{}, 0.5f};  // roulette from the 3rd vertex, as rendered
+    MisContext mis{series.heuristic, series.set, Roulette{}, 0.5f};  // roulette from the 3rd vertex, as rendered
     mis.runningSums = series.runningSums;
     for (size_t i = 0; i < kPaths; ++i) {
         paths.push_back(syntheticPath(s, t, rng));
@@ -321,7 +322,7 @@ void runConnect(benchmark::State& state, int s, int t) {
         state.SkipWithError("could not find subpaths for this (s, t)");
         return;
     }
-    const MisContext mis{MisHeuristic::Power, {StrategySet::Kind::Bidirectional}, Roulette{}};
+    const MisContext mis{MisHeuristic::Power, StrategySet{}, Roulette{}};
     uint64_t nonzero = 0;
     const RayCounts before = threadRayCounts();
     cycle(state, kPairs, [&](size_t i) {
@@ -346,18 +347,19 @@ const bool registered = [] {
     registerPathKernels();
 
     const int lengths[] = {2, 3, 4, 6, 8, 12, 16, 20, 24, 28, 32};
-    using K = StrategySet::Kind;
+    // The integrators' sets (src/integrators/bdpt.cpp, vcm.cpp, pt.cpp).
+    const StrategySet bdpt{}, vcm{.merging = StrategySet::Merging::EveryVertex}, pt{.maxS = 1, .minT = 2};
     const std::pair<const char*, MisSeries> misSeries[] = {
-        {"bdpt/balance", {MisHeuristic::Balance, K::Bidirectional}},
-        {"bdpt/power", {MisHeuristic::Power, K::Bidirectional}},
-        {"bdpt/uniform", {MisHeuristic::Uniform, K::Bidirectional}},
-        {"bdpt/balance/sums", {MisHeuristic::Balance, K::Bidirectional, true}},
-        {"bdpt/power/sums", {MisHeuristic::Power, K::Bidirectional, true}},
-        {"vcm/power", {MisHeuristic::Power, K::VertexMerging}},
-        {"vcm/power/sums", {MisHeuristic::Power, K::VertexMerging, true}},
-        {"vcm_merge/power", {MisHeuristic::Power, K::VertexMerging, false, true}},
-        {"vcm_merge/power/sums", {MisHeuristic::Power, K::VertexMerging, true, true}},
-        {"pt_nee/power", {MisHeuristic::Power, K::PathTracing}},
+        {"bdpt/balance", {MisHeuristic::Balance, bdpt}},
+        {"bdpt/power", {MisHeuristic::Power, bdpt}},
+        {"bdpt/uniform", {MisHeuristic::Uniform, bdpt}},
+        {"bdpt/balance/sums", {MisHeuristic::Balance, bdpt, true}},
+        {"bdpt/power/sums", {MisHeuristic::Power, bdpt, true}},
+        {"vcm/power", {MisHeuristic::Power, vcm}},
+        {"vcm/power/sums", {MisHeuristic::Power, vcm, true}},
+        {"vcm_merge/power", {MisHeuristic::Power, vcm, false, true}},
+        {"vcm_merge/power/sums", {MisHeuristic::Power, vcm, true, true}},
+        {"pt_nee/power", {MisHeuristic::Power, pt, false, false, true}},
     };
     for (const auto& [name, series] : misSeries)
         for (int k : lengths)

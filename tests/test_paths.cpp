@@ -2,12 +2,13 @@
 // MIS weights checked against a brute-force computation over whole paths.
 #include <gtest/gtest.h>
 
-#include "scenes/builtin_scenes.h"
+#include "integrators/integrator.h"
 #include "paths/connect.h"
 #include "paths/kernels.h"
 #include "paths/merge.h"
 #include "paths/oracle.h"
 #include "paths/walk.h"
+#include "scenes/builtin_scenes.h"
 #include "test_scenes.h"
 
 namespace tripath {
@@ -71,7 +72,7 @@ bool deltasFrom(const Path& x, int from) {
 bool strategyCanSample(const Path& x, int s, StrategySet set) {
     const int k = static_cast<int>(x.size()) - 1, t = k + 1 - s;
     if (t < 1 || !set.enabled(s, t)) return false;
-    if (s == 0) return !x[0].isDeltaLight() && (set.kind != StrategySet::Kind::FirstHitMerging || deltasFrom(x, 1));
+    if (s == 0) return !x[0].isDeltaLight() && (set.merging != StrategySet::Merging::FirstNonDelta || deltasFrom(x, 1));
     return !scattersDelta(x, s - 1) && !scattersDelta(x, s);
 }
 
@@ -80,7 +81,7 @@ bool strategyCanSample(const Path& x, int s, StrategySet set) {
 bool mergeCanSample(const Path& x, int j, StrategySet set) {
     const int k = static_cast<int>(x.size()) - 1;
     if (!set.merges() || j < 1 || j > k - 1 || scattersDelta(x, j)) return false;
-    return set.kind != StrategySet::Kind::FirstHitMerging || deltasFrom(x, j + 1);
+    return set.merging != StrategySet::Merging::FirstNonDelta || deltasFrom(x, j + 1);
 }
 
 // The probability that a walk goes on from x_g, the walk's vertex number j, toward the next
@@ -158,7 +159,7 @@ std::vector<SampledPath> samplePaths(const Scene& scene, int samples, const MisC
     const StrategySet set = mis.strategies;
     std::vector<SampledPath> out;
     WalkSettings ws{maxDepth, mis.roulette.depth};
-    ws.cameraUntilNonDelta = set.kind == StrategySet::Kind::FirstHitMerging;  // as ppm walks
+    ws.cameraUntilNonDelta = set.merging == StrategySet::Merging::FirstNonDelta;  // as ppm walks
     Subpath light, camera;
     for (int i = 0; i < samples; ++i) {
         Rng rng(11, static_cast<uint64_t>(StreamDomain::Test), i);
@@ -192,9 +193,19 @@ std::vector<SceneDesc> oracleScenes() {
     v.push_back(test::everyEmitterKind());
     return v;
 }
-const StrategySet kSets[] = {{StrategySet::Kind::PathTracing},   {StrategySet::Kind::LightTracing},
-                             {StrategySet::Kind::Bidirectional}, {StrategySet::Kind::VertexMerging},
-                             {StrategySet::Kind::PhotonMapping}, {StrategySet::Kind::FirstHitMerging}};
+// The strategy sets the integrators render with, taken from them (so the oracle checks the sets in
+// use), and their names for the messages.
+const char* const kSetNames[] = {"pt", "lt", "bdpt", "vcm", "bpm", "ppm"};
+const std::vector<StrategySet> kSets = [] {
+    std::vector<StrategySet> sets;
+    for (const char* name : kSetNames) sets.push_back(makeIntegrator(name, {})->strategies());
+    return sets;
+}();
+std::string setName(const StrategySet& set) {
+    for (size_t i = 0; i < kSets.size(); ++i)
+        if (kSets[i] == set) return kSetNames[i];
+    return "?";
+}
 // Merge factors η = π r² N_L: one where merges rarely win against connections, one where they often do.
 const float kEtas[] = {0.05f, 20.0f};
 const MisHeuristic kHeuristics[] = {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform};
@@ -216,14 +227,14 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
                     const MisContext mis{h, set, Roulette{3}, eta};
                     // The photon-mapping sets connect only s = 0: camera walks that hit an emitter, rarer
                     // (none at all under a point light); their merges are checked below.
-                    const auto paths = samplePaths(scene, set.maxS() == 0 ? 1000 : 150, mis);
-                    if (set.maxS() > 0) {
-                        ASSERT_GT(paths.size(), 20u) << name << " set=" << int(set.kind);
+                    const auto paths = samplePaths(scene, set.maxS == 0 ? 1000 : 150, mis);
+                    if (set.maxS > 0) {
+                        ASSERT_GT(paths.size(), 20u) << name << " set=" << setName(set);
                     }
                     for (const SampledPath& p : paths) {
                         const double expected = bruteForceWeight(scene, p.x, {p.s, false}, mis);
                         ASSERT_NEAR(p.c.weight, expected, 2e-3 * std::max(1.0, expected))
-                            << name << " s=" << p.s << " k=" << p.x.size() - 1 << " set=" << int(set.kind)
+                            << name << " s=" << p.s << " k=" << p.x.size() - 1 << " set=" << setName(set)
                             << " h=" << int(h) << " eta=" << eta;
                     }
                 }
@@ -263,7 +274,7 @@ TEST(Mis, RunningSumsGiveTheWeightsOfTheFullWalk) {
                             auto expectSame = [&](const Connection& a, const Connection& b, const char* what, int s, int t) {
                                 if (isBlack(a.unweighted)) return;
                                 ASSERT_NEAR(a.weight, b.weight, 1e-3 * std::max(1.0f, b.weight))
-                                    << desc.name << " " << what << " s=" << s << " t=" << t << " set=" << int(set.kind)
+                                    << desc.name << " " << what << " s=" << s << " t=" << t << " set=" << setName(set)
                                     << " rr=" << rrDepth << " eta=" << eta << " h=" << int(h);
                                 ++checked;
                             };
@@ -320,7 +331,7 @@ TEST(Mis, AZeroPdfThatIsNoDeltaRulesOutOnlyTheStrategiesThatNeedIt) {
     HandPath h = handPath({4.0f});  // a = 4
     h.junction.cameraEnd = 2.0f;    // b: x1 from x0's emission
     h.junction.lightEnd = 0.0f;     // x1's BSDF cannot send the camera walk to x0: (0, 3) is impossible
-    const StrategySet bdpt{StrategySet::Kind::Bidirectional};
+    const StrategySet bdpt{};  // every connection
     const MisWeight w = misWeight(h.light, 1, h.camera, 2, h.junction, {MisHeuristic::Power, bdpt, kNoRoulette});
     // Only (2, 1) competes: 1 / (1 + (b/a)²) = 1 / (1 + 1/4). Reading the zero as a delta (a pdf of
     // 1) would add (1/e)² = 1/4 and give 2/3.
@@ -360,7 +371,7 @@ TEST(Mis, ASpecularChainCountsInProjectedSolidAngleAndRulesOutTheConnectionsAtIt
     h.junction.cameraEnd = 3.0f;        // x1 from x0
     h.junction.cameraBeforeEnd = 5.0f;  // x2 from x1 (area pdf at the mirror)
     h.junction.lightEnd = 1.0f;         // x0 from x1
-    const StrategySet bdpt{StrategySet::Kind::Bidirectional};
+    const StrategySet bdpt{};  // every connection
     const MisWeight w = misWeight(h.light, 1, h.camera, 4, h.junction, {MisHeuristic::Power, bdpt, kNoRoulette});
     EXPECT_NEAR(w.value, 1.0 / 1.29, 1e-5);
     EXPECT_FALSE(w.guarded);
@@ -372,7 +383,7 @@ TEST(Mis, ANonFiniteRatioGivesWeightZeroAndIsReported) {
     HandPath h = handPath({0.0f});
     h.junction.cameraEnd = 2.0f;
     h.junction.lightEnd = 1.0f;
-    const StrategySet bdpt{StrategySet::Kind::Bidirectional};
+    const StrategySet bdpt{};  // every connection
     for (MisHeuristic heuristic : {MisHeuristic::Balance, MisHeuristic::Power}) {
         const MisWeight w = misWeight(h.light, 1, h.camera, 2, h.junction, {heuristic, bdpt, kNoRoulette});
         EXPECT_EQ(w.value, 0.0f);
@@ -430,7 +441,7 @@ Connection mergeAt(const Scene& scene, const Path& x, int j, const MisContext& m
 TEST(Mis, MergeWeightsMatchBruteForce) {
     for (const SceneDesc& desc : oracleScenes()) {
         const Scene scene(desc, 24, 24);
-        const auto paths = samplePaths(scene, 100, {MisHeuristic::Power, {StrategySet::Kind::Bidirectional}, Roulette{3}});
+        const auto paths = samplePaths(scene, 100, {MisHeuristic::Power, StrategySet{}, Roulette{3}});
         int checked = 0;
         for (StrategySet set : kSets) {
             if (!set.merges()) continue;
@@ -443,7 +454,7 @@ TEST(Mis, MergeWeightsMatchBruteForce) {
                             const Connection c = mergeAt(scene, p.x, j, mis);
                             const double expected = bruteForceWeight(scene, p.x, {j, true}, mis);
                             ASSERT_NEAR(c.weight, expected, 2e-3 * std::max(1.0, expected))
-                                << desc.name << " j=" << j << " k=" << p.x.size() - 1 << " set=" << int(set.kind)
+                                << desc.name << " j=" << j << " k=" << p.x.size() - 1 << " set=" << setName(set)
                                 << " h=" << int(h) << " eta=" << eta;
                             ++checked;
                         }
@@ -462,7 +473,7 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
                 for (MisHeuristic h : kHeuristics) {
                     const MisContext mis{h, set, Roulette{2}, eta};
                     // Paths from every connection, so that the merging sets see paths of every kind too.
-                    const auto paths = samplePaths(scene, 60, {h, {StrategySet::Kind::Bidirectional}, Roulette{2}});
+                    const auto paths = samplePaths(scene, 60, {h, StrategySet{}, Roulette{2}});
                     for (const SampledPath& p : paths) {
                         const int k = static_cast<int>(p.x.size()) - 1;
                         double sum = 0;
@@ -489,7 +500,7 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
                             ++possibleStrategies;
                         }
                         if (possibleStrategies == 0) continue;  // e.g. lt or bpm on a path only pt can sample
-                        ASSERT_NEAR(sum, 1.0, 2e-3) << name << " k=" << k << " set=" << int(set.kind) << " h=" << int(h)
+                        ASSERT_NEAR(sum, 1.0, 2e-3) << name << " k=" << k << " set=" << setName(set) << " h=" << int(h)
                                                     << " eta=" << eta;
                     }
                 }
@@ -507,7 +518,7 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
 TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
     for (const SceneDesc& desc : oracleScenes()) {
         const Scene scene(desc, 24, 24);
-        const MisContext mis{MisHeuristic::Balance, {StrategySet::Kind::Bidirectional}, Roulette{2}};
+        const MisContext mis{MisHeuristic::Balance, StrategySet{}, Roulette{2}};
         const auto paths = samplePaths(scene, 200, mis);
         int checked = 0;
         for (const SampledPath& p : paths) {

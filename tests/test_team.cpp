@@ -48,7 +48,7 @@ class NanAtTwoPixels final : public Integrator {
 public:
     NanAtTwoPixels() : Integrator({}) {}
     std::string name() const override { return "nan-at-two-pixels"; }
-    StrategySet strategies() const override { return {StrategySet::Kind::PathTracing}; }
+    StrategySet strategies() const override { return {.maxS = 1, .minT = 2}; }  // pt's
     bool tracesCameraRays() const override { return false; }
     void sample(const Scene&, const Pass& pass, int pixel, const CameraRay&, Rng&, PathBuffers&,
                 ContributionSink& sink) const override {

@@ -12,7 +12,7 @@ class BidirectionalPathTracer final : public Integrator {
 public:
     using Integrator::Integrator;
     std::string name() const override { return "bdpt"; }
-    StrategySet strategies() const override { return {StrategySet::Kind::Bidirectional}; }
+    StrategySet strategies() const override { return {}; }
 };
 
 std::unique_ptr<Integrator> makeBidirectional(const IntegratorSettings& s) {

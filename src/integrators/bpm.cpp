@@ -14,7 +14,7 @@ class BidirectionalPhotonMapping final : public Integrator {
 public:
     using Integrator::Integrator;
     std::string name() const override { return "bpm"; }
-    StrategySet strategies() const override { return {StrategySet::Kind::PhotonMapping}; }
+    StrategySet strategies() const override { return {.maxS = 0, .minT = 2, .merging = StrategySet::Merging::EveryVertex}; }
 };
 
 std::unique_ptr<Integrator> makeBidirectionalPhotonMapping(const IntegratorSettings& s) {

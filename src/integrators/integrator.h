@@ -74,7 +74,7 @@ public:
     const IntegratorSettings& settings() const { return settings_; }
 
     // Whether passes trace and store light subpaths first: for any strategy with s ≥ 2 or a merge.
-    bool hasLightPhase() const { return strategies().merges() || strategies().maxS() >= 2; }
+    bool hasLightPhase() const { return strategies().merges() || strategies().maxS >= 2; }
     // The first pass's merge radius r_1 (0 when the integrator does not merge). It may trace a
     // few hundred rays (the default measures pixels): compute it once per render.
     float firstMergeRadius(const Scene& scene) const;

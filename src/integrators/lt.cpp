@@ -13,7 +13,7 @@ class LightTracer final : public Integrator {
 public:
     using Integrator::Integrator;
     std::string name() const override { return "lt"; }
-    StrategySet strategies() const override { return {StrategySet::Kind::LightTracing}; }
+    StrategySet strategies() const override { return {.maxT = 1}; }
     bool tracesCameraRays() const override { return false; }
     void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay&, Rng& rng, PathBuffers& paths,
                 ContributionSink& sink) const override {

@@ -15,7 +15,7 @@ class ProgressivePhotonMapping final : public Integrator {
 public:
     explicit ProgressivePhotonMapping(IntegratorSettings s) : Integrator(firstHit(s)) {}
     std::string name() const override { return "ppm"; }
-    StrategySet strategies() const override { return {StrategySet::Kind::FirstHitMerging}; }
+    StrategySet strategies() const override { return {.maxS = 0, .minT = 2, .merging = StrategySet::Merging::FirstNonDelta}; }
 
 private:
     static IntegratorSettings firstHit(IntegratorSettings s) {

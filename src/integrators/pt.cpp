@@ -13,7 +13,7 @@ class PathTracer final : public Integrator {
 public:
     using Integrator::Integrator;
     std::string name() const override { return "pt"; }
-    StrategySet strategies() const override { return {StrategySet::Kind::PathTracing}; }
+    StrategySet strategies() const override { return {.maxS = 1, .minT = 2}; }
 };
 
 std::unique_ptr<Integrator> makePathTracer(const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }

@@ -16,7 +16,7 @@ class VertexConnectionMerging final : public Integrator {
 public:
     using Integrator::Integrator;
     std::string name() const override { return "vcm"; }
-    StrategySet strategies() const override { return {StrategySet::Kind::VertexMerging}; }
+    StrategySet strategies() const override { return {.merging = StrategySet::Merging::EveryVertex}; }
 };
 
 std::unique_ptr<Integrator> makeVertexMerging(const IntegratorSettings& s) {

@@ -63,38 +63,32 @@ enum class MisHeuristic { Balance, Power, Uniform };
 // of vertices that lie on an emitter, or none.
 enum class WalkPdfs { All, AtEmitters, None };
 
-// The strategies an integrator switches on: connections (s, t) and, for the vertex-merging
-// sets, merges (merge.h).
+// Which strategies are enabled: a plain description that names no integrator (each integrator
+// says in its own file which set it is). The default is every connection and no merge.
 struct StrategySet {
-    enum class Kind {
-        PathTracing,        // s = 0 and s = 1 (next-event estimation)
-        LightTracing,       // t = 1
-        Bidirectional,      // every (s, t)
-        VertexMerging,      // every (s, t) and every merge
-        PhotonMapping,      // s = 0 and every merge
-        FirstHitMerging,    // the merge at the first non-delta camera vertex, and s = 0 through deltas only
-    };
-    Kind kind = Kind::Bidirectional;
-    // Connections. PT: s = 0 (the walk hits an emitter) and s = 1 (next-event estimation at a
-    // camera vertex on a surface, t ≥ 2; joining an emitter point straight to the sensor would be
-    // light tracing's splat). LT: t = 1 (connect to the sensor). BDPT and VCM: every (s, t). The
-    // photon-mapping sets: s = 0 only. t = 0 is impossible with a pinhole and never enabled. Each
-    // set is a box s ≤ maxS, minT ≤ t ≤ maxT.
-    int maxS() const {
-        return kind == Kind::PathTracing ? 1 : kind == Kind::PhotonMapping || kind == Kind::FirstHitMerging ? 0 : kUnbounded;
-    }
-    int minT() const { return kind == Kind::LightTracing || kind == Kind::Bidirectional || kind == Kind::VertexMerging ? 1 : 2; }
-    int maxT() const { return kind == Kind::LightTracing ? 1 : kUnbounded; }
-    bool enabled(int s, int t) const { return s <= maxS() && t >= minT() && t <= maxT(); }
-    // Merges of light vertex y_{s−1} with camera vertex z_{t−1} (s, t ≥ 2): at every non-delta
-    // vertex (VertexMerging, PhotonMapping), or only where the camera walk first meets a non-delta
-    // surface (FirstHitMerging, which also counts s = 0 only for camera walks through deltas alone).
-    bool merges() const { return kind == Kind::VertexMerging || kind == Kind::PhotonMapping || kind == Kind::FirstHitMerging; }
-    // Every path FirstHitMerging samples, it samples with exactly one strategy: its weight is 1.
-    bool uniqueStrategy() const { return kind == Kind::FirstHitMerging; }
+    static constexpr int kUnbounded = 1 << 20;
+    // Connections: the box s ≤ maxS, minT ≤ t ≤ maxT. s = 0: the camera walk hits an emitter; s = 1:
+    // next-event estimation (at a camera vertex on a surface, t ≥ 2, for a set without t = 1:
+    // joining an emitter point straight to the sensor is light tracing's splat); t = 1: the light
+    // subpath joined to the sensor. t = 0 is impossible with a pinhole and never enabled.
+    int maxS = kUnbounded, minT = 1, maxT = kUnbounded;
+    // Merges of light vertex y_{s−1} with camera vertex z_{t−1} (s, t ≥ 2): none; at every
+    // non-delta camera vertex; or only where the camera walk first meets a non-delta surface, which
+    // also counts s = 0 only for camera walks through deltas alone, so that every path is sampled
+    // by exactly one strategy.
+    enum class Merging { None, EveryVertex, FirstNonDelta };
+    Merging merging = Merging::None;
+
+    bool operator==(const StrategySet&) const = default;
+    bool enabled(int s, int t) const { return s <= maxS && t >= minT && t <= maxT; }
+    bool merges() const { return merging != Merging::None; }
+    // Every path the set samples, it samples with exactly one strategy: its weight is 1.
+    bool uniqueStrategy() const { return merging == Merging::FirstNonDelta; }
     // Whether the weights can use running sums (mis.h): every strategy beyond the junction is
     // enabled or disabled by its vertex count on one side alone (all connections; or s = 0 only).
-    bool summable() const { return kind == Kind::Bidirectional || kind == Kind::VertexMerging || kind == Kind::PhotonMapping; }
+    bool summable() const {
+        return !uniqueStrategy() && ((maxS == kUnbounded && minT == 1 && maxT == kUnbounded) || maxS == 0);
+    }
 
     // The weight of (s, t) walks outward from the connection through strategies (s+t−i, i) on the
     // camera side and (i, s+t−i) on the light side, multiplying one pdf ratio per vertex, and needs
@@ -104,11 +98,11 @@ struct StrategySet {
     // read. `connect` sets no other pdf, and the walks record no other.
     bool readsCameraPdfs(int i, int s, int t) const {
         if (uniqueStrategy()) return false;
-        return i < t && (merges() ? i >= 1 : i >= minT() && s + t - i <= maxS());
+        return i < t && (merges() ? i >= 1 : i >= minT && s + t - i <= maxS);
     }
     bool readsLightPdfs(int i, int s, int t) const {
         if (uniqueStrategy()) return false;
-        return i >= 0 && i < s && (merges() || s + t - i <= maxT());
+        return i >= 0 && i < s && (merges() || s + t - i <= maxT);
     }
     // What that leaves the walks to record. Camera vertex i's pdfs are read by (s, t) = (0, i+1)
     // when maxS ≥ 1 -- a non-zero contribution only if the vertex lies on an emitter -- and by
@@ -117,15 +111,12 @@ struct StrategySet {
     WalkPdfs cameraWalkPdfs() const {
         if (uniqueStrategy()) return WalkPdfs::None;
         if (merges()) return WalkPdfs::All;
-        return maxS() >= 2 ? WalkPdfs::All : maxS() == 1 ? WalkPdfs::AtEmitters : WalkPdfs::None;
+        return maxS >= 2 ? WalkPdfs::All : maxS == 1 ? WalkPdfs::AtEmitters : WalkPdfs::None;
     }
     WalkPdfs lightWalkPdfs() const {
         if (uniqueStrategy()) return WalkPdfs::None;
-        return merges() || maxT() >= 2 ? WalkPdfs::All : WalkPdfs::None;
+        return merges() || maxT >= 2 ? WalkPdfs::All : WalkPdfs::None;
     }
-
-private:
-    static constexpr int kUnbounded = 1 << 20;
 };
 
 // What strategy (s, t) defines where it joins its subpaths: the area pdfs with which each
