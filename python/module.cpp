@@ -150,18 +150,23 @@ py::dict renderScene(PyScene& scene, const std::string& integrator, std::optiona
     bool interrupted = false;
     std::optional<py::error_already_set> failure;  // raised by the progress callback
     settings.stop = &stop;
+    // Ctrl-C raises KeyboardInterrupt from Python's handler, here or inside the callback: either way
+    // the render stops at this pass and returns what it has.
+    auto interrupt = [&] {
+        interrupted = true;
+        stop = true;
+    };
     settings.progress = [&](int passes, double elapsed) {
         const py::gil_scoped_acquire gil;
-        if (PyErr_CheckSignals() != 0) {  // Ctrl-C: KeyboardInterrupt raised by Python's handler
+        if (PyErr_CheckSignals() != 0) {
             PyErr_Clear();
-            interrupted = true;
-            stop = true;
-            return;
+            return interrupt();
         }
         if (!progress) return;
         try {
             progress(passes, elapsed);
         } catch (py::error_already_set& e) {
+            if (e.matches(PyExc_KeyboardInterrupt)) return interrupt();
             failure.emplace(std::move(e));
             stop = true;
         }

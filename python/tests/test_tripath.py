@@ -185,6 +185,16 @@ def test_progress_is_called_after_each_pass_and_its_exception_stops_the_render(c
         tripath.render(cornell, "pt", spp=50, width=8, height=8, progress=fail)
 
 
+def test_ctrl_c_inside_the_progress_callback_returns_the_partial_image_too(cornell):
+    # Python raises KeyboardInterrupt wherever its code runs when Ctrl-C comes: here, in the callback.
+    def interrupted_at_two(passes, seconds):
+        if passes == 2:
+            raise KeyboardInterrupt
+
+    r = tripath.render(cornell, "pt", spp=50, width=8, height=8, progress=interrupted_at_two)
+    assert r["interrupted"] and r["spp"] == 2 and r["image"].mean() > 0
+
+
 def test_ctrl_c_stops_at_the_next_pass_and_returns_the_partial_image():
     script = textwrap.dedent("""
         import sys, tripath
