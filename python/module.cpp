@@ -46,7 +46,8 @@ struct Warnings {
 // A loaded scene. The library bakes the image size into its ray-tracing scene, so the scene is
 // kept as its description and built again when a render asks for another size (the last size
 // built is kept: a series of renders at one size builds once). Loading builds it at the default
-// size, so a scene that cannot be rendered is refused by load().
+// size, so a scene that cannot be rendered is refused by load(). A render holds its own reference
+// to the scene it renders: another thread may ask for another size meanwhile (the GIL is released).
 class PyScene {
 public:
     PyScene(std::string name, GltfOptions gltf, Warnings& warnings)
@@ -55,12 +56,10 @@ public:
     }
     const std::string& name() const { return name_; }
     const GltfOptions& gltf() const { return gltf_; }
-    const Scene& at(int width, int height, Warnings& warnings) {
-        if (!built_ || built_->camera().width() != width || built_->camera().height() != height) {
-            built_.reset();
-            built_ = std::make_unique<Scene>(desc_, width, height, warnings.sink());
-        }
-        return *built_;
+    std::shared_ptr<const Scene> at(int width, int height, Warnings& warnings) {
+        if (!built_ || built_->camera().width() != width || built_->camera().height() != height)
+            built_ = std::make_shared<const Scene>(desc_, width, height, warnings.sink());
+        return built_;
     }
     size_t triangles() const { return built_->triangles().size(); }
 
@@ -68,7 +67,7 @@ private:
     std::string name_;
     GltfOptions gltf_;
     SceneDesc desc_;
-    std::unique_ptr<Scene> built_;
+    std::shared_ptr<const Scene> built_;
 };
 
 // An H×W×3 float32 array that owns `image`'s pixels (moved, not copied).
@@ -142,7 +141,8 @@ py::dict renderScene(PyScene& scene, const std::string& integrator, std::optiona
     validate(request, Spelling::Python);
 
     Warnings warnings;
-    const Scene& built = scene.at(width, height, warnings);
+    const std::shared_ptr<const Scene> shared = scene.at(width, height, warnings);
+    const Scene& built = *shared;
     warnings.raise();
     const auto method = makeIntegrator(request.integrator, integratorSettings(request));
     RenderSettings settings = renderSettings(request);

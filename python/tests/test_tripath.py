@@ -150,6 +150,28 @@ def test_one_loaded_scene_renders_at_any_size(cornell):
     assert np.array_equal(small, again)
 
 
+def test_threads_render_one_scene_at_two_sizes_at_once():
+    # The GIL is released while rendering, so the second thread asks for another size while the
+    # first renders: each must keep the scene it renders (catches a rebuild under a running render).
+    import threading
+    scene = tripath.load("cornell-spheres")
+    sizes = [(48, 40), (16, 8)]
+    alone = [tripath.render(scene, "bdpt", spp=6, width=w, height=h, threads=1)["image"] for w, h in sizes]
+    together = [None, None]
+
+    def run(i):
+        w, h = sizes[i]
+        together[i] = tripath.render(scene, "bdpt", spp=6, width=w, height=h, threads=1)["image"]
+
+    threads = [threading.Thread(target=run, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for a, b in zip(alone, together):
+        assert np.array_equal(a, b)
+
+
 def test_the_image_is_the_films_memory_without_a_copy(cornell):
     r = tripath.render(cornell, "pt", spp=1, width=16, height=8, depth_images=True, max_depth=3)
     image = r["image"]
