@@ -187,9 +187,19 @@ LogLogChart handChart(ChartSeries s) {
     return c;
 }
 
-// The 8-bit sRGB value writePng would write for a pixel of chartImage.
-std::array<int, 3> bytesAt(const Image& img, int x, int y) {
-    return {srgbToByte(img.at(x, y)[0]), srgbToByte(img.at(x, y)[1]), srgbToByte(img.at(x, y)[2])};
+// A chart as its PNG holds it: chartImage written by writePng and read back (8-bit codes / 255).
+Image asPng(const Image& chart) {
+    const fs::path file = fs::temp_directory_path() / ("tripath_test_chart_" + std::to_string(::getpid()) + ".png");
+    writePng(file.string(), chart);
+    Image back = readImage(file.string());
+    fs::remove(file);
+    return back;
+}
+
+// The 8-bit sRGB code of one pixel of a PNG read back by asPng.
+std::array<int, 3> bytesAt(const Image& png, int x, int y) {
+    const float* p = png.at(x, y);
+    return {int(std::lround(p[0] * 255)), int(std::lround(p[1] * 255)), int(std::lround(p[2] * 255))};
 }
 
 bool reddish(const std::array<int, 3>& c) { return c[0] > 200 && c[1] < 120 && c[2] < 120; }
@@ -207,7 +217,7 @@ double segmentDistance(double px, double py, double ax, double ay, double bx, do
 // points there is no red. Catches swapped axes, a linear scale, a y axis growing downwards, and
 // Cairo's sRGB bytes decoded other than writePng encodes them (the red would not come back 255, 0, 0).
 TEST(Chart, PointsSitWhereTheLogAxesPutThem) {
-    const Image img = chartImage(handChart({"r", {255, 0, 0}, {1, 10, 100}, {10, 100, 1}, {}, {}}));
+    const Image img = asPng(chartImage(handChart({"r", {255, 0, 0}, {1, 10, 100}, {10, 100, 1}, {}, {}})));
     ASSERT_EQ(img.width, 322);
     ASSERT_EQ(img.height, 316);
     const std::array<int, 3> red{255, 0, 0};
@@ -232,7 +242,7 @@ TEST(Chart, PointsSitWhereTheLogAxesPutThem) {
 // over white (204, 204, 255, give or take Cairo's rounding), above it the plot stays white, on the
 // line it is the blue. Catches a band drawn opaque, left out, or spanning the wrong values.
 TEST(Chart, BandIsATranslucentFillBetweenLowAndHigh) {
-    const Image img = chartImage(handChart({"b", {0, 0, 255}, {1, 100}, {10, 10}, {1, 1}, {100, 100}}));
+    const Image img = asPng(chartImage(handChart({"b", {0, 0, 255}, {1, 100}, {10, 10}, {1, 1}, {100, 100}})));
     const std::array<int, 3> inside = bytesAt(img, 125, 110);
     EXPECT_NEAR(inside[0], 204, 1);
     EXPECT_NEAR(inside[1], 204, 1);
@@ -269,7 +279,7 @@ TEST(Chart, TitleAndUprightYLabelAreDrawn) {
     LogLogChart c = handChart({"r", {255, 0, 0}, {1, 100}, {1, 100}, {}, {}});
     c.title = "Title";
     c.yLabel = "relMSE (lower is better)";
-    const Image img = chartImage(c);
+    const Image img = asPng(chartImage(c));
     auto ink = [&](int x0, int y0, int x1, int y1) {
         int left = x1, right = x0, top = y1, bottom = y0;
         for (int y = y0; y < y1; ++y)

@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
@@ -183,19 +185,6 @@ Image readAny(const std::string& path, bool requireExr, Metadata* meta) {
 
 }  // namespace
 
-float srgbEncode(float linear) {
-    if (linear <= 0.0031308f) return 12.92f * linear;
-    return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
-
-unsigned char srgbToByte(float linear) {
-    // `!(x > 0)` also catches NaN, which a preview should show as black.
-    if (!(linear > 0.0f)) return 0;
-    if (linear >= 1.0f) return 255;
-    float v = srgbEncode(linear) * 255.0f + 0.5f;
-    return static_cast<unsigned char>(v >= 255.0f ? 255.0f : v);
-}
-
 float srgbDecode(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 void writeExr(const std::string& path, const Image& img, const Metadata& meta) {
@@ -216,9 +205,20 @@ void writeExr(const std::string& path, const Image& img, const Metadata& meta) {
 
 void writePng(const std::string& path, const Image& img, float exposureStops) {
     checkImage(path, img);
+    // Clamped to [0, 1] first (`!(v > 0)` also makes NaN black), then OpenImageIO's linear → sRGB
+    // transfer function, then rounded to 8 bits as OpenImageIO converts floats.
     const float scale = std::exp2(exposureStops);
+    std::vector<float> clamped(img.rgb.size());
+    for (std::size_t i = 0; i < clamped.size(); ++i) {
+        const float v = img.rgb[i] * scale;
+        clamped[i] = !(v > 0) ? 0.0f : std::min(v, 1.0f);
+    }
+    const OIIO::ImageBuf linear(OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT), clamped.data());
+    OIIO::ImageBuf srgb;
+    if (!OIIO::ImageBufAlgo::colorconvert(srgb, linear, "linear", "sRGB"))
+        throw InputError(fmt::format("cannot write '{}': sRGB conversion failed: {}", path, srgb.geterror()));
     std::vector<unsigned char> bytes(img.rgb.size());
-    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgbToByte(img.rgb[i] * scale);
+    srgb.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, bytes.data());
 
     atomicWrite(path, "png", ".png", [&](OIIO::ImageOutput& out, const std::string& tmp) {
         OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);

@@ -40,7 +40,8 @@ using Metadata = std::vector<std::pair<std::string, std::string>>;
 // 32-bit float RGB, ZIP compression, plus `meta` as string attributes.
 void writeExr(const std::string& path, const Image& img, const Metadata& meta = {});
 
-// Preview: scale by 2^exposureStops, apply the sRGB OETF, clamp, quantise to 8 bits.
+// Preview: scale by 2^exposureStops, clamp to [0, 1], apply the sRGB OETF (OpenImageIO's colour
+// conversion), round to 8 bits.
 void writePng(const std::string& path, const Image& img, float exposureStops = 0);
 
 // Reads the first three channels of an OpenEXR file (a one- or two-channel
@@ -58,13 +59,8 @@ Image readImage(const std::string& path);
 // called before a long render, so a typo costs nothing.
 void checkWritable(const std::string& path);
 
-// The sRGB OETF applied to a linear value (no clamping), and the 8-bit code
-// writePng produces for a linear value after exposure scaling. Exposed so that
-// tests and tools agree with the writer bit for bit.
-float srgbEncode(float linear);
-unsigned char srgbToByte(float linear);
-// The inverse, the sRGB EOTF: the linear value of an encoded one in [0, 1]. Of an 8-bit code c (as
-// in CSS "#rrggbb") it is srgbDecode(c / 255.0f), which srgbToByte turns back into c.
+// The sRGB EOTF: the linear value of an encoded one in [0, 1]. Of an 8-bit code c (as in CSS
+// "#rrggbb") it is srgbDecode(c / 255.0f), which writePng writes back as c.
 float srgbDecode(float encoded);
 
 }  // namespace tripath
