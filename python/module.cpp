@@ -120,8 +120,9 @@ py::dict strategyLayers(const RenderResult& r) {
 }
 
 py::dict renderScene(PyScene& scene, const std::string& integrator, std::optional<int> spp, std::optional<double> seconds,
-                int width, int height, uint64_t seed, int maxDepth, const std::string& mis, int threads, bool depthImages,
-                int strategyImages, const std::function<void(int, double)>& progress, const py::kwargs& options) {
+                     int width, int height, uint64_t seed, int maxDepth, const std::string& mis, int threads,
+                     bool depthImages, int strategyImages, const std::function<void(int, double)>& progress,
+                     const py::kwargs& options) {
     RenderRequest request;
     request.scene = scene.name();
     request.gltf = scene.gltf();
