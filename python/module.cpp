@@ -43,31 +43,30 @@ struct Warnings {
     }
 };
 
-// A loaded scene. The library bakes the image size into its ray-tracing scene, so the scene is
-// kept as its description and built again when a render asks for another size (the last size
-// built is kept: a series of renders at one size builds once). Loading builds it at the default
-// size, so a scene that cannot be rendered is refused by load(). A render holds its own reference
-// to the scene it renders: another thread may ask for another size meanwhile (the GIL is released).
+// A loaded scene: built once, at the default size (so a scene that cannot be rendered is refused
+// by load()), and reframed for a render at another size, sharing its BVH (Scene's reframing
+// constructor); the last size asked for is kept. A render holds its own reference to the scene it
+// renders: another thread may ask for another size meanwhile (the GIL is released).
 class PyScene {
 public:
     PyScene(std::string name, GltfOptions gltf, Warnings& warnings)
-        : name_(std::move(name)), gltf_(gltf), desc_(loadSceneDesc(name_, gltf_, warnings.sink())) {
-        at(RenderRequest{}.width, RenderRequest{}.height, warnings);
-    }
+        : name_(std::move(name)), gltf_(gltf),
+          base_(std::make_shared<const Scene>(loadSceneDesc(name_, gltf_, warnings.sink()), RenderRequest{}.width,
+                                              RenderRequest{}.height, warnings.sink())),
+          framed_(base_) {}
     const std::string& name() const { return name_; }
     const GltfOptions& gltf() const { return gltf_; }
-    std::shared_ptr<const Scene> at(int width, int height, Warnings& warnings) {
-        if (!built_ || built_->camera().width() != width || built_->camera().height() != height)
-            built_ = std::make_shared<const Scene>(desc_, width, height, warnings.sink());
-        return built_;
+    std::shared_ptr<const Scene> at(int width, int height) {
+        if (framed_->camera().width() != width || framed_->camera().height() != height)
+            framed_ = std::make_shared<const Scene>(*base_, width, height);
+        return framed_;
     }
-    size_t triangles() const { return built_->triangles().size(); }
+    size_t triangles() const { return base_->triangles().size(); }
 
 private:
     std::string name_;
     GltfOptions gltf_;
-    SceneDesc desc_;
-    std::shared_ptr<const Scene> built_;
+    std::shared_ptr<const Scene> base_, framed_;
 };
 
 // An H×W×3 float32 array that owns `image`'s pixels (moved, not copied).
@@ -141,10 +140,8 @@ py::dict renderScene(PyScene& scene, const std::string& integrator, std::optiona
     if (request.sppGiven && request.timeGiven) throw InputError("spp and seconds exclude each other: give one");
     validate(request, Spelling::Python);
 
-    Warnings warnings;
-    const std::shared_ptr<const Scene> shared = scene.at(width, height, warnings);
+    const std::shared_ptr<const Scene> shared = scene.at(width, height);
     const Scene& built = *shared;
-    warnings.raise();
     const auto method = makeIntegrator(request.integrator, integratorSettings(request));
     RenderSettings settings = renderSettings(request);
     std::atomic<bool> stop{false};

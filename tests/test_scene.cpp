@@ -117,6 +117,28 @@ TEST(SceneQueries, PacketsOfCameraRaysHitWhatSingleRaysHit) {
     EXPECT_THROW(scene.intersect8(cam.position(), nine, out), std::logic_error);
 }
 
+// The image size is a render's parameter: a scene reframed at another size renders exactly as one
+// built at that size, and the scene it came from renders as before once the reframed one is gone
+// (they share the BVH). Catches a camera not framed anew (the wrong size or aspect), and a shared
+// BVH released by the copy (the base would then trace against freed memory).
+TEST(Scene, AReframedSceneRendersAsOneBuiltAtThatSize) {
+    const SceneDesc desc = builtinScene("cornell-spheres");
+    const Scene base(desc, 40, 40);
+    RenderRequest r = test::smallRequest();
+    r.integrator = "bdpt";
+    r.spp = 3;
+    const Image before = test::renderScene(base, r).image();
+    {
+        const Scene reframed(base, 24, 16);
+        const Image framed = test::renderScene(reframed, r).image();
+        const Image built = test::renderScene(Scene(desc, 24, 16), r).image();
+        ASSERT_EQ(framed.width, 24);
+        ASSERT_EQ(framed.height, 16);
+        EXPECT_EQ(framed.rgb, built.rgb);
+    }
+    EXPECT_EQ(test::renderScene(base, r).image().rgb, before.rgb);
+}
+
 TEST(SceneQueries, NoSelfHitsAtGrazingAnglesNearTheOrigin) { expectNoSelfHits(0.0f, 1.0f); }
 TEST(SceneQueries, NoSelfHitsAtGrazingAnglesAtCoordinatesOf1e4) { expectNoSelfHits(1e4f, 100.0f); }
 

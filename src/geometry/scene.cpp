@@ -89,8 +89,17 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
     if (!isFinite(cam.position) || !isFinite(cam.forward) || !isFinite(cam.up) || !(lengthSquared(cam.forward) > 0) ||
         !(lengthSquared(cross(cam.forward, cam.up)) > 0) || !(cam.yfov > 0 && cam.yfov < kPi))
         throw InputError(fmt::format("{}: the camera is degenerate (non-finite position or direction, or a bad yfov)", name_));
+    cameraDesc_ = cam;
     camera_ = Camera(cam, width, height);
     buildBvh();
+}
+
+Scene::Scene(const Scene& base, int width, int height)
+    : name_(base.name_), materials_(base.materials_), triangles_(base.triangles_), lo_(base.lo_), hi_(base.hi_),
+      cameraDesc_(base.cameraDesc_), camera_(base.cameraDesc_, width, height), emitters_(base.emitters_),
+      device_(base.device_), rtcScene_(base.rtcScene_) {
+    rtcRetainDevice(device_);
+    rtcRetainScene(rtcScene_);
 }
 
 void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {

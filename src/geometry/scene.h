@@ -46,6 +46,10 @@ class Scene {
 public:
     // Throws InputError on a scene that cannot be rendered (no emitter, bad material, …).
     Scene(SceneDesc desc, int width, int height, const WarningSink& warn = printWarning);
+    // The same scene seen at another image size: its triangles, materials and emitters copied, its
+    // ray-tracing BVH shared (Embree counts the references), its camera framed anew. The image size
+    // is a render's parameter: one loaded scene renders at any size without building its BVH again.
+    Scene(const Scene& base, int width, int height);
     ~Scene();
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
@@ -82,6 +86,7 @@ private:
     std::vector<Material> materials_;
     std::vector<Triangle> triangles_;
     Vec3 lo_, hi_;
+    CameraDesc cameraDesc_;  // the file's camera, or one framing the bounds: what reframing starts from
     Camera camera_;
     Emitters emitters_;
     RTCDeviceTy* device_ = nullptr;
