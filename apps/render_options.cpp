@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <csignal>
 #include <iostream>
 
 #include "core/error.h"
@@ -85,19 +84,6 @@ void validateRenderOptions(const RenderOptions& o) {
     if (!(o.checkpointSeconds >= 0 && o.checkpointSeconds <= 1e7))
         throw InputError(fmt::format("--checkpoint must be a number of seconds, at least 0 and at most 1e7 (got {})",
                                      o.checkpointSeconds));
-}
-
-namespace {
-std::atomic<bool> gStop{false};
-void onInterrupt(int) {
-    if (gStop.exchange(true)) std::_Exit(130);  // second Ctrl-C: give up at once
-}
-}  // namespace
-
-const std::atomic<bool>* installInterruptHandler() {
-    std::signal(SIGINT, onInterrupt);
-    std::signal(SIGTERM, onInterrupt);
-    return &gStop;
 }
 
 std::function<void(int, double)> progressReporter(const RenderSettings& s, int width, int height,

@@ -10,6 +10,7 @@
 #include "geometry/scene.h"
 #include "image/image.h"
 #include "integrators/integrator.h"
+#include "integrators/interrupt.h"
 #include "integrators/render.h"
 #include "integrators/render_request.h"
 
@@ -28,10 +29,6 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator = tru
 // Throws InputError for values out of range, before any work is done: the request's checks
 // (render_request.h) and --checkpoint's.
 void validateRenderOptions(const RenderOptions& o);
-
-// Ctrl-C: the first one asks the render loop to stop at the next pass (the image so far is
-// written); a second one exits at once.
-const std::atomic<bool>* installInterruptHandler();
 
 // A progress line on stderr when it is a terminal (percent, samples/s, time left), updated
 // after each pass; nothing otherwise. Returns the callback for RenderSettings::progress.
