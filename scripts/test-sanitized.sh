@@ -21,6 +21,6 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # Open MPI frees nothing at MPI_Finalize: its allocations are suppressed by library name, which
 # needs its components kept loaded and full stacks (the fast unwinder stops inside them).
 export OMPI_MCA_mca_base_component_disable_dlclose=1
-export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan-openmpi.supp:fast_unwind_on_malloc=0"
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:fast_unwind_on_malloc=0"
 cd build-asan
 ctest --output-on-failure -j"$(nproc)" "$@"
