@@ -1,7 +1,6 @@
 #include "checkpoint.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <array>
 #include <bit>
@@ -33,10 +32,7 @@ size_t wordCount(const Film& film) {
 std::string checkpointPath(const std::string& out) { return out + ".checkpoint"; }
 
 void writeCheckpoint(const std::string& path, const Metadata& settings, const RenderResult& r) {
-    const std::string tmp = fmt::format("{}.tmp-{}", path, static_cast<long>(::getpid()));
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (!f) throw InputError(fmt::format("cannot write checkpoint '{}'", path));
+    writeFileAtomically(path, [&](std::ostream& f) {
         f << kMagic << "\n";
         for (const auto& [key, value] : settings) f << key << "=" << value << "\n";
         f << "passes=" << r.passes << "\nnext-pass=" << r.nextPass << "\nseconds=" << fmt::format("{:.6f}", r.seconds)
@@ -44,11 +40,7 @@ void writeCheckpoint(const std::string& path, const Metadata& settings, const Re
           << "\nvalues=" << wordCount(r.film) << "\n\n";
         for (const ExactSums* t : r.film.totals())
             f.write(reinterpret_cast<const char*>(t->words().data()), std::streamsize(t->words().size_bytes()));
-        if (!f.flush()) throw InputError(fmt::format("cannot write checkpoint '{}': disk full?", path));
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw InputError(fmt::format("cannot write checkpoint '{}': {}", path, ec.message()));
+    });
 }
 
 std::optional<RenderResult> readCheckpoint(const std::string& path, const Metadata& settings, const Film& shape) {

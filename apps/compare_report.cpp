@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "compare.h"
 #include "core/error.h"
@@ -36,13 +35,7 @@ const MethodSummary& summaryOf(const Report& r, const std::string& method) {
 }  // namespace
 
 void writeText(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        f << text;
-        if (!f.flush()) throw InputError(fmt::format("cannot write '{}'", path));
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw InputError(fmt::format("cannot write '{}'", path));
+    writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
 std::string timeToBestText(const MethodSummary& s) {

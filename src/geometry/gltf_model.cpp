@@ -1,12 +1,8 @@
 #include "geometry/gltf_model.h"
 
-#include <fmt/format.h>
-#include <unistd.h>
-
 #include <filesystem>
-#include <fstream>
 
-#include "core/error.h"
+#include "core/atomic_file.h"
 
 namespace tripath {
 
@@ -59,26 +55,7 @@ void serialise(const tinygltf::Model& model, std::ostream& out, bool binary) {
 // WriteGltfSceneToFile would say neither why a file did not open nor that a write failed; the
 // stream variant into our own file does the same serialisation and lets both be reported.
 void writeGltfModel(const tinygltf::Model& model, const std::string& path) {
-    const fs::path target(path);
-    const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    const fs::path temp = dir / fmt::format(".{}.tmp{}", target.filename().string(), static_cast<long>(getpid()));
-    std::error_code ec;
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out) throw InputError(path + ": cannot write (missing or read-only folder?)");
-        serialise(model, out, target.extension() == ".glb");
-        out.close();
-        if (!out) {
-            fs::remove(temp, ec);
-            throw InputError(path + ": write failed (disk full?)");
-        }
-    }
-    fs::rename(temp, target, ec);
-    if (ec) {
-        const std::string reason = ec.message();
-        fs::remove(temp, ec);
-        throw InputError(path + ": cannot replace the file: " + reason);
-    }
+    writeFileAtomically(path, [&](std::ostream& out) { serialise(model, out, fs::path(path).extension() == ".glb"); });
 }
 
 }  // namespace tripath

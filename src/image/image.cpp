@@ -1,21 +1,17 @@
 #include "image/image.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
-#include <atomic>
-#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <string_view>
 #include <system_error>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace tripath {
@@ -59,35 +55,6 @@ std::string oiioError(const T* obj) {
     return oneLine(msg);
 }
 
-std::string errnoText(int err) { return std::error_code(err, std::generic_category()).message(); }
-
-// The directory a path lives in; "" means the current directory.
-fs::path directoryOf(const std::string& path) {
-    fs::path dir = fs::path(path).parent_path();
-    return dir.empty() ? fs::path(".") : dir;
-}
-
-// Unique among concurrent writers: the pid separates processes, the counter
-// separates threads and calls within one process.
-std::string uniqueSuffix() {
-    static std::atomic<unsigned long long> counter{0};
-    return fmt::format("{}-{}", static_cast<long>(::getpid()), counter.fetch_add(1));
-}
-
-// The checks shared by checkWritable and the writers, giving a clearer
-// message than whatever OIIO or rename would report.
-void checkTarget(const std::string& path) {
-    if (path.empty()) throw InputError("cannot write image: empty output path");
-    std::error_code ec;
-    fs::path dir = directoryOf(path);
-    if (!fs::exists(dir, ec))
-        throw InputError(fmt::format("cannot write '{}': directory '{}' does not exist", path, dir.string()));
-    if (!fs::is_directory(dir, ec))
-        throw InputError(fmt::format("cannot write '{}': '{}' is not a directory", path, dir.string()));
-    if (fs::is_directory(path, ec))
-        throw InputError(fmt::format("cannot write '{}': it is a directory", path));
-}
-
 void checkImage(const std::string& path, const Image& img) {
     if (img.width <= 0 || img.height <= 0)
         throw InputError(fmt::format("cannot write '{}': image is empty ({}x{})", path, img.width, img.height));
@@ -96,16 +63,10 @@ void checkImage(const std::string& path, const Image& img) {
                                      img.rgb.size(), 3 * img.pixelCount(), img.width, img.height));
 }
 
-// Writes through a temporary file in the target's directory (same filesystem,
-// so the rename is atomic) and renames it over the target. The real
-// extension stays last so tools inspecting a leftover temp still recognise
-// it. No fsync: this protects against failed and concurrent writes, not
-// against power loss, which is not worth the cost for a renderer's output.
+// Writes through core/atomic_file.h's temporary file, with OpenImageIO's writer for `format`.
 void atomicWrite(const std::string& path, std::string_view format, std::string_view ext,
                  const std::function<void(OIIO::ImageOutput&, const std::string&)>& write) {
-    checkTarget(path);
-    const std::string tmp = fmt::format("{}.tmp-{}{}", path, uniqueSuffix(), ext);
-    try {
+    replaceAtomically(path, std::string(ext), [&](const std::string& tmp) {
         // Create by format name, not by the target's extension, so that
         // "out.EXR" or an extension-less target still gets the right format.
         auto out = OIIO::ImageOutput::create(format);
@@ -114,15 +75,7 @@ void atomicWrite(const std::string& path, std::string_view format, std::string_v
                                          oiioError<OIIO::ImageOutput>(nullptr)));
         write(*out, tmp);
         if (!out->close()) throw InputError(fmt::format("cannot write '{}': {}", path, oiioError(out.get())));
-        out.reset();
-        std::error_code ec;
-        fs::rename(tmp, path, ec);
-        if (ec) throw InputError(fmt::format("cannot write '{}': rename failed: {}", path, ec.message()));
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw;
-    }
+    });
 }
 
 void openAndWrite(OIIO::ImageOutput& out, const std::string& tmp, const std::string& path,
@@ -231,20 +184,5 @@ void writePng(const std::string& path, const Image& img, float exposureStops) {
 Image readExr(const std::string& path, Metadata* meta) { return readAny(path, true, meta); }
 
 Image readImage(const std::string& path) { return readAny(path, false, nullptr); }
-
-void checkWritable(const std::string& path) {
-    checkTarget(path);
-    // Permission bits alone do not tell (ACLs, read-only mounts, quotas), so
-    // actually create a file. O_EXCL: never clobber someone else's file.
-    const std::string probe = fmt::format("{}.probe-{}", path, uniqueSuffix());
-    int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-    if (fd < 0) {
-        int err = errno;
-        throw InputError(fmt::format("cannot write '{}': directory '{}' is not writable: {}", path,
-                                     directoryOf(path).string(), errnoText(err)));
-    }
-    ::close(fd);
-    ::unlink(probe.c_str());
-}
 
 }  // namespace tripath

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/atomic_file.h"  // checkWritable, which callers of the writers below ask first
+
 namespace tripath {
 
 // Linear RGB, row-major, origin top-left (the same convention as EXR and PNG,
@@ -53,11 +55,6 @@ Image readExr(const std::string& path, Metadata* meta = nullptr);
 // Reads any format OpenImageIO understands as float RGB, without colour
 // conversion: an 8-bit PNG value v comes back as v / 255.
 Image readImage(const std::string& path);
-
-// Throws InputError if `path` could not be written: its directory is missing,
-// is not a directory, or refuses the creation of a probe file. Meant to be
-// called before a long render, so a typo costs nothing.
-void checkWritable(const std::string& path);
 
 // The sRGB EOTF: the linear value of an encoded one in [0, 1]. Of an 8-bit code c (as in CSS
 // "#rrggbb") it is srgbDecode(c / 255.0f), which writePng writes back as c.

@@ -1,0 +1,83 @@
+#include "core/atomic_file.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace tripath {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Unique among concurrent writers: the pid separates processes, the counter threads and calls.
+std::string uniqueSuffix() {
+    static std::atomic<unsigned long long> counter{0};
+    return fmt::format("{}-{}", static_cast<long>(::getpid()), counter.fetch_add(1));
+}
+
+}  // namespace
+
+void checkTarget(const std::string& path) {
+    if (path.empty()) throw InputError("cannot write: empty output path");
+    std::error_code ec;
+    fs::path dir = fs::path(path).parent_path();
+    if (dir.empty()) dir = ".";
+    if (!fs::exists(dir, ec))
+        throw InputError(fmt::format("cannot write '{}': directory '{}' does not exist", path, dir.string()));
+    if (!fs::is_directory(dir, ec))
+        throw InputError(fmt::format("cannot write '{}': '{}' is not a directory", path, dir.string()));
+    if (fs::is_directory(path, ec)) throw InputError(fmt::format("cannot write '{}': it is a directory", path));
+}
+
+void checkWritable(const std::string& path) {
+    checkTarget(path);
+    // Permission bits alone do not tell (ACLs, read-only mounts, quotas), so actually create a
+    // file. O_EXCL: never clobber someone else's file.
+    const std::string probe = fmt::format("{}.probe-{}", path, uniqueSuffix());
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0) {
+        const int err = errno;
+        fs::path dir = fs::path(path).parent_path();
+        throw InputError(fmt::format("cannot write '{}': directory '{}' is not writable: {}", path,
+                                     (dir.empty() ? fs::path(".") : dir).string(),
+                                     std::error_code(err, std::generic_category()).message()));
+    }
+    ::close(fd);
+    ::unlink(probe.c_str());
+}
+
+void replaceAtomically(const std::string& path, const std::string& ext, const std::function<void(const std::string&)>& write) {
+    checkTarget(path);
+    const std::string tmp = fmt::format("{}.tmp-{}{}", path, uniqueSuffix(), ext);
+    try {
+        write(tmp);
+        std::error_code ec;
+        fs::rename(tmp, path, ec);
+        if (ec) throw InputError(fmt::format("cannot write '{}': rename failed: {}", path, ec.message()));
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw;
+    }
+}
+
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+    replaceAtomically(path, ".part", [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw InputError(fmt::format("cannot write '{}': cannot create a file in its folder", path));
+        write(out);
+        out.close();
+        if (!out) throw InputError(fmt::format("cannot write '{}': write failed (disk full?)", path));
+    });
+}
+
+}  // namespace tripath
