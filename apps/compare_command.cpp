@@ -4,14 +4,13 @@
 
 #include <filesystem>
 #include <iostream>
-#include <set>
 #include <sstream>
 
 #include "commands.h"
-#include "compare.h"
-#include "processes.h"
 #include "core/error.h"
-#include "image/text.h"
+#include "evaluation/compare.h"
+#include "processes.h"
+#include "render_options.h"
 
 namespace tripath::app {
 
@@ -20,7 +19,8 @@ namespace fs = std::filesystem;
 namespace {
 
 struct CompareCommand {
-    CompareOptions options;
+    RenderOptions render;  // scene, size, depth, MIS, seed, threads and --time
+    evaluation::CompareRequest options;
     std::string integrators = "pt,lt,bdpt";
     std::string crop;
 };
@@ -36,20 +36,7 @@ std::vector<std::string> splitCommas(const std::string& s) {
     return parts;
 }
 
-std::vector<std::string> parseMethods(const std::string& list) {
-    std::vector<std::string> methods;
-    std::set<std::string> seen;
-    for (const std::string& m : splitCommas(list)) {
-        if (m.empty()) throw InputError(fmt::format("--integrators '{}' has an empty entry", list));
-        makeIntegrator(m, {});  // throws for an unknown name
-        if (!seen.insert(m).second) throw InputError(fmt::format("--integrators lists '{}' twice", m));
-        methods.push_back(m);
-    }
-    if (methods.empty()) throw InputError("--integrators is empty");
-    return methods;
-}
-
-std::optional<Region> parseCrop(const std::string& text, int width, int height) {
+std::optional<Region> parseCrop(const std::string& text) {
     if (text.empty()) return std::nullopt;
     const auto parts = splitCommas(text);
     int v[4];
@@ -64,34 +51,19 @@ std::optional<Region> parseCrop(const std::string& text, int width, int height) 
         ok = ok && used == parts[i].size();
     }
     if (!ok) throw InputError(fmt::format("--crop must be x,y,w,h in pixels (got '{}')", text));
-    if (v[2] <= 0 || v[3] <= 0 || v[0] < 0 || v[1] < 0 || v[0] > width - v[2] || v[1] > height - v[3])
-        throw InputError(fmt::format("--crop {} is not inside the {}x{} image", text, width, height));
-    return Region{v[0], v[1], v[2], v[3]};
-}
-
-void prepareOutDir(const std::string& dir) {
-    std::error_code ec;
-    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-        throw InputError(fmt::format("--out '{}' exists and is not a directory", dir));
-    fs::create_directories(dir, ec);
-    if (ec) throw InputError(fmt::format("cannot create --out directory '{}': {}", dir, ec.message()));
-    checkWritable((fs::path(dir) / "error.csv").string());
+    return Region{v[0], v[1], v[2], v[3]};  // checked against the image by evaluation::validate
 }
 
 // Every check that can fail before the first sample is rendered.
 void validate(CompareCommand& c) {
-    CompareOptions& o = c.options;
-    validateRenderOptions(o.render);
-    if (!(o.render.seconds > 0)) throw InputError("--time must be more than 0 seconds");
-    if (o.runs < 1 || o.runs > 100) throw InputError(fmt::format("--runs must be between 1 and 100 (got {})", o.runs));
-    o.methods = parseMethods(c.integrators);
-    makeIntegrator(o.referenceIntegrator, {});  // an unknown name is refused before anything renders
-    o.crop = parseCrop(c.crop, o.render.width, o.render.height);
-    if (!isRankZero()) return;  // rank 0 alone reads the reference file and writes the report
-    if (!o.referencePath.empty() && !fs::exists(o.referencePath))
-        throw InputError(fmt::format("cannot read reference '{}': file does not exist", o.referencePath));
-    requireFont();
-    prepareOutDir(o.outDir);
+    evaluation::CompareRequest& o = c.options;
+    validateRenderOptions(c.render);
+    o.render = c.render;
+    o.methods = splitCommas(c.integrators);
+    o.crop = parseCrop(c.crop);
+    o.team = &team();
+    o.narrator = terminalNarrator();
+    evaluation::validate(o, Spelling::CommandLine);
 }
 
 void run(CompareCommand& c) {
@@ -100,15 +72,10 @@ void run(CompareCommand& c) {
         validate(c);
         scene = loadScene(c.options.render);
     });
-    const CompareOptions& o = c.options;
-    const Reference ref = shareReference(o, *scene);
-    std::vector<RunOutput> outputs = runEverywhere(o, *scene, ref.image);
+    const evaluation::CompareRequest& o = c.options;
+    const evaluation::Comparison result = compare(o, *scene);
     if (!isRankZero()) return;
-    writePng((fs::path(o.outDir) / "reference.png").string(), ref.image);
-    KeptRuns kept = keepRuns(outputs, o.outDir);
-    Report report{o, ref, kept.runs, kept.images, {}, {}, {}};
-    writeReport(report, o.outDir);
-    const MethodSummary& best = report.summaries[bestMethod(report.summaries)];
+    const evaluation::MethodSummary& best = result.summaries[bestMethod(result.summaries)];
     std::cerr << fmt::format("lowest error at equal time: {} (relMSE {:.4g}); report in {}\n", best.method,
                              best.error.relMse, (fs::path(o.outDir) / "index.html").string());
 }
@@ -122,7 +89,7 @@ void addCompareCommand(CLI::App& app) {
         "Render a scene with several integrators for the same wall-clock time each and compare their error "
         "against a reference over time: error.csv, error-vs-time.svg/.png, side-by-side.png, summary.md and "
         "index.html in --out");
-    addRenderOptions(*cmd, c->options.render, false);
+    addRenderOptions(*cmd, c->render, false);
     // Every method gets the same time; a sample count would not be a fair budget across methods.
     cmd->remove_option(cmd->get_option("--spp"));
     cmd->remove_option(cmd->get_option("--checkpoint"));  // runs are short and timed: nothing to resume

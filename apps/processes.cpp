@@ -33,6 +33,24 @@ void addFixed192(void* in, void* inout, int* len, MPI_Datatype*) {
     for (int i = 0; i < *len; ++i) b[i] += a[i];
 }
 
+// MPI counts are ints: long messages go in pieces.
+constexpr size_t kPieceBytes = size_t(1) << 30;
+void sendBytes(const std::string& bytes, int to) {
+    uint64_t n = bytes.size();
+    MPI_Send(&n, 1, MPI_UINT64_T, to, 0, MPI_COMM_WORLD);
+    for (size_t at = 0; at < bytes.size(); at += kPieceBytes)
+        MPI_Send(bytes.data() + at, int(std::min(kPieceBytes, bytes.size() - at)), MPI_CHAR, to, 0, MPI_COMM_WORLD);
+}
+std::string receiveBytes(int from) {
+    uint64_t n = 0;
+    MPI_Recv(&n, 1, MPI_UINT64_T, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    std::string bytes(n, '\0');
+    for (size_t at = 0; at < bytes.size(); at += kPieceBytes)
+        MPI_Recv(bytes.data() + at, int(std::min(kPieceBytes, bytes.size() - at)), MPI_CHAR, from, 0, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+    return bytes;
+}
+
 class MpiTeam final : public Team {
 public:
     MpiTeam() {
@@ -66,6 +84,23 @@ public:
                 MPI_Reduce(rank_ == 0 ? MPI_IN_PLACE : p, p, n, fixedType_, addOp_, 0, MPI_COMM_WORLD);
             }
         }
+    }
+
+    void broadcast(std::string& bytes) override {
+        uint64_t n = bytes.size();
+        MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+        bytes.resize(n);
+        for (size_t at = 0; at < bytes.size(); at += kPieceBytes)
+            MPI_Bcast(bytes.data() + at, int(std::min(kPieceBytes, bytes.size() - at)), MPI_CHAR, 0, MPI_COMM_WORLD);
+    }
+    std::vector<std::string> gather(const std::string& mine) override {
+        if (rank_ != 0) {
+            sendBytes(mine, 0);
+            return {};
+        }
+        std::vector<std::string> all{mine};
+        for (int r = 1; r < size_; ++r) all.push_back(receiveBytes(r));
+        return all;
     }
 
 private:
@@ -121,68 +156,6 @@ bool launched() { return gTeam != nullptr; }
 Team& team() { return gTeam ? static_cast<Team&>(*gTeam) : solo(); }
 bool isRankZero() { return team().rank() == 0; }
 
-namespace {
-// MPI counts are ints: long messages go in pieces.
-constexpr size_t kPieceBytes = size_t(1) << 30;
-void sendBytes(const std::string& bytes, int to) {
-    uint64_t n = bytes.size();
-    MPI_Send(&n, 1, MPI_UINT64_T, to, 0, MPI_COMM_WORLD);
-    for (size_t at = 0; at < bytes.size(); at += kPieceBytes)
-        MPI_Send(bytes.data() + at, int(std::min(kPieceBytes, bytes.size() - at)), MPI_CHAR, to, 0, MPI_COMM_WORLD);
-}
-std::string receiveBytes(int from) {
-    uint64_t n = 0;
-    MPI_Recv(&n, 1, MPI_UINT64_T, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    std::string bytes(n, '\0');
-    for (size_t at = 0; at < bytes.size(); at += kPieceBytes)
-        MPI_Recv(bytes.data() + at, int(std::min(kPieceBytes, bytes.size() - at)), MPI_CHAR, from, 0, MPI_COMM_WORLD,
-                 MPI_STATUS_IGNORE);
-    return bytes;
-}
-}  // namespace
-
-void broadcast(std::string& bytes) {
-    if (!gTeam) return;
-    uint64_t n = bytes.size();
-    MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-    bytes.resize(n);
-    for (size_t at = 0; at < bytes.size(); at += kPieceBytes)
-        MPI_Bcast(bytes.data() + at, int(std::min(kPieceBytes, bytes.size() - at)), MPI_CHAR, 0, MPI_COMM_WORLD);
-}
-
-std::vector<std::string> gather(const std::string& mine) {
-    if (!gTeam) return {mine};
-    if (gTeam->rank() != 0) {
-        sendBytes(mine, 0);
-        return {};
-    }
-    std::vector<std::string> all{mine};
-    for (int r = 1; r < gTeam->size(); ++r) all.push_back(receiveBytes(r));
-    return all;
-}
-
-void together(const std::function<void()>& step) {
-    std::string error;
-    try {
-        step();
-    } catch (const InputError& e) {
-        error = e.what();
-        if (error.empty()) error = "failed";
-    }
-    if (!gTeam) {
-        if (!error.empty()) throw InputError(error);
-        return;
-    }
-    // The lowest failing rank tells the others its message.
-    const int me = gTeam->rank(), size = gTeam->size();
-    int failing = error.empty() ? size : me, lowest = size;
-    MPI_Allreduce(&failing, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-    if (lowest == size) return;
-    int length = static_cast<int>(error.size());
-    MPI_Bcast(&length, 1, MPI_INT, lowest, MPI_COMM_WORLD);
-    error.resize(length);
-    MPI_Bcast(error.data(), length, MPI_CHAR, lowest, MPI_COMM_WORLD);
-    throw InputError(size > 1 && lowest != 0 ? fmt::format("rank {}: {}", lowest, error) : error);
-}
+void together(const std::function<void()>& step) { tripath::together(team(), step); }
 
 }  // namespace tripath::app

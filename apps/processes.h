@@ -36,13 +36,7 @@ bool launched();
 Team& team();
 bool isRankZero();
 
-// Collective: rank 0's bytes, on every rank.
-void broadcast(std::string& bytes);
-// Collective: every rank's bytes in rank order, on rank 0 (nothing on the others).
-std::vector<std::string> gather(const std::string& mine);
-
-// Runs `step` on every rank; if it throws InputError on any, every rank throws one InputError
-// saying which rank failed and why (the lowest failing rank's message).
+// tripath::together (integrators/team.h) over this command's team.
 void together(const std::function<void()>& step);
 
 }  // namespace tripath::app

@@ -18,12 +18,16 @@
 #include "geometry/embree_isa.h"
 #include "core/error.h"
 #include "processes.h"
-#include "reference_file.h"
+#include "evaluation/reference_file.h"
 #include "render_options.h"
 
 namespace tripath::app {
 
 namespace {
+
+using evaluation::readReference;
+using evaluation::ReferenceFile;
+using evaluation::setMetadata;
 
 struct ReferenceCommand {
     RenderOptions options;

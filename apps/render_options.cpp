@@ -100,7 +100,7 @@ std::function<void(int, double)> progressReporter(const RenderSettings& s, int w
     };
 }
 
-void printSummary(const std::string& label, const RenderResult& r, const RenderOptions& o) {
+void printSummary(const std::string& label, const RenderResult& r, const RenderRequest& o) {
     const int width = o.width, height = o.height;
     if (isatty(STDERR_FILENO)) std::cerr << "\n";
     std::cerr << fmt::format("{}: {} spp in {:.2f} s ({:.2f} Msamples/s), {} NaN/Inf samples dropped, "
@@ -117,6 +117,16 @@ void printSummary(const std::string& label, const RenderResult& r, const RenderO
     if (launched())
         std::cerr << fmt::format("{} ranks; their films were added into rank 0's in {:.3f} s\n", team().size(), r.reduceSeconds);
     if (o.stats) std::cerr << statsReport(r, uint64_t(width) * height);
+}
+
+evaluation::Narrator terminalNarrator() {
+    evaluation::Narrator n;
+    n.say = [](const std::string& line) { std::cerr << line << "\n"; };
+    n.progress = [](const std::string& label, const RenderSettings& s, int width, int height) {
+        return progressReporter(s, width, height, label);
+    };
+    n.finished = printSummary;
+    return n;
 }
 
 }  // namespace tripath::app

@@ -8,6 +8,7 @@
 
 #include "geometry/gltf_loader.h"
 #include "geometry/scene.h"
+#include "evaluation/compare.h"
 #include "image/image.h"
 #include "integrators/integrator.h"
 #include "integrators/interrupt.h"
@@ -34,6 +35,9 @@ void validateRenderOptions(const RenderOptions& o);
 // after each pass; nothing otherwise. Returns the callback for RenderSettings::progress.
 std::function<void(int, double)> progressReporter(const RenderSettings& s, int width, int height, const std::string& label);
 // The one-line summary printed when a render ends, and with --stats the report of stats_report.h.
-void printSummary(const std::string& label, const RenderResult& r, const RenderOptions& o);
+void printSummary(const std::string& label, const RenderResult& r, const RenderRequest& o);
+// What a comparison or benchmark tells the terminal (rank 0): its lines, each render's progress
+// line and summary, as above.
+evaluation::Narrator terminalNarrator();
 
 }  // namespace tripath::app

@@ -1,75 +1,23 @@
-// tripath's Python module: load a scene, render it, measure images. `render` fills the library's
+// tripath's Python module: load a scene, render it, measure images (compare and benchmark are in
+// evaluation.cpp). `render` fills the library's
 // render request (integrators/render_request.h) from its keyword arguments, so the same settings
 // give the same bits as `tripath render`, and bad values are refused with the same reasons (as
 // ValueError, in Python's spelling of the parameters). The image comes back as a NumPy array over
 // the film's own memory, without a copy. The GIL is released while rendering; between passes the
 // render takes it back to run the progress callback and Python's signal handlers, so Ctrl-C stops
 // the render at the next pass and the partial image is returned.
+#include "module.h"
+
 #include <pybind11/functional.h>
-#include <pybind11/numpy.h>
-#include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <atomic>
-#include <memory>
-#include <optional>
-#include <string>
-#include <vector>
-
-#include "scenes/builtin_scenes.h"
 #include "core/error.h"
-#include "scenes/scene_source.h"
-#include "core/stats.h"
 #include "image/flip.h"
 #include "image/metrics.h"
-#include "integrators/render_request.h"
-
-namespace py = pybind11;
+#include "scenes/builtin_scenes.h"
 
 namespace tripath::python {
 
-namespace {
-
-// Warnings gathered while the library works (without the GIL, perhaps), then raised in Python as
-// UserWarning once it is back.
-struct Warnings {
-    std::vector<std::string> messages;
-    WarningSink sink() {
-        return [this](const std::string& m) { messages.push_back(m); };
-    }
-    void raise() const {
-        for (const std::string& m : messages)
-            if (PyErr_WarnEx(PyExc_UserWarning, m.c_str(), 2) != 0) throw py::error_already_set();
-    }
-};
-
-// A loaded scene: built once, at the default size (so a scene that cannot be rendered is refused
-// by load()), and reframed for a render at another size, sharing its BVH (Scene's reframing
-// constructor); the last size asked for is kept. A render holds its own reference to the scene it
-// renders: another thread may ask for another size meanwhile (the GIL is released).
-class PyScene {
-public:
-    PyScene(std::string name, GltfOptions gltf, Warnings& warnings)
-        : name_(std::move(name)), gltf_(gltf),
-          base_(std::make_shared<const Scene>(loadSceneDesc(name_, gltf_, warnings.sink()), RenderRequest{}.width,
-                                              RenderRequest{}.height, warnings.sink())),
-          framed_(base_) {}
-    const std::string& name() const { return name_; }
-    const GltfOptions& gltf() const { return gltf_; }
-    std::shared_ptr<const Scene> at(int width, int height) {
-        if (framed_->camera().width() != width || framed_->camera().height() != height)
-            framed_ = std::make_shared<const Scene>(*base_, width, height);
-        return framed_;
-    }
-    size_t triangles() const { return base_->triangles().size(); }
-
-private:
-    std::string name_;
-    GltfOptions gltf_;
-    std::shared_ptr<const Scene> base_, framed_;
-};
-
-// An H×W×3 float32 array that owns `image`'s pixels (moved, not copied).
 py::array_t<float> toArray(Image image) {
     auto* owned = new Image(std::move(image));
     py::capsule free(owned, [](void* p) { delete static_cast<Image*>(p); });
@@ -77,8 +25,7 @@ py::array_t<float> toArray(Image image) {
     return py::array_t<float>({h, w, py::ssize_t(3)}, owned->rgb.data(), free);
 }
 
-// An H×W×3 array (any float type) as an Image; ValueError for another shape.
-Image fromArray(const py::array_t<float, py::array::c_style | py::array::forcecast>& a, const char* what) {
+Image fromArray(const ArrayIn& a, const char* what) {
     if (a.ndim() != 3 || a.shape(2) != 3)
         throw InputError(std::string(what) + " must be an array of shape (height, width, 3)");
     Image img(int(a.shape(1)), int(a.shape(0)));
@@ -86,7 +33,9 @@ Image fromArray(const py::array_t<float, py::array::c_style | py::array::forceca
     return img;
 }
 
-// The integrator options `render` takes as keywords beyond its named parameters.
+namespace {
+
+// The integrator options taken as keywords beyond the named parameters.
 void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
     for (const auto& [key, value] : options) {
         const std::string k = py::str(key);
@@ -101,11 +50,32 @@ void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
     }
 }
 
+}  // namespace
+
 py::dict counters(const StatsSnapshot& stats) {
     py::dict d;
     for (int e = 0; e < kEventCount; ++e) d[py::str(eventKey(Event(e)))] = stats.events[e];
     return d;
 }
+
+RenderRequest requestOf(const std::string& scene, const GltfOptions& gltf, const std::string& integrator, int width,
+                        int height, uint64_t seed, int maxDepth, const std::string& mis, int threads,
+                        const py::kwargs& options) {
+    RenderRequest request;
+    request.scene = scene;
+    request.gltf = gltf;
+    request.integrator = integrator;
+    request.width = width;
+    request.height = height;
+    request.seed = seed;
+    request.maxDepth = maxDepth;
+    request.mis = mis;
+    request.threads = threads;
+    applyIntegratorOptions(request, options);
+    return request;
+}
+
+namespace {
 
 py::dict strategyLayers(const RenderResult& r) {
     py::dict layers;
@@ -122,21 +92,12 @@ py::dict renderScene(PyScene& scene, const std::string& integrator, std::optiona
                      int width, int height, uint64_t seed, int maxDepth, const std::string& mis, int threads,
                      bool depthImages, int strategyImages, const std::function<void(int, double)>& progress,
                      const py::kwargs& options) {
-    RenderRequest request;
-    request.scene = scene.name();
-    request.gltf = scene.gltf();
-    request.integrator = integrator;
+    RenderRequest request =
+        requestOf(scene.name(), scene.gltf(), integrator, width, height, seed, maxDepth, mis, threads, options);
     if (spp) request.spp = *spp, request.sppGiven = true;
     if (seconds) request.seconds = *seconds, request.timeGiven = true;
-    request.width = width;
-    request.height = height;
-    request.seed = seed;
-    request.maxDepth = maxDepth;
-    request.mis = mis;
-    request.threads = threads;
     request.depthImages = depthImages;
     request.strategyImages = strategyImages;
-    applyIntegratorOptions(request, options);
     if (request.sppGiven && request.timeGiven) throw InputError("spp and seconds exclude each other: give one");
     validate(request, Spelling::Python);
 
@@ -144,37 +105,19 @@ py::dict renderScene(PyScene& scene, const std::string& integrator, std::optiona
     const Scene& built = *shared;
     const auto method = makeIntegrator(request.integrator, integratorSettings(request));
     RenderSettings settings = renderSettings(request);
-    std::atomic<bool> stop{false};
-    bool interrupted = false;
-    std::optional<py::error_already_set> failure;  // raised by the progress callback
-    settings.stop = &stop;
-    // Ctrl-C raises KeyboardInterrupt from Python's handler, here or inside the callback: either way
-    // the render stops at this pass and returns what it has.
-    auto interrupt = [&] {
-        interrupted = true;
-        stop = true;
-    };
+    Watch watch;
+    settings.stop = &watch.stop;
     settings.progress = [&](int passes, double elapsed) {
-        const py::gil_scoped_acquire gil;
-        if (PyErr_CheckSignals() != 0) {
-            PyErr_Clear();
-            return interrupt();
-        }
-        if (!progress) return;
-        try {
-            progress(passes, elapsed);
-        } catch (py::error_already_set& e) {
-            if (e.matches(PyExc_KeyboardInterrupt)) return interrupt();
-            failure.emplace(std::move(e));
-            stop = true;
-        }
+        watch.between([&] {
+            if (progress) progress(passes, elapsed);
+        });
     };
     std::optional<RenderResult> result;
     {
         const py::gil_scoped_release released;
         result.emplace(tripath::render(built, *method, settings));
     }
-    if (failure) throw std::move(*failure);
+    watch.raiseFailure();
     py::dict out;
     out["image"] = toArray(result->image());
     if (depthImages) {
@@ -185,7 +128,7 @@ py::dict renderScene(PyScene& scene, const std::string& integrator, std::optiona
     if (strategyImages > 0) out["strategies"] = strategyLayers(*result);
     out["spp"] = result->passes;
     out["seconds"] = result->seconds;
-    out["interrupted"] = interrupted;
+    out["interrupted"] = watch.interrupted;
     out["dropped_samples"] = result->droppedSamples;
     out["guarded_weights"] = result->guardedWeights;
     out["counters"] = counters(result->stats);
@@ -267,6 +210,8 @@ PYBIND11_MODULE(tripath, m) {
 
     m.def("read_exr", &readExrFile, py::arg("path"),
           "Reads an EXR as (float32 array height x width x 3, {'tripath:...': value} metadata)");
+
+    defineEvaluation(m);
 
     py::module_ metrics = m.def_submodule("metrics", "Error metrics of an image against a reference (arrays h x w x 3)");
     metrics.def("relmse", [](const Array& a, const Array& r, double eps) { return errors(a, r, eps).relMse; },

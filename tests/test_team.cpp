@@ -2,11 +2,15 @@
 // tests check end to end (test_distributed.cpp), here cheap enough to check in detail.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
 #include <vector>
 
+#include "core/error.h"
 #include "scenes/builtin_scenes.h"
 #include "integrators/render.h"
 #include "thread_team.h"
@@ -81,6 +85,46 @@ TEST(DroppedSamples, TheTeamLogsTheFirstOnesAsOneProcessWould) {
         for (const DroppedSample& d : r.droppedLog) logged.emplace_back(d.pass, d.pixel);
         EXPECT_EQ(logged, expected) << ranks << " ranks";
     }
+}
+
+// A check that fails on some ranks fails on all of them, with the lowest failing rank's words.
+// Catches: a rank that returns while others throw (it would wait alone in its next collective),
+// the highest failing rank's message instead of the lowest's, and rank 0's message given a prefix.
+TEST(Team, TogetherEndsEveryRankWithTheLowestFailingRanksMessage) {
+    for (const std::vector<int>& failing : std::vector<std::vector<int>>{{}, {2}, {1, 2}, {0, 2}}) {
+        std::vector<std::string> seen(3);
+        test::ThreadTeam(3).run([&](Team& team, int rank) {
+            try {
+                together(team, [&] {
+                    if (std::find(failing.begin(), failing.end(), rank) != failing.end())
+                        throw InputError("no such file on rank " + std::to_string(rank));
+                });
+                seen[size_t(rank)] = "ok";
+            } catch (const InputError& e) {
+                seen[size_t(rank)] = e.what();
+            }
+        });
+        const std::string expected = failing.empty()   ? "ok"
+                                     : failing[0] == 0 ? "no such file on rank 0"
+                                                       : fmt::format("rank {0}: no such file on rank {0}", failing[0]);
+        for (const std::string& s : seen) EXPECT_EQ(s, expected) << "failing ranks " << failing.size();
+    }
+}
+
+// Catches: gathered bytes out of rank order, and a broadcast that leaves a rank with its own bytes.
+TEST(Team, BytesAreBroadcastFromRankZeroAndGatheredInRankOrder) {
+    std::vector<std::string> received(3);
+    std::vector<std::string> gathered;
+    test::ThreadTeam(3).run([&](Team& team, int rank) {
+        std::string bytes = "from " + std::to_string(rank);
+        team.broadcast(bytes);
+        received[size_t(rank)] = bytes;
+        std::vector<std::string> all = team.gather(std::string(size_t(rank) + 1, char('a' + rank)));
+        if (rank == 0) gathered = all;
+        else EXPECT_TRUE(all.empty());
+    });
+    EXPECT_EQ(received, std::vector<std::string>(3, "from 0"));
+    EXPECT_EQ(gathered, (std::vector<std::string>{"a", "bb", "ccc"}));
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // A team of ranks that are threads of this process (integrators/team.h), so that tests can run the
 // render loop's multi-process logic -- block dealing, stop votes, sums, film reduction, gathered
-// logs -- without mpirun. Each collective is a rendezvous: every rank adds its part to a shared
-// accumulator under a lock, all wait, all read the result, all wait again before the next one.
+// logs, bytes broadcast and gathered -- without mpirun. Each collective is a rendezvous: every
+// rank adds its part to a shared accumulator under a lock, all wait, all read the result, all wait
+// again before the next one.
 #pragma once
 #include <algorithm>
 #include <barrier>
@@ -9,6 +10,7 @@
 #include <functional>
 #include <mutex>
 #include <span>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -59,6 +61,21 @@ private:
             if (rank_ == 0) team_.films_.clear();
             team_.barrier_.arrive_and_wait();
         }
+        void broadcast(std::string& bytes) override {
+            if (rank_ == 0) team_.bytes_.assign(1, bytes);
+            team_.barrier_.arrive_and_wait();  // rank 0 has posted
+            bytes = team_.bytes_[0];
+            team_.barrier_.arrive_and_wait();  // every rank has read it
+        }
+        std::vector<std::string> gather(const std::string& mine) override {
+            if (rank_ == 0) team_.bytes_.assign(size_t(team_.size_), std::string());
+            team_.barrier_.arrive_and_wait();  // the slots exist
+            team_.bytes_[size_t(rank_)] = mine;  // each rank its own slot
+            team_.barrier_.arrive_and_wait();  // every rank has posted
+            std::vector<std::string> all = rank_ == 0 ? team_.bytes_ : std::vector<std::string>{};
+            team_.barrier_.arrive_and_wait();  // rank 0 has read them
+            return all;
+        }
 
     private:
         ThreadTeam& team_;
@@ -86,6 +103,7 @@ private:
     int arrived_ = 0;
     std::vector<uint64_t> acc_;
     std::vector<const Film*> films_;
+    std::vector<std::string> bytes_;
 };
 
 }  // namespace tripath::test

@@ -19,19 +19,19 @@ MisHeuristic parseMisHeuristic(const std::string& name) {
     throw InputError("unknown MIS heuristic '" + name + "' (balance, power or none)");
 }
 
-// A parameter's name as the front end spells it: the command line's flag, Python's keyword.
-std::string named(const char* flag, Spelling spelling) {
+}  // namespace
+
+std::string parameterName(const char* flag, Spelling spelling) {
     if (spelling == Spelling::CommandLine) return std::string("--") + flag;
     std::string name = flag;
+    if (name.ends_with("time")) name.replace(name.size() - 4, 4, "seconds");  // Python's budgets are in seconds
     for (char& c : name)
         if (c == '-') c = '_';
     return name;
 }
 
-}  // namespace
-
 void validate(const RenderRequest& r, Spelling spelling) {
-    auto name = [spelling](const char* flag) { return named(flag, spelling); };
+    auto name = [spelling](const char* flag) { return parameterName(flag, spelling); };
     auto fail = [](const std::string& m) { throw InputError(m); };
     // The film keeps 96 bytes a pixel (the block's double RGB and the exact 192-bit totals) plus the
     // output image: 8192² is ~6.7 GiB.
@@ -42,7 +42,7 @@ void validate(const RenderRequest& r, Spelling spelling) {
         fail(fmt::format("{} must be between 1 and 1000000 (got {})", name("spp"), r.spp));
     if (r.timeGiven && !(r.seconds > 0 && r.seconds <= 1e7))
         fail(fmt::format("{} must be a number of seconds above 0 and at most 1e7 (got {})",
-                         name(spelling == Spelling::CommandLine ? "time" : "seconds"), r.seconds));
+                         name("time"), r.seconds));
     if (r.maxDepth < 1 || r.maxDepth > 1024)
         fail(fmt::format("{} must be between 1 and 1024 (got {})", name("max-depth"), r.maxDepth));
     if (r.rrDepth < 1) fail(fmt::format("{} must be at least 1 (got {})", name("rr-depth"), r.rrDepth));

@@ -40,6 +40,9 @@ struct RenderRequest {
 // How a front end spells the request's parameters in its messages: "--max-depth" on the command
 // line, "max_depth" in Python.
 enum class Spelling { CommandLine, Python };
+// A parameter named by its command-line flag ("max-depth", "time") as `spelling` writes it:
+// "--max-depth", "--time"; "max_depth", "seconds" (Python names every time budget `…seconds`).
+std::string parameterName(const char* flag, Spelling spelling);
 
 // Throws InputError, one line naming the parameter as `spelling` writes it, for a value out of
 // range, before any work is done.

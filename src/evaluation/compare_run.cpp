@@ -1,25 +1,22 @@
-// The renders of `tripath compare`: the reference (read or rendered) and each method's runs,
+// The renders of a comparison: the reference (read, given or rendered) and each method's runs,
 // with their error measured at checkpoints while they render.
 #include <fmt/format.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <iostream>
 
-#include "compare.h"
-#include "processes.h"
+#include "evaluation/compare.h"
 #include "core/error.h"
 #include "image/flip.h"
 
-namespace tripath::app {
+namespace tripath::evaluation {
 
 namespace {
 
-// Without --reference, --reference-integrator (bdpt) renders one for this many times the per-method
-// budget. Its own noise then adds about 1/10 of that method's error to every measurement: fine for ranking methods,
-// and the message says how to do better.
-constexpr double kReferenceBudget = 10;
+void say(const CompareRequest& o, const std::string& line) {
+    if (o.narrator.say && o.team->rank() == 0) o.narrator.say(line);
+}
 
 // The largest k with t_k <= seconds, or -1 before t_0.
 int targetReached(double seconds, double budget) {
@@ -28,8 +25,8 @@ int targetReached(double seconds, double budget) {
     return static_cast<int>(std::min<double>(kTargets, std::max(-1.0, k)));
 }
 
-Reference readGivenReference(const CompareOptions& o) {
-    const RenderOptions& r = o.render;
+Reference readGivenReference(const CompareRequest& o) {
+    const RenderRequest& r = o.render;
     ReferenceFile file = readReference(o.referencePath);
     requireSize(file, r.width, r.height);
     // A reference of another scene or depth limit converges to another image; an external file
@@ -50,40 +47,51 @@ Reference readGivenReference(const CompareOptions& o) {
     return {std::move(file.image), file.description(), o.referencePath};
 }
 
-Reference renderReference(const CompareOptions& o, const Scene& scene) {
-    RenderOptions r = o.render;
+// The callbacks of a render on this rank: progress and the summary at its end come from rank 0 alone.
+void narrate(const CompareRequest& o, RenderSettings& rs, const std::string& label) {
+    if (o.narrator.progress && o.team->rank() == 0) rs.progress = o.narrator.progress(label, rs, o.render.width, o.render.height);
+}
+void finished(const CompareRequest& o, const std::string& label, const RenderResult& result, const RenderRequest& r) {
+    if (o.narrator.finished && o.team->rank() == 0) o.narrator.finished(label, result, r);
+}
+
+Reference renderReference(const CompareRequest& o, const Scene& scene) {
+    RenderRequest r = o.render;
     r.integrator = o.referenceIntegrator;
     r.seconds = o.referenceSeconds > 0 ? o.referenceSeconds : kReferenceBudget * o.render.seconds;
     r.domain = StreamDomain::Reference;  // the reference streams: independent of every run
-    const std::string file =
-        o.referenceOut.empty() ? (std::filesystem::path(o.outDir) / "reference.exr").string() : o.referenceOut;
-    std::cerr << fmt::format(
-        "no --reference: rendering one with {} for {:g} x {} = {} (seed {}, reference streams) into {}; its own "
-        "noise adds about 1/{:g} of {}'s error to each measurement. For a cleaner one, see `tripath reference`.\n",
-        r.integrator, kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds), r.seed, file,
-        kReferenceBudget, r.integrator);
+    const std::string file = !o.referenceOut.empty() ? o.referenceOut
+                             : o.outDir.empty()      ? std::string()
+                                                     : (std::filesystem::path(o.outDir) / "reference.exr").string();
+    say(o, fmt::format("no reference given: rendering one with {} for {:g} x {} = {} (seed {}, reference streams){}; "
+                       "its own noise adds about 1/{:g} of {}'s error to each measurement. For a cleaner one, see "
+                       "`tripath reference`.",
+                       r.integrator, kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds), r.seed,
+                       file.empty() ? "" : " into " + file, kReferenceBudget, r.integrator));
     const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
     RenderSettings rs = renderSettings(r);
-    rs.team = &team();  // every rank renders the reference together
+    rs.team = o.team;  // every rank renders the reference together
+    rs.stop = o.stop;
     const std::string label = "reference " + r.integrator + " " + r.scene;
-    rs.progress = progressReporter(rs, r.width, r.height, label);
+    narrate(o, rs, label);
     const RenderResult result = render(scene, *integrator, rs);  // by every rank together
-    if (isRankZero()) {
-        printSummary(label, result, r);
-        writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result, team().size()));
-    }
+    finished(o, label, result, r);
+    if (o.team->rank() == 0 && !file.empty())
+        writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result, o.team->size()));
     return {result.image(), fmt::format("{}, {} spp, {:.0f} s", r.integrator, result.passes, result.seconds), file};
 }
 
 }  // namespace
 
-Reference obtainReference(const CompareOptions& o, const Scene& scene) {
-    return o.referencePath.empty() ? renderReference(o, scene) : readGivenReference(o);
+Reference obtainReference(const CompareRequest& o, const Scene& scene) {
+    if (!o.referencePath.empty()) return readGivenReference(o);
+    if (!o.referenceImage.rgb.empty()) return {o.referenceImage, "given image", ""};
+    return renderReference(o, scene);
 }
 
-RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::string& method, int index,
+RunOutput runMethod(const CompareRequest& o, const Scene& scene, const std::string& method, int index,
                     const Image& reference) {
-    RenderOptions ro = o.render;
+    RenderRequest ro = o.render;
     ro.integrator = method;
     ro.seed = o.render.seed + uint64_t(index);
     Run run{method, index, ro.seed, {}};
@@ -92,7 +100,7 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
     rs.team = &solo();  // a run is timed alone on its rank: compare_ranks.cpp deals the runs out
     rs.stop = o.stop;
     const std::string label = fmt::format("{} run {}/{}", method, index + 1, o.runs);
-    rs.progress = progressReporter(rs, ro.width, ro.height, label);
+    narrate(o, rs, label);
     // Measuring happens inside onPass, whose time the render loop leaves out of the budget.
     rs.onPass = [&](const Film& film, int passes, double seconds) {
         const int k = targetReached(seconds, ro.seconds);
@@ -107,13 +115,13 @@ RunOutput runMethod(const CompareOptions& o, const Scene& scene, const std::stri
     run.checkpoints.back().target = kTargets;
     run.stats = r.stats;
     run.flip = hdrFlip(image, reference, flipExposures(reference));
-    printSummary(label, r, ro);
+    finished(o, label, r, ro);
     const Checkpoint& f = run.final();
-    std::cerr << fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in the worst 0.1% of "
-                             "pixels, HDR-FLIP {:.4g}\n",
-                             label, f.error.relMse, f.error.mse, f.error.mae, perSampleRelVariance(f.error.relMse, f.spp),
-                             tailShareText(f.error.tailShare), run.flip);
-    return {std::move(run), std::move(image), renderMetadata(ro, scene, *integrator, r, team().size())};
+    say(o, fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in the worst 0.1% of "
+                       "pixels, HDR-FLIP {:.4g}",
+                       label, f.error.relMse, f.error.mse, f.error.mae, perSampleRelVariance(f.error.relMse, f.spp),
+                       tailShareText(f.error.tailShare), run.flip));
+    return {std::move(run), std::move(image), renderMetadata(ro, scene, *integrator, r, o.team->size())};
 }
 
-}  // namespace tripath::app
+}  // namespace tripath::evaluation

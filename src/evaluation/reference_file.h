@@ -10,7 +10,7 @@
 #include "core/rng.h"
 #include "image/image.h"
 
-namespace tripath::app {
+namespace tripath::evaluation {
 
 struct ReferenceFile {
     std::string path;
@@ -43,4 +43,4 @@ void requireSettings(const ReferenceFile& ref, const std::vector<std::pair<std::
 // Replaces the value of `key`, or appends it.
 void setMetadata(Metadata& meta, const std::string& key, const std::string& value);
 
-}  // namespace tripath::app
+}  // namespace tripath::evaluation

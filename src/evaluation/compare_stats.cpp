@@ -3,9 +3,9 @@
 #include <cmath>
 #include <limits>
 
-#include "compare.h"
+#include "evaluation/compare.h"
 
-namespace tripath::app {
+namespace tripath::evaluation {
 
 namespace {
 
@@ -130,4 +130,4 @@ std::vector<MethodSummary> summarize(const std::vector<Run>& runs, const std::ve
     return out;
 }
 
-}  // namespace tripath::app
+}  // namespace tripath::evaluation

@@ -1,4 +1,4 @@
-// The report files of `tripath compare` other than index.html: error.csv, the error-vs-time
+// The report files of a comparison (compare.h) other than index.html: error.csv, the error-vs-time
 // chart (SVG and PNG), side-by-side.png and summary.md.
 #include <fmt/format.h>
 
@@ -8,14 +8,14 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "compare.h"
+#include "evaluation/compare.h"
 #include "core/error.h"
 #include "image/chart.h"
 #include "image/compose.h"
 #include "image/error_map.h"
 #include "image/inset.h"
 
-namespace tripath::app {
+namespace tripath::evaluation {
 
 namespace {
 
@@ -52,8 +52,8 @@ std::string tailShareText(double share) { return fmt::format("{:.3g} %", 100 * s
 
 std::string formatSeconds(double s) { return s < 10 ? fmt::format("{:.3g} s", s) : fmt::format("{:.0f} s", s); }
 
-std::string settingsLine(const CompareOptions& o) {
-    const RenderOptions& r = o.render;
+std::string settingsLine(const CompareRequest& o) {
+    const RenderRequest& r = o.render;
     const std::string seeds = o.runs == 1 ? fmt::format("seed {}", r.seed)
                                           : fmt::format("seeds {}..{}", r.seed, r.seed + o.runs - 1);
     return fmt::format("{}x{}, max depth {}, {} MIS, {} per method and run, {} thread{}, {} run{} per method ({})",
@@ -61,6 +61,14 @@ std::string settingsLine(const CompareOptions& o) {
                        r.threads > 0 ? std::to_string(r.threads) : "all", r.threads == 1 ? "" : "s", o.runs,
                        o.runs == 1 ? "" : "s", seeds);
 }
+
+std::string counterColumns() {
+    std::string s;
+    for (int i = 0; i < kEventCount; ++i) s += "," + eventKey(static_cast<Event>(i));
+    return s;
+}
+
+namespace {
 
 void writeCsv(const Report& r, const std::string& path) {
     // New columns go at the end, so that scripts reading columns by position keep working.
@@ -72,12 +80,6 @@ void writeCsv(const Report& r, const std::string& path) {
                              c.spp, c.error.relMse, c.error.mse, c.error.mae, perSampleRelVariance(c.error.relMse, c.spp),
                              c.error.tailShare, &c == &run.final() ? fmt::format("{:.8g}", run.flip) : "");
     writeText(path, s);
-}
-
-std::string counterColumns() {
-    std::string s;
-    for (int i = 0; i < kEventCount; ++i) s += "," + eventKey(static_cast<Event>(i));
-    return s;
 }
 
 void writeCountersCsv(const Report& r, const std::string& path) {
@@ -164,8 +166,7 @@ void writeSummary(const Report& r, const std::string& path) {
 }
 
 // The user's crop, or a window of an eighth of the image (at least 8 pixels) where the methods differ most.
-namespace {
-Region insetRegion(const CompareOptions& o, const Reference& ref, const std::map<std::string, Image>& images) {
+Region insetRegion(const CompareRequest& o, const Reference& ref, const std::map<std::string, Image>& images) {
     if (o.crop) return *o.crop;
     std::vector<Image> list;
     for (const std::string& m : o.methods) list.push_back(images.at(m));
@@ -173,22 +174,20 @@ Region insetRegion(const CompareOptions& o, const Reference& ref, const std::map
     const int h = std::min(ref.image.height, std::max(8, ref.image.height / 8));
     return regionOfLargestDifference(ref.image, list, w, h);
 }
+
 }  // namespace
 
-void writeReport(Report& report, const std::string& dir) {
-    auto path = [&](const char* name) { return (std::filesystem::path(dir) / name).string(); };
-    for (const std::string& m : report.options.methods) report.curves.push_back(curveOf(report.runs, m));
-    report.summaries = summarize(report.runs, report.curves);
-    report.inset = insetRegion(report.options, report.reference, report.images);
+void writeReport(const CompareRequest& o, const Comparison& c, const std::string& dir) {
+    auto path = [&](const std::string& name) { return (std::filesystem::path(dir) / name).string(); };
+    const Report report{o, c.reference, c.runs, c.images, c.curves, c.summaries, insetRegion(o, c.reference, c.images)};
     writeCsv(report, path("error.csv"));
     writeCountersCsv(report, path("counters.csv"));
     writeChart(report, path("error-vs-time.svg"), path("error-vs-time.png"));
     writeSideBySide(report, path("side-by-side.png"));
-    for (const std::string& m : report.options.methods)
-        writePng(path((m + "-error.png").c_str()), errorMap(report.images.at(m), report.reference.image));
+    for (const std::string& m : o.methods) writePng(path(m + "-error.png"), errorMap(c.images.at(m), c.reference.image));
     writePng(path("error-scale.png"), errorColourBar(512));
     writeSummary(report, path("summary.md"));
     writeIndexHtml(report, path("index.html"));
 }
 
-}  // namespace tripath::app
+}  // namespace tripath::evaluation

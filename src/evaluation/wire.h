@@ -1,6 +1,6 @@
-// Values packed into bytes and back, for what ranks send each other (processes.h): trivially
-// copyable values as their bytes, strings and vectors with their length first. Both ends are the
-// same binary on machines of one kind, so no byte order or layout is negotiated.
+// Values packed into bytes and back, for what ranks send each other (Team::gather, broadcast):
+// trivially copyable values as their bytes, strings and vectors with their length first. Both
+// ends are the same binary on machines of one kind, so no byte order or layout is negotiated.
 #pragma once
 #include <cstdint>
 #include <cstring>
@@ -9,7 +9,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace tripath::app {
+namespace tripath::evaluation {
 
 class WireWriter {
 public:
@@ -69,4 +69,4 @@ private:
     size_t at_ = 0;
 };
 
-}  // namespace tripath::app
+}  // namespace tripath::evaluation

@@ -1,15 +1,16 @@
-// index.html of `tripath compare`: the chart, the table and the images in one page that works
-// from the file system (relative links, no network, no libraries). The page checks itself: once
-// loaded it sets data-images="loaded" on <body> if every image decoded, and lists script errors
-// in #console-errors, which is what the headless-browser test reads.
+// index.html of a comparison (`tripath compare`, tripath.compare): the chart, the table and the
+// images in one page that works from the file system (relative links, no network, no libraries).
+// The page checks itself: once loaded it sets data-images="loaded" on <body> if every image
+// decoded, and lists script errors in #console-errors, which is what the headless-browser test
+// reads.
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "compare.h"
+#include "evaluation/compare.h"
 #include "image/markup.h"
 
-namespace tripath::app {
+namespace tripath::evaluation {
 
 namespace {
 
@@ -145,4 +146,4 @@ void writeIndexHtml(const Report& r, const std::string& path) {
     writeText(path, s);
 }
 
-}  // namespace tripath::app
+}  // namespace tripath::evaluation

@@ -1,4 +1,4 @@
-#include "reference_file.h"
+#include "evaluation/reference_file.h"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 
-namespace tripath::app {
+namespace tripath::evaluation {
 
 namespace {
 
@@ -94,4 +94,4 @@ void setMetadata(Metadata& meta, const std::string& key, const std::string& valu
     meta.emplace_back(key, value);
 }
 
-}  // namespace tripath::app
+}  // namespace tripath::evaluation

@@ -1,0 +1,333 @@
+// The benchmark (benchmark.h): every method on every scene at equal time, R independent runs each,
+// against a cached reference per scene, with a bias test per method, in one report.
+//
+// Each scene is one comparison (its page, CSVs and chart in <out>/<scene>/), run with the methods
+// plus the bias reference. References are rendered when missing, by a consistent method (vcm by
+// default: it also samples the specular–diffuse–specular paths that bdpt lacks) for a multiple
+// of the time, in the reference streams, and cached in <out>/references/ under a name that
+// carries the settings; a cached one is reused when its metadata matches. From the R runs of each
+// method and of the bias reference, Welch's t-test per block (image/bias.h) says where a
+// difference is bias rather than noise. <out>/index.html has the scenes × methods table,
+// <out>/results.csv the same numbers. Ctrl-C finishes nothing new: the scenes done so far are
+// reported.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <sstream>
+
+#include "evaluation/benchmark.h"
+#include "core/error.h"
+#include "image/bias.h"
+#include "image/markup.h"
+#include "image/text.h"
+
+namespace tripath::evaluation {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A file or folder name for a scene: a built-in's name, or a glTF file's stem.
+std::string slug(const std::string& scene) {
+    std::string s = fs::path(scene).stem().string();
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return s.empty() ? "scene" : s;
+}
+
+// The blocks of the bias test: 16 across the image's larger side, at least 4 pixels.
+int biasBlockSize(int width, int height) { return std::max(4, (std::max(width, height) + 15) / 16); }
+
+// The bias map as a picture: the method's image (grey) under its blocks, red where the test finds
+// bias, and otherwise darker the smaller the block's p-value (black at p ≤ 1e-6).
+Image biasPicture(const BiasMap& map, const Image& image) {
+    Image out(image.width, image.height);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const int b = (y / map.blockSize) * map.blocksX + x / map.blockSize;
+            const float* p = &image.rgb[3 * (size_t(y) * image.width + x)];
+            const float lum = std::min(1.0f, 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]);
+            const float shade = float(std::clamp(1 + std::log10(std::max(map.tests[b].p, 1e-6)) / 6, 0.0, 1.0));
+            static constexpr std::array<float, 3> kRed{1, 0.05f, 0.05f};
+            for (int c = 0; c < 3; ++c)
+                out.rgb[3 * (size_t(y) * image.width + x) + c] = 0.3f * lum + 0.7f * (map.biased[b] ? kRed[c] : shade);
+        }
+    return out;
+}
+
+// The names of a list parameter: none empty, none twice, at least one.
+void checkList(const std::vector<std::string>& items, const char* flag, Spelling spelling) {
+    const std::string name = parameterName(flag, spelling);
+    for (size_t i = 0; i < items.size(); ++i) {
+        if (items[i].empty()) throw InputError(fmt::format("{} has an empty entry", name));
+        if (std::find(items.begin(), items.begin() + i, items[i]) != items.begin() + i)
+            throw InputError(fmt::format("{} names '{}' twice", name, items[i]));
+    }
+    if (items.empty()) throw InputError(fmt::format("{} needs at least one entry", name));
+}
+
+const std::string& baselineOf(const BenchmarkRequest& r) { return r.baseline.empty() ? r.methods.front() : r.baseline; }
+
+double referenceSeconds(const BenchmarkRequest& r) {
+    return r.referenceSeconds > 0 ? r.referenceSeconds : kReferenceBudget * r.render.seconds;
+}
+
+void say(const BenchmarkRequest& r, const std::string& line) {
+    if (r.narrator.say && r.team->rank() == 0) r.narrator.say(line);
+}
+
+// The comparison of one scene: methods plus the bias reference, the cached reference if it fits.
+CompareRequest sceneRequest(const BenchmarkRequest& b, const std::string& scene) {
+    CompareRequest co;
+    co.render = b.render;
+    co.render.scene = scene;
+    co.methods = b.methods;
+    if (std::find(b.methods.begin(), b.methods.end(), b.biasReference) == b.methods.end()) co.methods.push_back(b.biasReference);
+    co.referenceIntegrator = b.referenceIntegrator;
+    co.referenceSeconds = referenceSeconds(b);
+    co.runs = b.runs;
+    co.outDir = (fs::path(b.outDir) / slug(scene)).string();
+    const RenderRequest& r = co.render;
+    co.referenceOut = (fs::path(b.outDir) / "references" /
+                       fmt::format("{}-{}x{}-{}-depth{}-rr{}-{}.exr", slug(scene), r.width, r.height,
+                                   b.referenceIntegrator, r.maxDepth, r.rrDepth, r.mis)).string();
+    co.stop = b.stop;
+    co.team = b.team;
+    co.narrator = b.narrator;
+    return co;
+}
+
+// A cached reference is reused if it was rendered for these settings (else it is rendered again).
+bool cachedReferenceFits(const CompareRequest& co) {
+    if (!fs::exists(co.referenceOut)) return false;
+    try {
+        const ReferenceFile ref = readReference(co.referenceOut);
+        requireSize(ref, co.render.width, co.render.height);
+        Metadata settings = convergenceSettings(co.render, co.referenceIntegrator);
+        settings.push_back({"tripath:streams", "reference"});
+        requireSettings(ref, settings, false);
+        return true;
+    } catch (const InputError& e) {
+        if (co.narrator.say) co.narrator.say(fmt::format("benchmark: not reusing {}: {}", co.referenceOut, e.what()));
+        return false;
+    }
+}
+
+std::vector<Cell> benchmarkScene(const BenchmarkRequest& b, const std::string& scene) {
+    CompareRequest co = sceneRequest(b, scene);
+    const bool rank0 = b.team->rank() == 0;
+    std::unique_ptr<Scene> loaded;
+    bool reuse = false;
+    together(*b.team, [&] {
+        loaded = loadScene(co.render);
+        if (rank0) {
+            fs::create_directories(co.outDir);
+            reuse = cachedReferenceFits(co);
+        }
+    });
+    std::array<uint64_t, 1> shared{reuse};
+    b.team->max(shared);
+    if (shared[0]) co.referencePath = co.referenceOut;
+    if (shared[0]) say(b, fmt::format("benchmark: reusing the reference {}", co.referenceOut));
+    Comparison kept = compare(co, *loaded, true);
+    if (!rank0 || kept.interrupted) return {};  // an interrupted scene is left out, not reported half-done
+    const std::vector<Run>& runs = kept.runs;
+    std::map<std::string, Image>& images = kept.images;
+    const std::vector<MethodSummary>& summaries = kept.summaries;
+
+    const size_t pixels = size_t(co.render.width) * co.render.height;
+    std::vector<Cell> cells;
+    for (const std::string& m : b.methods) {
+        Cell cell{scene, m};
+        cell.summary = *std::find_if(summaries.begin(), summaries.end(), [&](const auto& s) { return s.method == m; });
+        int n = 0;
+        for (const Run& run : runs) {
+            if (run.method != m) continue;
+            ++n;
+            cell.relMseWithoutTail += relMseWithoutTail(run.final().error, pixels);
+            for (int e = 0; e < kEventCount; ++e) cell.events[e] += double(run.stats.events[e]);
+        }
+        cell.relMseWithoutTail /= n;
+        for (double& e : cell.events) e /= n;
+        if (m != b.biasReference) {
+            const BiasMap map = biasMap(kept.everyImage[m], kept.everyImage[b.biasReference], biasBlockSize(co.render.width, co.render.height));
+            cell.biasedBlocks = map.count();
+            cell.blocks = int(map.tests.size());
+            cell.biasMap = (fs::path(slug(scene)) / ("bias-" + m + ".png")).string();
+            writePng((fs::path(b.outDir) / cell.biasMap).string(), biasPicture(map, images[m]));
+        }
+        cells.push_back(cell);
+    }
+    const Cell& base = *std::find_if(cells.begin(), cells.end(), [&](const Cell& x) { return x.method == baselineOf(b); });
+    for (Cell& cell : cells)
+        cell.speedUp = (base.summary.error.relMse * base.summary.seconds) / (cell.summary.error.relMse * cell.summary.seconds);
+    return cells;
+}
+
+constexpr const char* kFormulas =
+    "relMSE: mean over pixels and channels of (x − r)² / (r² + 0.01), against the scene's reference; "
+    "relMSE without tail: the same with the 0.1 % of pixels of largest relative squared error left out; "
+    "HDR-FLIP: the mean of Andersson et al.'s perceptual difference map (Eurographics 2021) at one range of exposures "
+    "set from the scene's reference, at 67 pixels per degree (0 none, 1 the largest); "
+    "inefficiency: relMSE × seconds (lower is better); speed-up: the baseline's inefficiency over the method's; "
+    "biased blocks: blocks where Welch's t-test of the runs' mean luminance against the bias reference's runs is "
+    "significant at family-wise level 0.01 (Holm's correction).";
+
+std::vector<std::string> scenesOf(const std::vector<Cell>& cells) {
+    std::vector<std::string> out;
+    for (const Cell& x : cells)
+        if (std::find(out.begin(), out.end(), x.scene) == out.end()) out.push_back(x.scene);
+    return out;
+}
+std::vector<std::string> methodsOf(const std::vector<Cell>& cells) {
+    std::vector<std::string> out;
+    for (const Cell& x : cells)
+        if (std::find(out.begin(), out.end(), x.method) == out.end()) out.push_back(x.method);
+    return out;
+}
+const Cell& cellOf(const std::vector<Cell>& cells, const std::string& scene, const std::string& method) {
+    return *std::find_if(cells.begin(), cells.end(), [&](const Cell& x) { return x.scene == scene && x.method == method; });
+}
+double bestRelMse(const std::vector<Cell>& cells, const std::string& scene) {
+    double best = INFINITY;
+    for (const Cell& x : cells)
+        if (x.scene == scene) best = std::min(best, x.summary.error.relMse);
+    return best;
+}
+
+// results.md: the table as Markdown, for documents (docs/failures.md is one benchmark's).
+std::string markdownTable(const std::vector<Cell>& cells) {
+    const std::vector<std::string> methods = methodsOf(cells);
+    std::string md = "| scene |";
+    for (const std::string& m : methods) md += " " + m + " |";
+    md += "\n|---|";
+    for (size_t i = 0; i < methods.size(); ++i) md += "---|";
+    md += "\n";
+    for (const std::string& s : scenesOf(cells)) {
+        md += "| `" + s + "` |";
+        for (const std::string& m : methods) {
+            const Cell& x = cellOf(cells, s, m);
+            std::string cell = fmt::format("{:.3g} ({:.0f} spp, FLIP {:.2g})", x.summary.error.relMse, x.summary.spp,
+                                           x.summary.flip);
+            if (x.summary.error.relMse == bestRelMse(cells, s)) cell = "**" + cell + "**";
+            if (x.biasedBlocks > 0) cell += fmt::format(", biased {}/{}", x.biasedBlocks, x.blocks);
+            md += " " + cell + " |";
+        }
+        md += "\n";
+    }
+    return md;
+}
+
+void writeResults(const BenchmarkRequest& c, const std::vector<Cell>& cells) {
+    std::string csv = std::string("# ") + kFormulas + "\n";
+    csv += fmt::format("# per run: {} s, {} runs; bias reference {}; baseline {}\n", c.render.seconds, c.runs,
+                       c.biasReference, baselineOf(c));
+    csv += "# counters (rays, BSDF calls, merges, ...): what the renderer counted, mean per run\n";
+    csv += "scene,integrator,relmse,relmse_sd,relmse_without_tail,mse,mae,hdr_flip,spp,seconds,inefficiency,speedup,"
+           "biased_blocks,blocks,rays_per_s" + counterColumns() + "\n";
+    for (const Cell& x : cells) {
+        csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.1f},{:.3f},{:.6g},{:.4g},{},{},{:.4g}", x.scene,
+                           x.method, x.summary.error.relMse, x.summary.relMseStd, x.relMseWithoutTail, x.summary.error.mse,
+                           x.summary.error.mae, x.summary.flip, x.summary.spp, x.summary.seconds,
+                           x.summary.error.relMse * x.summary.seconds, x.speedUp, x.biasedBlocks, x.blocks, x.summary.raysPerSecond);
+        for (double e : x.events) csv += fmt::format(",{:.0f}", e);
+        csv += "\n";
+    }
+    writeText((fs::path(c.outDir) / "results.csv").string(), csv);
+    writeText((fs::path(c.outDir) / "results.md").string(), markdownTable(cells));
+
+    const std::vector<std::string> scenes = scenesOf(cells), methods = methodsOf(cells);
+    std::string html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>tripath benchmark</title>\n"
+                       "<style>body{font-family:\"DejaVu Sans\",Verdana,sans-serif;margin:2em;color:#222}"
+                       "table{border-collapse:collapse}th,td{border:1px solid #bbb;padding:.3em .7em;text-align:right}"
+                       "th:first-child,td:first-child{text-align:left}td.best{background:#ffe98a;font-weight:bold}"
+                       "td small{color:#555}.maps img{width:160px;image-rendering:pixelated;margin:.2em}</style></head><body>\n";
+    html += fmt::format("<h1>tripath benchmark</h1>\n<p>{} s per run, {} runs per method, {}×{} pixels; references by {}; "
+                        "bias tested against {}; speed-up against {}.</p>\n",
+                        c.render.seconds, c.runs, c.render.width, c.render.height, escapeMarkup(c.referenceIntegrator),
+                        escapeMarkup(c.biasReference), escapeMarkup(baselineOf(c)));
+    html += "<table><tr><th>scene</th>";
+    for (const std::string& m : methods) html += "<th>" + escapeMarkup(m) + "</th>";
+    html += "</tr>\n";
+    for (const std::string& s : scenes) {
+        const double best = bestRelMse(cells, s);
+        html += fmt::format("<tr><td><a href=\"{0}/index.html\">{1}</a></td>", slug(s), escapeMarkup(s));
+        for (const std::string& m : methods) {
+            const Cell& x = cellOf(cells, s, m);
+            html += fmt::format(
+                        "<td{}><a href=\"{}/index.html\">{:.4g} ± {:.2g}</a><br><small>w/o tail {:.3g} · FLIP {:.3g} · "
+                        "{:.0f} spp · {:.3g} Mrays/s · ×{:.3g}{}</small></td>",
+                        x.summary.error.relMse == best ? " class=\"best\"" : "", slug(s), x.summary.error.relMse,
+                        x.summary.relMseStd, x.relMseWithoutTail, x.summary.flip, x.summary.spp,
+                        x.summary.raysPerSecond / 1e6, x.speedUp,
+                        x.blocks > 0 ? fmt::format(" · <b>{}</b>/{} biased", x.biasedBlocks, x.blocks) : std::string(""));
+        }
+        html += "</tr>\n";
+    }
+    html += "</table>\n<p>Each cell: relMSE mean ± standard deviation over runs; below it, relMSE without the worst "
+            "0.1 % of pixels, HDR-FLIP, samples per pixel, rays (closest-hit and shadow) per second, speed-up against the baseline, biased blocks. Best per scene "
+            "highlighted.</p>\n<p>" + std::string(kFormulas) + "</p>\n<h2>Bias maps</h2>\n"
+            "<p>Red: blocks with significant bias; otherwise darker where the p-value is smaller.</p>\n";
+    for (const std::string& s : scenes) {
+        html += "<div class=\"maps\"><h3>" + escapeMarkup(s) + "</h3>";
+        for (const Cell& x : cells)
+            if (x.scene == s && !x.biasMap.empty())
+                html += fmt::format("<figure style=\"display:inline-block\"><img src=\"{}\" alt=\"bias map of {}\"><figcaption>"
+                                    "{}: {} of {}</figcaption></figure>",
+                                    x.biasMap, escapeMarkup(x.method), escapeMarkup(x.method), x.biasedBlocks, x.blocks);
+        html += "</div>\n";
+    }
+    html += "</body></html>\n";
+    writeText((fs::path(c.outDir) / "index.html").string(), html);
+}
+
+}  // namespace
+
+void validate(const BenchmarkRequest& r, Spelling spelling) {
+    auto name = [spelling](const char* flag) { return parameterName(flag, spelling); };
+    validate(r.render, spelling);
+    if (!(r.render.seconds > 0)) throw InputError(name("time") + " must be more than 0 seconds");
+    if (r.runs < 2 || r.runs > 100)
+        throw InputError(fmt::format("{} must be between 2 and 100 (the bias test needs two runs; got {})", name("runs"), r.runs));
+    if (r.referenceSeconds < 0)
+        throw InputError(fmt::format("{} must be above 0 (got {})", name("reference-time"), r.referenceSeconds));
+    checkList(r.scenes, "scenes", spelling);
+    checkList(r.methods, "integrators", spelling);
+    for (const std::string& m : r.methods) makeIntegrator(m, {});
+    makeIntegrator(r.referenceIntegrator, {});
+    makeIntegrator(r.biasReference, {});
+    if (std::find(r.methods.begin(), r.methods.end(), baselineOf(r)) == r.methods.end())
+        throw InputError(fmt::format("{} '{}' is not one of {}", name("baseline"), r.baseline, name("integrators")));
+    if (r.outDir.empty()) throw InputError(fmt::format("{} is needed: the report and the reference cache go there", name("out")));
+    if (r.team->rank() != 0) return;
+    requireFont();
+    std::error_code ec;
+    fs::create_directories(fs::path(r.outDir) / "references", ec);
+    if (ec) throw InputError(fmt::format("cannot create {} directory '{}': {}", name("out"), r.outDir, ec.message()));
+    checkWritable((fs::path(r.outDir) / "results.csv").string());
+}
+
+std::vector<Cell> benchmark(const BenchmarkRequest& r) {
+    std::vector<Cell> cells;
+    // At most: a reference per scene (unless cached), and the runs (the bias reference's too).
+    const double perScene = (r.methods.size() + 1) * r.runs * r.render.seconds / r.team->size() + referenceSeconds(r);
+    for (size_t i = 0; i < r.scenes.size(); ++i) {
+        if (r.stop && r.stop->load()) break;
+        say(r, fmt::format("benchmark: scene {}/{} {}: {} methods × {} runs × {} s; at most {:.0f} s left in all", i + 1,
+                           r.scenes.size(), r.scenes[i], r.methods.size(), r.runs, r.render.seconds,
+                           perScene * double(r.scenes.size() - i)));
+        std::vector<Cell> done = benchmarkScene(r, r.scenes[i]);
+        if (r.stop && r.stop->load()) break;  // an interrupted scene is left out, not reported half-done
+        cells.insert(cells.end(), done.begin(), done.end());
+    }
+    if (r.team->rank() != 0) return {};
+    if (cells.empty()) throw InputError("benchmark interrupted before its first scene was done: nothing to report");
+    writeResults(r, cells);
+    say(r, fmt::format("benchmark: {} scenes; report in {}", cells.size() / r.methods.size(),
+                       (fs::path(r.outDir) / "index.html").string()));
+    return cells;
+}
+
+}  // namespace tripath::evaluation

@@ -1,0 +1,99 @@
+// A comparison from request to result: the checks that can fail before anything renders, then the
+// reference, the runs on every rank, the reduction to curves and summaries, and the report.
+#include "evaluation/compare.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <set>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "image/text.h"
+
+namespace tripath::evaluation {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void checkMethods(const std::vector<std::string>& methods, Spelling spelling) {
+    const std::string name = parameterName("integrators", spelling);
+    if (methods.empty()) throw InputError(name + " is empty");
+    std::set<std::string> seen;
+    for (const std::string& m : methods) {
+        if (m.empty()) throw InputError(name + " has an empty entry");
+        makeIntegrator(m, {});  // throws for an unknown name
+        if (!seen.insert(m).second) throw InputError(fmt::format("{} lists '{}' twice", name, m));
+    }
+}
+
+void prepareOutDir(const std::string& dir, Spelling spelling) {
+    const std::string name = parameterName("out", spelling);
+    std::error_code ec;
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+        throw InputError(fmt::format("{} '{}' exists and is not a directory", name, dir));
+    fs::create_directories(dir, ec);
+    if (ec) throw InputError(fmt::format("cannot create {} directory '{}': {}", name, dir, ec.message()));
+    checkWritable((fs::path(dir) / "error.csv").string());
+}
+
+// Run 0's images (also written as <dir>/<method>.exr and .png when there is a directory), and
+// every image the outputs carry, by method in run order.
+void keepRuns(std::vector<RunOutput>& outputs, const std::string& dir, Comparison& c) {
+    for (RunOutput& out : outputs) {
+        const std::string& m = out.run.method;
+        if (!out.image.rgb.empty()) c.everyImage[m].push_back(out.image);
+        if (out.run.index == 0) {
+            if (!dir.empty()) {
+                writeExr((fs::path(dir) / (m + ".exr")).string(), out.image, out.meta);
+                writePng((fs::path(dir) / (m + ".png")).string(), out.image);
+            }
+            c.images[m] = std::move(out.image);
+        }
+        c.runs.push_back(std::move(out.run));
+    }
+}
+
+}  // namespace
+
+void validate(const CompareRequest& r, Spelling spelling) {
+    auto name = [spelling](const char* flag) { return parameterName(flag, spelling); };
+    validate(r.render, spelling);
+    if (!(r.render.seconds > 0)) throw InputError(name("time") + " must be more than 0 seconds");
+    if (r.runs < 1 || r.runs > 100) throw InputError(fmt::format("{} must be between 1 and 100 (got {})", name("runs"), r.runs));
+    if (r.referenceSeconds < 0)
+        throw InputError(fmt::format("{} must be above 0 (got {})", name("reference-time"), r.referenceSeconds));
+    checkMethods(r.methods, spelling);
+    makeIntegrator(r.referenceIntegrator, {});  // an unknown name is refused before anything renders
+    if (const auto& c = r.crop;
+        c && (c->w <= 0 || c->h <= 0 || c->x < 0 || c->y < 0 || c->x > r.render.width - c->w || c->y > r.render.height - c->h))
+        throw InputError(fmt::format("{} {},{},{},{} is not inside the {}x{} image", name("crop"), c->x, c->y, c->w, c->h,
+                                     r.render.width, r.render.height));
+    if (!r.referenceImage.rgb.empty() &&
+        (r.referenceImage.width != r.render.width || r.referenceImage.height != r.render.height))
+        throw InputError(fmt::format("the reference is {}x{}, the renders {}x{}", r.referenceImage.width,
+                                     r.referenceImage.height, r.render.width, r.render.height));
+    if (r.team->rank() != 0) return;  // rank 0 alone reads the reference file and writes the report
+    if (!r.referencePath.empty() && !fs::exists(r.referencePath))
+        throw InputError(fmt::format("cannot read reference '{}': file does not exist", r.referencePath));
+    if (r.outDir.empty()) return;
+    requireFont();
+    prepareOutDir(r.outDir, spelling);
+}
+
+Comparison compare(const CompareRequest& r, const Scene& scene, bool everyImage) {
+    Comparison c;
+    c.reference = shareReference(r, scene);
+    std::vector<RunOutput> outputs = runEverywhere(r, scene, c.reference.image, everyImage);
+    c.interrupted = r.stop && r.stop->load();
+    if (r.team->rank() != 0 || c.interrupted) return c;
+    if (!r.outDir.empty()) writePng((fs::path(r.outDir) / "reference.png").string(), c.reference.image);
+    keepRuns(outputs, r.outDir, c);
+    for (const std::string& m : r.methods) c.curves.push_back(curveOf(c.runs, m));
+    c.summaries = summarize(c.runs, c.curves);
+    if (!r.outDir.empty()) writeReport(r, c, r.outDir);
+    return c;
+}
+
+}  // namespace tripath::evaluation
