@@ -4,8 +4,6 @@
 // so far are reported.
 #include <fmt/format.h>
 
-#include <sstream>
-
 #include "commands.h"
 #include "core/error.h"
 #include "evaluation/benchmark.h"
@@ -22,21 +20,13 @@ struct BenchmarkCommand {
     std::string scenes, integrators = "pt,lt,bdpt,vcm";
 };
 
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-    if (!text.empty() && text.back() == ',') out.push_back("");
-    return out;
-}
-
 void run(BenchmarkCommand& c) {
     evaluation::BenchmarkRequest& b = c.options;
     together([&] {
         validateRenderOptions(c.render);
         b.render = c.render;
-        b.scenes = splitList(c.scenes);
-        b.methods = splitList(c.integrators);
+        b.scenes = splitCommas(c.scenes);
+        b.methods = splitCommas(c.integrators);
         b.team = &team();
         b.narrator = terminalNarrator();
         evaluation::validate(b, Spelling::CommandLine);

@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 #include "commands.h"
 #include "core/error.h"
@@ -24,17 +23,6 @@ struct CompareCommand {
     std::string integrators = "pt,lt,bdpt";
     std::string crop;
 };
-
-std::vector<std::string> splitCommas(const std::string& s) {
-    std::vector<std::string> parts;
-    std::stringstream in(s);
-    for (std::string part; std::getline(in, part, ',');) {
-        const auto b = part.find_first_not_of(" \t"), e = part.find_last_not_of(" \t");
-        parts.push_back(b == std::string::npos ? "" : part.substr(b, e - b + 1));
-    }
-    if (!s.empty() && s.back() == ',') parts.push_back("");
-    return parts;
-}
 
 std::optional<Region> parseCrop(const std::string& text) {
     if (text.empty()) return std::nullopt;

@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 #include "commands.h"
 #include "core/error.h"
 #include "image/draw.h"
 #include "image/image.h"
 #include "image/text.h"
+#include "render_options.h"
 
 namespace tripath::app {
 
@@ -27,14 +27,6 @@ struct MontageCommand {
     std::string columnLabels, rowLabels;
     float percentile = 0.98f;
 };
-
-std::vector<std::string> splitCommas(const std::string& s) {
-    std::vector<std::string> out;
-    if (s.empty()) return out;
-    std::stringstream in(s);
-    for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-    return out;
-}
 
 // Averages each shrink × shrink block into one pixel (a box filter), for a sheet small enough to
 // keep in the repository.

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <sstream>
 
 #include "core/error.h"
 #include "processes.h"
@@ -16,6 +17,17 @@ void addSceneOptions(CLI::App& cmd, std::string& scene, GltfOptions& gltf) {
     cmd.add_flag("--allow-external-files", gltf.allowExternalFiles,
                  "Let a glTF file's buffer URIs name files outside its folder (absolute paths, '..', symlinks "
                  "leading out); by default only regular files in the folder and its subfolders are read");
+}
+
+std::vector<std::string> splitCommas(const std::string& text) {
+    std::vector<std::string> items;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
+        items.push_back(b == std::string::npos ? "" : item.substr(b, e - b + 1));
+    }
+    if (!text.empty() && text.back() == ',') items.push_back("");
+    return items;
 }
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {

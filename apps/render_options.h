@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/gltf_loader.h"
 #include "geometry/scene.h"
@@ -22,6 +23,10 @@ namespace tripath::app {
 struct RenderOptions : RenderRequest {
     double checkpointSeconds = 0;  // --checkpoint: interval; 0 writes none (checkpoint.h)
 };
+
+// A comma-separated flag value as its items, each without surrounding blanks; "" has none, and an
+// empty item (",," or a trailing comma) is kept so that the command can refuse it.
+std::vector<std::string> splitCommas(const std::string& text);
 
 // Registers --scene and --allow-external-files, for every command that loads a scene.
 void addSceneOptions(CLI::App& cmd, std::string& scene, GltfOptions& gltf);

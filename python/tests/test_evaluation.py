@@ -3,21 +3,13 @@
 the returned images again with tripath.metrics, read the files the report writes, and hold the
 error messages to the command line's."""
 import csv
-import os
-import subprocess
 
 import numpy as np
 import pytest
 
 import tripath
 
-TRIPATH = os.environ.get("TRIPATH_BINARY", "")
 SIZE = dict(width=24, height=16, threads=1)
-
-
-@pytest.fixture(scope="module")
-def cornell():
-    return tripath.load("cornell")
 
 
 @pytest.fixture(scope="module")
@@ -71,15 +63,7 @@ def test_compare_with_a_directory_writes_the_command_lines_report(cornell, tmp_p
     assert all(row["relmse_sd"] > 0 for row in r["summary"])  # two independent runs differ
 
 
-def cli_error(*args):
-    p = subprocess.run([TRIPATH, *args], capture_output=True, text=True)
-    assert p.returncode != 0
-    lines = p.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), p.stderr
-    return lines[0][len("error: "):]
-
-
-def test_compare_refuses_bad_input_as_the_command_line_does(cornell, reference, tmp_path):
+def test_compare_refuses_bad_input_as_the_command_line_does(cornell, reference, tmp_path, cli_error):
     out = str(tmp_path / "x")
     with pytest.raises(ValueError) as e:
         tripath.compare(cornell, 1, runs=0, **SIZE)

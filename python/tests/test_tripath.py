@@ -24,11 +24,6 @@ TRIPATH = os.environ.get("TRIPATH_BINARY", "")
 INTEGRATORS = ["pt", "lt", "bdpt", "vcm", "bpm", "ppm"]
 
 
-@pytest.fixture(scope="module")
-def cornell():
-    return tripath.load("cornell")
-
-
 @pytest.mark.parametrize("integrator", INTEGRATORS)
 def test_every_integrator_renders_a_builtin(cornell, integrator):
     r = tripath.render(cornell, integrator, spp=2, width=20, height=12)
@@ -54,16 +49,7 @@ def test_white_furnace_reads_its_analytic_radiance():
     assert abs(mean - 2) < 4 * stderr, (mean, stderr)
 
 
-def cli_error(*args):
-    """The one line `tripath` prints on stderr for bad input, without its 'error: ' prefix."""
-    p = subprocess.run([TRIPATH, *args], capture_output=True, text=True)
-    assert p.returncode != 0
-    lines = p.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), p.stderr
-    return lines[0][len("error: "):]
-
-
-def test_bad_input_is_a_value_error_with_the_command_lines_message(tmp_path, cornell):
+def test_bad_input_is_a_value_error_with_the_command_lines_message(tmp_path, cornell, cli_error):
     missing = str(tmp_path / "missing.gltf")
     with pytest.raises(ValueError) as e:
         tripath.load(missing)
