@@ -53,8 +53,9 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     cmd.add_option("--max-depth", o.maxDepth,
                    "Longest path kept, in segments k: 1 = emitters seen directly, 2 = direct lighting, ...")
         ->capture_default_str();
-    cmd.add_option("--rr-depth", o.rrDepth, "Russian roulette starts once a subpath has this many vertices")
-        ->capture_default_str();
+    cmd.add_option("--rr-depth", o.rrDepth,
+                   "Russian roulette starts once a subpath has this many vertices (default, measured at equal time: 3 "
+                   "for pt, 2 for the methods with light subpaths; 0 also means the default)");
     cmd.add_option("--mis", o.mis, "MIS heuristic: balance, power (beta = 2) or none (uniform weights)")
         ->capture_default_str();
     auto* radius = cmd.add_option_function<float>(

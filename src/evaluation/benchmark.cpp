@@ -92,7 +92,7 @@ CompareRequest sceneRequest(const BenchmarkRequest& b, const std::string& scene)
     const RenderRequest& r = co.render;
     co.referenceOut = (fs::path(b.outDir) / "references" /
                        fmt::format("{}-{}x{}-{}-depth{}-rr{}-{}.exr", slug(scene), r.width, r.height,
-                                   b.referenceIntegrator, r.maxDepth, r.rrDepth, r.mis)).string();
+                                   b.referenceIntegrator, r.maxDepth, rouletteDepth(r, b.referenceIntegrator), r.mis)).string();
     co.stop = b.stop;
     co.team = b.team;
     co.narrator = b.narrator;

@@ -2,8 +2,8 @@
 //
 // Joins each camera subpath to the pass's light subpath of the same index (the light phase) and
 // evaluates every strategy (s, t) over their prefixes, weighted by MIS over all of them.
-// Parameters: --max-depth, --rr-depth, --mis (balance | power | none). With a pinhole and a point
-// light, specular-diffuse-specular paths have no strategy at all and stay black.
+// Parameters: --max-depth, --rr-depth (default 2), --mis (balance | power | none). With a pinhole
+// and a point light, specular-diffuse-specular paths have no strategy at all and stay black.
 #include "integrators/integrator.h"
 
 namespace tripath {

@@ -24,6 +24,8 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Integr
     throw InputError("unknown integrator '" + name + "' (pt, lt, bdpt, vcm, bpm or ppm)");
 }
 
+int defaultRouletteDepth(const std::string& integrator) { return integrator == "pt" ? 3 : 2; }
+
 float Integrator::firstMergeRadius(const Scene& scene) const {
     if (!strategies().merges()) return 0.0f;
     const MergeSettings& m = settings_.merge;

@@ -1,10 +1,10 @@
 // lt — light tracing (particle tracing) with connections to the sensor.
 //
-// Connects every vertex of the pass's light subpaths (the light phase: one per pixel, so a pass
-// of N pixels traces N light paths) to the pinhole (strategy t = 1) and splats it into the pixel
-// it projects to; camera sample i takes light path i. Parameters: --max-depth, --rr-depth (--mis
-// has nothing to weigh: one strategy per path length). Cannot see emitters or paths through delta
-// surfaces next to the sensor (a mirror seen directly is black), as it must.
+// Connects every vertex of the pass's light subpaths (the light phase: one per pixel, so a pass of
+// N pixels traces N light paths) to the pinhole (strategy t = 1) and splats it into the pixel it
+// projects to; camera sample i takes light path i. Parameters: --max-depth, --rr-depth (default 2)
+// (--mis has nothing to weigh: one strategy per path length). Cannot see emitters or paths through
+// delta surfaces next to the sensor (a mirror seen directly is black), as it must.
 #include "integrators/integrator.h"
 
 namespace tripath {

@@ -45,7 +45,8 @@ void validate(const RenderRequest& r, Spelling spelling) {
                          name("time"), r.seconds));
     if (r.maxDepth < 1 || r.maxDepth > 1024)
         fail(fmt::format("{} must be between 1 and 1024 (got {})", name("max-depth"), r.maxDepth));
-    if (r.rrDepth < 1) fail(fmt::format("{} must be at least 1 (got {})", name("rr-depth"), r.rrDepth));
+    if (r.rrDepth < 0)
+        fail(fmt::format("{} must be at least 1, or 0 for the integrator's default (got {})", name("rr-depth"), r.rrDepth));
     if (r.threads < 0 || r.threads > 4096) fail(fmt::format("{} must be between 0 and 4096 (got {})", name("threads"), r.threads));
     if (r.radiusGiven && !(r.merge.radius > 0 && r.merge.radius < 1e30f))
         fail(fmt::format("{} must be a length in world units above 0 (got {})", name("radius"), r.merge.radius));
@@ -64,10 +65,14 @@ void validate(const RenderRequest& r, Spelling spelling) {
     makeIntegrator(r.integrator, {});
 }
 
+int rouletteDepth(const RenderRequest& r, const std::string& integrator) {
+    return r.rrDepth > 0 ? r.rrDepth : defaultRouletteDepth(integrator);
+}
+
 IntegratorSettings integratorSettings(const RenderRequest& r) {
     IntegratorSettings s;
     s.walk.maxDepth = r.maxDepth;
-    s.walk.rrDepth = r.rrDepth;
+    s.walk.rrDepth = rouletteDepth(r, r.integrator);
     s.mis = parseMisHeuristic(r.mis);
     s.merge = r.merge;
     return s;
@@ -96,7 +101,7 @@ Metadata convergenceSettings(const RenderRequest& r, const std::string& integrat
     return {{"tripath:scene", r.scene},
             {"tripath:integrator", integrator},
             {"tripath:max-depth", std::to_string(r.maxDepth)},
-            {"tripath:rr-depth", std::to_string(r.rrDepth)},
+            {"tripath:rr-depth", std::to_string(rouletteDepth(r, integrator))},
             {"tripath:mis", r.mis}};
 }
 
@@ -110,7 +115,7 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:seed", std::to_string(r.seed)},
                {"tripath:streams", streamsName(r.domain)},
                {"tripath:max-depth", std::to_string(r.maxDepth)},
-               {"tripath:rr-depth", std::to_string(r.rrDepth)},
+               {"tripath:rr-depth", std::to_string(integrator.settings().walk.rrDepth)},
                {"tripath:mis", r.mis},
                {"tripath:dropped-samples", std::to_string(result.droppedSamples)},
                {"tripath:guarded-weights", std::to_string(result.guardedWeights)},

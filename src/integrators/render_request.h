@@ -24,7 +24,7 @@ struct RenderRequest {
     bool sppGiven = false, timeGiven = false, radiusGiven = false, radiusFactorGiven = false;
     int width = 512, height = 512;
     int maxDepth = 16;                    // longest path kept, in segments
-    int rrDepth = 3;                      // Russian roulette from this many subpath vertices on
+    int rrDepth = 0;                      // Russian roulette from this many subpath vertices on; 0: the integrator's default
     std::string mis = "power";            // balance, power or none
     MergeSettings merge;                  // vcm, bpm, ppm: the radius schedule
     uint64_t seed = 1;
@@ -48,6 +48,9 @@ std::string parameterName(const char* flag, Spelling spelling);
 // range, before any work is done.
 void validate(const RenderRequest& r, Spelling spelling);
 
+// The roulette start depth the request renders `integrator` with: rrDepth when given, else that
+// integrator's default (defaultRouletteDepth, integrator.h).
+int rouletteDepth(const RenderRequest& r, const std::string& integrator);
 IntegratorSettings integratorSettings(const RenderRequest& r);
 // Budget, seed, threads, timing, streams and layers as the render loop takes them (16 passes
 // when neither spp nor seconds is given); one process: a team is the caller's to add.

@@ -5,7 +5,7 @@
 // light vertex of the pass within the merge radius (paths/merge.h). One MIS weighs connections and
 // merges together (paths/mis.h), so merging takes over where connections are poor: caustics seen
 // through mirrors or glass (specular-diffuse-specular paths), which no connection can sample.
-// Parameters: --max-depth, --rr-depth, --mis, and the radius schedule --radius or
+// Parameters: --max-depth, --rr-depth (default 2), --mis, and the radius schedule --radius or
 // --radius-factor with --alpha (integrator.h). Biased for a fixed radius (α = 1); consistent for
 // α < 1, the bias shrinking with the radius.
 #include "integrators/integrator.h"

@@ -10,7 +10,7 @@ namespace tripath {
 
 struct WalkSettings {
     int maxDepth = 16;  // longest path in segments: camera subpaths get ≤ maxDepth+1 vertices, light ≤ maxDepth
-    int rrDepth = 3;    // Russian roulette once a subpath has this many vertices (roulette.h)
+    int rrDepth = 3;    // Russian roulette once a subpath has this many vertices (roulette.h); the front ends default per integrator (integrator.h)
     bool cameraUntilNonDelta = false;  // end camera walks at their first vertex that scatters through no delta lobe
 };
 
