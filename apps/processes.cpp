@@ -1,6 +1,5 @@
 #include "processes.h"
 
-#include <fmt/format.h>
 #include <mpi.h>
 
 #include <algorithm>

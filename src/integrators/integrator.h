@@ -103,7 +103,6 @@ private:
     IntegratorSettings settings_;
 };
 
-// "pt", "lt", "bdpt", "vcm", "bpm" or "ppm"; throws InputError for anything else.
 // Where Russian roulette starts (WalkSettings::rrDepth) when the front end is not told: chosen by
 // efficiency at equal time (bench/README.md, "Roulette start depth"). pt starts at the 3rd vertex:
 // ending a camera path at its first hit loses the next-event estimates of the vertices it would
@@ -112,6 +111,7 @@ private:
 // shorter subpaths cut the connections per sample, +5 to +24 % efficiency on the built-ins measured.
 int defaultRouletteDepth(const std::string& integrator);
 
+// "pt", "lt", "bdpt", "vcm", "bpm" or "ppm"; throws InputError for anything else.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const IntegratorSettings& settings);
 
 }  // namespace tripath
