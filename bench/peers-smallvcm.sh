@@ -14,10 +14,12 @@
 #
 #   bash bench/peers-smallvcm.sh /tmp/smallvcm/smallvcm        (or SMALLVCM=/path/smallvcm)
 #
-# Knobs: SECONDS_EACH=20, OUT=out/peers-smallvcm, TRIPATH=<binary> (default: build Release into
-# build-bench/ as bench/run.sh does), TRIPATH_REF_SECONDS=600, SMALLVCM_REF_ITERATIONS=800
-# (SmallVCM bpt at 512², 4 samples per 256² pixel each). References already in OUT are reused;
-# delete them to render new ones. About 3 minutes plus the references on the 2-core machine.
+# Knobs: SECONDS_EACH=20, SEED=7 (the runs' seed in both renderers: another seed is another
+# independent run against the same references), OUT=out/peers-smallvcm, TRIPATH=<binary>
+# (default: build Release into build-bench/ as bench/run.sh does), TRIPATH_REF_SECONDS=600,
+# SMALLVCM_REF_ITERATIONS=800 (SmallVCM bpt at 512², 4 samples per 256² pixel each). References
+# already in OUT are reused; delete them to render new ones. About 3 minutes plus the references
+# on the 2-core machine.
 #
 # SmallVCM's traps, handled here: it ignores OMP_NUM_THREADS (it is pinned with `taskset -c 0,1`
 # and uses what it is given), its -t counts CPU time summed over threads (so it is run for a
@@ -29,6 +31,7 @@ cd "$(dirname "$0")/.."
 
 SMALLVCM=${1:-${SMALLVCM:-}}
 SECONDS_EACH=${SECONDS_EACH:-20}
+SEED=${SEED:-7}
 OUT=${OUT:-out/peers-smallvcm}
 TRIPATH_REF_SECONDS=${TRIPATH_REF_SECONDS:-600}
 SMALLVCM_REF_ITERATIONS=${SMALLVCM_REF_ITERATIONS:-800}
@@ -89,7 +92,7 @@ row() {  # renderer method seconds spp image reference
 for method in pt bdpt vcm; do
     echo "tripath $method: $SECONDS_EACH s"
     log=$($PIN "$TRIPATH" render --scene smallvcm-5 --integrator $method --time "$SECONDS_EACH" --width $SIZE \
-        --height $SIZE --max-depth $DEPTH --threads 2 --seed 7 --out "$OUT/tripath-$method.exr" 2>&1 | grep "spp in")
+        --height $SIZE --max-depth $DEPTH --threads 2 --seed "$SEED" --out "$OUT/tripath-$method.exr" 2>&1 | grep "spp in")
     echo "  $log"
     spp=$(sed -E 's/.*: ([0-9]+) spp in ([0-9.]+) s.*/\1/' <<<"$log")
     secs=$(sed -E 's/.*: ([0-9]+) spp in ([0-9.]+) s.*/\2/' <<<"$log")
@@ -106,7 +109,7 @@ for method in pt bpt vcm; do
     n=$(awk -v k="$k" -v a="$t0" -v b="$t1" -v s="$SECONDS_EACH" 'BEGIN { n = int(k / (b - a) * s + 0.5); print (n < 1 ? 1 : n) }')
     echo "SmallVCM $method: $(awk -v k="$k" -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", k / (b - a) }') iterations/s, running $n"
     t0=$(now)
-    (cd "$OUT" && $PIN "$SMALLVCM" -s 5 -a $method -i "$n" -o "smallvcm-$method.hdr" >/dev/null)
+    (cd "$OUT" && SMALLVCM_SEED=$SEED $PIN "$SMALLVCM" -s 5 -a $method -i "$n" -o "smallvcm-$method.hdr" >/dev/null)
     t1=$(now)
     secs=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
     echo "  $n iterations in $secs s"
