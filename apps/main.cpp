@@ -24,14 +24,14 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-        std::cerr << "error: " << e.what() << "\n";     // one line, like every other error
+        std::cerr << "error: " << tripath::oneLine(e.what()) << "\n";  // one line, like every other error
         return 1;
     } catch (const tripath::InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 1;
     } catch (const std::exception& e) {
-        processes.fail(e.what(), 2);  // a rank's own failure ends the job (others may wait for it)
-        std::cerr << "error: " << e.what() << "\n";
+        processes.fail(tripath::oneLine(e.what()), 2);  // a rank's own failure ends the job (others may wait for it)
+        std::cerr << "error: " << tripath::oneLine(e.what()) << "\n";
         return 2;
     }
     return 0;

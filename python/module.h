@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/stats.h"
 #include "core/warnings.h"
 #include "geometry/scene.h"
@@ -27,7 +28,7 @@ namespace py = pybind11;
 struct Warnings {
     std::vector<std::string> messages;
     WarningSink sink() {
-        return [this](const std::string& m) { messages.push_back(m); };
+        return [this](const std::string& m) { messages.push_back(oneLine(m)); };  // one line, as on the command line
     }
     void raise() const {
         for (const std::string& m : messages)

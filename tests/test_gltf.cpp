@@ -765,6 +765,16 @@ TEST_F(GltfTest, NonFiniteBaseColorThrows) {
     expectInputError(b.write(file("nan.gltf")), "material 'bad': baseColorFactor is not finite");
 }
 
+// A name from the file is quoted in the message with its line break escaped: the message stays the
+// one line the user sees (expectInputError checks for '\n'). Catches names quoted as they are.
+TEST_F(GltfTest, NamesWithLineBreaksStayOnTheMessagesOneLine) {
+    GltfBuilder b;
+    b.model.materials = {pbrMaterial("bad\nerror: forged\x1b[2J", {1e39, 0.5, 0.5, 1}, 1, 1)};
+    b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("newline.gltf")), "material 'bad\\nerror: forged\\x1b[2J': baseColorFactor is not finite");
+}
+
 TEST_F(GltfTest, NegativeEmissionThrows) {
     GltfBuilder b;
     b.model.materials.emplace_back().name = "neg";

@@ -2,8 +2,10 @@
 
 #include <iostream>
 
+#include "core/error.h"
+
 namespace tripath {
 
-void printWarning(const std::string& message) { std::cerr << "warning: " << message << '\n'; }
+void printWarning(const std::string& message) { std::cerr << "warning: " << oneLine(message) << '\n'; }
 
 }  // namespace tripath
