@@ -44,6 +44,12 @@ evaluation::Narrator narratorOf(Watch& watch, const Progress& progress, bool ver
     return n;
 }
 
+// reference_seconds: None for the default (kReferenceBudget x seconds), else a budget above 0.
+double referenceBudget(std::optional<double> seconds) {
+    if (seconds && !(*seconds > 0)) throw InputError("reference_seconds must be above 0");
+    return seconds.value_or(0);
+}
+
 // After the work: the callback's exception, or KeyboardInterrupt for Ctrl-C.
 void raiseIfStopped(Watch& watch) {
     watch.raiseFailure();
@@ -100,7 +106,7 @@ py::list runRows(const std::vector<evaluation::Run>& runs) {
         d["integrator"] = run.method;
         d["run"] = run.index;
         d["seed"] = run.seed;
-        d["counters"] = counters(run.stats);
+        d["counters"] = counters(run.stats.events);
         rows.append(d);
     }
     return rows;
@@ -121,8 +127,7 @@ py::dict compareScene(PyScene& scene, double seconds, const std::vector<std::str
     if (py::isinstance<py::str>(reference)) r.referencePath = reference.cast<std::string>();
     else if (!reference.is_none()) r.referenceImage = fromArray(reference.cast<ArrayIn>(), "reference");
     r.referenceIntegrator = referenceIntegrator;
-    r.referenceSeconds = referenceSeconds.value_or(0);
-    if (referenceSeconds && !(*referenceSeconds > 0)) throw InputError("reference_seconds must be above 0");
+    r.referenceSeconds = referenceBudget(referenceSeconds);
     r.outDir = out;
     if (crop) r.crop = Region{(*crop)[0], (*crop)[1], (*crop)[2], (*crop)[3]};
     Watch watch;
@@ -168,8 +173,7 @@ py::list benchmarkScenes(const std::vector<std::string>& scenes, double seconds,
     b.methods = integrators;
     b.runs = runs;
     b.referenceIntegrator = referenceIntegrator;
-    b.referenceSeconds = referenceSeconds.value_or(0);
-    if (referenceSeconds && !(*referenceSeconds > 0)) throw InputError("reference_seconds must be above 0");
+    b.referenceSeconds = referenceBudget(referenceSeconds);
     b.biasReference = biasReference;
     b.baseline = baseline.value_or("");
     b.outDir = out;
@@ -186,25 +190,15 @@ py::list benchmarkScenes(const std::vector<std::string>& scenes, double seconds,
     raiseIfStopped(watch);
     py::list rows;
     for (const evaluation::Cell& x : cells) {
-        py::dict d;
+        // The method's summary over its runs (as compare() gives it), and what the benchmark adds.
+        py::dict d = summaryRow(x.summary);
         d["scene"] = x.scene;
-        d["integrator"] = x.method;
-        d["relmse"] = x.summary.error.relMse;
-        d["relmse_sd"] = x.summary.relMseStd;
         d["relmse_without_tail"] = x.relMseWithoutTail;
-        d["mse"] = x.summary.error.mse;
-        d["mae"] = x.summary.error.mae;
-        d["hdr_flip"] = x.summary.flip;
-        d["spp"] = x.summary.spp;
-        d["seconds"] = x.summary.seconds;
         d["inefficiency"] = x.summary.error.relMse * x.summary.seconds;
         d["speedup"] = x.speedUp;
         d["biased_blocks"] = x.biasedBlocks;
         d["blocks"] = x.blocks;
-        d["rays_per_s"] = x.summary.raysPerSecond;
-        py::dict events;
-        for (int e = 0; e < kEventCount; ++e) events[py::str(eventKey(Event(e)))] = x.events[size_t(e)];
-        d["counters"] = events;
+        d["counters"] = counters(x.events);
         rows.append(d);
     }
     return rows;
@@ -242,8 +236,9 @@ void defineEvaluation(py::module_& m) {
           "when missing), with a per-block bias test against bias_reference, as `tripath benchmark` does; the report "
           "goes to out. Returns the rows of results.csv as a list of dicts: scene, integrator, relmse, relmse_sd, "
           "relmse_without_tail, mse, mae, hdr_flip, spp, seconds, inefficiency, speedup (against baseline, default "
-          "the first integrator), biased_blocks, blocks, rays_per_s, counters. progress, verbose, Ctrl-C and keyword "
-          "options as for compare().");
+          "the first integrator), biased_blocks, blocks, rays_per_s, counters, and the rest of compare()'s summary "
+          "row (tail_share, relmse_x_spp, efficiency, time_to_best). progress, verbose, Ctrl-C and keyword options "
+          "as for compare().");
 }
 
 }  // namespace tripath::python

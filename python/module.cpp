@@ -52,12 +52,6 @@ void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
 
 }  // namespace
 
-py::dict counters(const StatsSnapshot& stats) {
-    py::dict d;
-    for (int e = 0; e < kEventCount; ++e) d[py::str(eventKey(Event(e)))] = stats.events[e];
-    return d;
-}
-
 RenderRequest requestOf(const std::string& scene, const GltfOptions& gltf, const std::string& integrator, int width,
                         int height, uint64_t seed, int maxDepth, const std::string& mis, int threads,
                         const py::kwargs& options) {
@@ -131,7 +125,7 @@ py::dict renderScene(PyScene& scene, const std::string& integrator, std::optiona
     out["interrupted"] = watch.interrupted;
     out["dropped_samples"] = result->droppedSamples;
     out["guarded_weights"] = result->guardedWeights;
-    out["counters"] = counters(result->stats);
+    out["counters"] = counters(result->stats.events);
     py::dict metadata;
     for (const auto& [key, value] : renderMetadata(request, built, *method, *result)) metadata[py::str(key)] = value;
     out["metadata"] = metadata;

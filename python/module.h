@@ -108,8 +108,13 @@ Image fromArray(const ArrayIn& a, const char* what);
 RenderRequest requestOf(const std::string& scene, const GltfOptions& gltf, const std::string& integrator, int width,
                         int height, uint64_t seed, int maxDepth, const std::string& mis, int threads,
                         const py::kwargs& options);
-// Every event counter of core/stats.h by its key.
-py::dict counters(const StatsSnapshot& stats);
+// Every event counter of core/stats.h by its key: a render's counts, or (benchmark) means over runs.
+template <class T>
+py::dict counters(const std::array<T, kEventCount>& events) {
+    py::dict d;
+    for (int e = 0; e < kEventCount; ++e) d[py::str(eventKey(Event(e)))] = events[size_t(e)];
+    return d;
+}
 
 // evaluation.cpp: compare() and benchmark() on the module.
 void defineEvaluation(py::module_& m);

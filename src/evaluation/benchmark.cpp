@@ -74,10 +74,6 @@ double referenceSeconds(const BenchmarkRequest& r) {
     return r.referenceSeconds > 0 ? r.referenceSeconds : kReferenceBudget * r.render.seconds;
 }
 
-void say(const BenchmarkRequest& r, const std::string& line) {
-    if (r.narrator.say && r.team->rank() == 0) r.narrator.say(line);
-}
-
 // The comparison of one scene: methods plus the bias reference, the cached reference if it fits.
 CompareRequest sceneRequest(const BenchmarkRequest& b, const std::string& scene) {
     CompareRequest co;
@@ -110,7 +106,7 @@ bool cachedReferenceFits(const CompareRequest& co) {
         requireSettings(ref, settings, false);
         return true;
     } catch (const InputError& e) {
-        if (co.narrator.say) co.narrator.say(fmt::format("benchmark: not reusing {}: {}", co.referenceOut, e.what()));
+        co.narrator.tell(*co.team, fmt::format("benchmark: not reusing {}: {}", co.referenceOut, e.what()));
         return false;
     }
 }
@@ -130,7 +126,7 @@ std::vector<Cell> benchmarkScene(const BenchmarkRequest& b, const std::string& s
     std::array<uint64_t, 1> shared{reuse};
     b.team->max(shared);
     if (shared[0]) co.referencePath = co.referenceOut;
-    if (shared[0]) say(b, fmt::format("benchmark: reusing the reference {}", co.referenceOut));
+    if (shared[0]) b.narrator.tell(*b.team, fmt::format("benchmark: reusing the reference {}", co.referenceOut));
     Comparison kept = compare(co, *loaded, true);
     if (!rank0 || kept.interrupted) return {};  // an interrupted scene is left out, not reported half-done
     const std::vector<Run>& runs = kept.runs;
@@ -315,9 +311,10 @@ std::vector<Cell> benchmark(const BenchmarkRequest& r) {
     const double perScene = (r.methods.size() + 1) * r.runs * r.render.seconds / r.team->size() + referenceSeconds(r);
     for (size_t i = 0; i < r.scenes.size(); ++i) {
         if (r.stop && r.stop->load()) break;
-        say(r, fmt::format("benchmark: scene {}/{} {}: {} methods × {} runs × {} s; at most {:.0f} s left in all", i + 1,
-                           r.scenes.size(), r.scenes[i], r.methods.size(), r.runs, r.render.seconds,
-                           perScene * double(r.scenes.size() - i)));
+        r.narrator.tell(*r.team, fmt::format("benchmark: scene {}/{} {}: {} methods × {} runs × {} s; at most {:.0f} s "
+                                             "left in all",
+                                             i + 1, r.scenes.size(), r.scenes[i], r.methods.size(), r.runs,
+                                             r.render.seconds, perScene * double(r.scenes.size() - i)));
         std::vector<Cell> done = benchmarkScene(r, r.scenes[i]);
         if (r.stop && r.stop->load()) break;  // an interrupted scene is left out, not reported half-done
         cells.insert(cells.end(), done.begin(), done.end());
@@ -325,8 +322,8 @@ std::vector<Cell> benchmark(const BenchmarkRequest& r) {
     if (r.team->rank() != 0) return {};
     if (cells.empty()) throw InputError("benchmark interrupted before its first scene was done: nothing to report");
     writeResults(r, cells);
-    say(r, fmt::format("benchmark: {} scenes; report in {}", cells.size() / r.methods.size(),
-                       (fs::path(r.outDir) / "index.html").string()));
+    r.narrator.tell(*r.team, fmt::format("benchmark: {} scenes; report in {}", cells.size() / r.methods.size(),
+                                         (fs::path(r.outDir) / "index.html").string()));
     return cells;
 }
 

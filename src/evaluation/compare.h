@@ -31,6 +31,11 @@ struct Narrator {
         progress;
     // A render has ended (the command line prints its summary line and --stats report).
     std::function<void(const std::string& label, const RenderResult&, const RenderRequest&)> finished;
+
+    // Says `line` on rank 0 of `team`, if anyone listens.
+    void tell(const Team& team, const std::string& line) const {
+        if (say && team.rank() == 0) say(line);
+    }
 };
 
 struct CompareRequest {

@@ -14,10 +14,6 @@ namespace tripath::evaluation {
 
 namespace {
 
-void say(const CompareRequest& o, const std::string& line) {
-    if (o.narrator.say && o.team->rank() == 0) o.narrator.say(line);
-}
-
 // The largest k with t_k <= seconds, or -1 before t_0.
 int targetReached(double seconds, double budget) {
     if (!(seconds > 0)) return -1;
@@ -63,11 +59,12 @@ Reference renderReference(const CompareRequest& o, const Scene& scene) {
     const std::string file = !o.referenceOut.empty() ? o.referenceOut
                              : o.outDir.empty()      ? std::string()
                                                      : (std::filesystem::path(o.outDir) / "reference.exr").string();
-    say(o, fmt::format("no reference given: rendering one with {} for {:g} x {} = {} (seed {}, reference streams){}; "
-                       "its own noise adds about 1/{:g} of {}'s error to each measurement. For a cleaner one, see "
-                       "`tripath reference`.",
-                       r.integrator, kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds), r.seed,
-                       file.empty() ? "" : " into " + file, kReferenceBudget, r.integrator));
+    o.narrator.tell(*o.team,
+                    fmt::format("no reference given: rendering one with {} for {:g} x {} = {} (seed {}, reference "
+                                "streams){}; its own noise adds about 1/{:g} of {}'s error to each measurement. For a "
+                                "cleaner one, see `tripath reference`.",
+                                r.integrator, kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds),
+                                r.seed, file.empty() ? "" : " into " + file, kReferenceBudget, r.integrator));
     const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
     RenderSettings rs = renderSettings(r);
     rs.team = o.team;  // every rank renders the reference together
@@ -117,10 +114,11 @@ RunOutput runMethod(const CompareRequest& o, const Scene& scene, const std::stri
     run.flip = hdrFlip(image, reference, flipExposures(reference));
     finished(o, label, r, ro);
     const Checkpoint& f = run.final();
-    say(o, fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in the worst 0.1% of "
-                       "pixels, HDR-FLIP {:.4g}",
-                       label, f.error.relMse, f.error.mse, f.error.mae, perSampleRelVariance(f.error.relMse, f.spp),
-                       tailShareText(f.error.tailShare), run.flip));
+    o.narrator.tell(*o.team, fmt::format("{}: relMSE {:.4g}, MSE {:.4g}, MAE {:.4g}, relMSE*spp {:.4g}, {} of the error in "
+                                         "the worst 0.1% of pixels, HDR-FLIP {:.4g}",
+                                         label, f.error.relMse, f.error.mse, f.error.mae,
+                                         perSampleRelVariance(f.error.relMse, f.spp), tailShareText(f.error.tailShare),
+                                         run.flip));
     return {std::move(run), std::move(image), renderMetadata(ro, scene, *integrator, r, o.team->size())};
 }
 
