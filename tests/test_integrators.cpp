@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "scenes/builtin_scenes.h"
@@ -45,6 +46,33 @@ void expectFurnace(float albedo) {
         const auto m = meanAndError(runs);
         EXPECT_NEAR(m.mean, expected, 4 * m.stderr_) << integrator << " a=" << albedo;
         EXPECT_LT(m.stderr_, 0.02 * expected) << integrator << ": too noisy for the test to mean anything";
+    }
+}
+
+// The roulette depth a render uses is the one its EXR metadata and its convergence settings record
+// (references, checkpoints and the benchmark's cache are matched on them): the integrator's
+// documented default when none is given (3 for pt, 2 with light subpaths), the request's otherwise.
+// Catches the request's 0 ("default") recorded instead of the depth used, which would let a
+// reference made at one depth be continued at another, and a default that ignores the integrator.
+TEST(Roulette, TheDepthUsedIsTheDepthRecorded) {
+    const Scene scene(builtinScene("cornell"), 16, 16);
+    auto valueOf = [](const Metadata& meta, const std::string& key) {
+        for (const auto& [k, v] : meta)
+            if (k == key) return v;
+        return std::string("(missing)");
+    };
+    for (const auto& [integrator, given, used] :
+         {std::tuple{"pt", 0, 3}, std::tuple{"lt", 0, 2}, std::tuple{"bdpt", 0, 2}, std::tuple{"vcm", 0, 2},
+          std::tuple{"pt", 5, 5}, std::tuple{"bdpt", 4, 4}}) {
+        RenderRequest r = test::smallRequest();
+        r.integrator = integrator;
+        r.rrDepth = given;
+        r.spp = 1;
+        const auto method = makeIntegrator(r.integrator, integratorSettings(r));
+        EXPECT_EQ(method->settings().walk.rrDepth, used) << integrator << " given " << given;
+        const RenderResult result = render(scene, *method, renderSettings(r));
+        EXPECT_EQ(valueOf(renderMetadata(r, scene, *method, result), "tripath:rr-depth"), std::to_string(used)) << integrator;
+        EXPECT_EQ(valueOf(convergenceSettings(r, integrator), "tripath:rr-depth"), std::to_string(used)) << integrator;
     }
 }
 

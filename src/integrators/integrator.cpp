@@ -24,7 +24,9 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Integr
     throw InputError("unknown integrator '" + name + "' (pt, lt, bdpt, vcm, bpm or ppm)");
 }
 
-int defaultRouletteDepth(const std::string& integrator) { return integrator == "pt" ? 3 : 2; }
+int defaultRouletteDepth(const std::string& integrator) {
+    return makeIntegrator(integrator, {})->hasLightPhase() ? 2 : 3;  // the rule, not a list of names
+}
 
 float Integrator::firstMergeRadius(const Scene& scene) const {
     if (!strategies().merges()) return 0.0f;
