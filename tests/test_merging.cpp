@@ -153,15 +153,16 @@ TEST(Merging, VcmAgreesWithBdptOnVeachMis) { expectVcmAgreesWithBdpt("veach-mis"
 //   half when the radius is a quarter (to a quarter, if the bias is linear in r);
 // - per 8×8 block, Σ_b (Δ_b² − σ_b²) -- an unbiased estimate of the blocks' squared bias, the
 //   noise's share taken out -- must fall below a quarter (a sixteenth, if linear).
-void expectBiasShrinksWithTheRadius(const std::string& scene) {
+// The large radius is a fraction of the scene's radius where the bias is still about linear in r.
+void expectBiasShrinksWithTheRadius(const std::string& scene, const std::vector<std::string>& integrators, float largeFactor, int vcmSpp) {
     const SceneDesc desc = builtinScene(scene);
     const Runs reference = renderRuns(desc, request("bdpt", 32, 0, 1), 8);
     const auto whole = meanAndError(reference.image);
-    for (const char* integrator : {"vcm", "bpm", "ppm"}) {
+    for (const std::string& integrator : integrators) {
         // bpm and ppm take their direct light from merges too: noisier, so more samples.
-        const int spp = std::string(integrator) == "vcm" ? 16 : 32;
+        const int spp = integrator == "vcm" ? vcmSpp : 32;
         std::vector<double> bias, blockBias2;
-        for (float factor : {0.2f, 0.05f}) {
+        for (float factor : {largeFactor, largeFactor / 4}) {
             const Runs runs = renderRuns(desc, request(integrator, spp, factor, 1), 8);
             const auto m = meanAndError(runs.image);
             bias.push_back(m.mean - whole.mean);
@@ -173,7 +174,7 @@ void expectBiasShrinksWithTheRadius(const std::string& scene) {
             blockBias2.push_back(b2);
             std::cout << scene << ", " << integrator << " radius factor " << factor << ": " << m.mean << " ± " << m.stderr_ << " vs bdpt "
                       << whole.mean << " ± " << whole.stderr_ << "; blocks' squared bias " << b2 << "\n";
-            if (factor == 0.2f) {
+            if (factor == largeFactor) {
                 EXPECT_GT(std::abs(bias.back()), 5 * std::hypot(m.stderr_, whole.stderr_)) << scene << " " << integrator << ": the bias must show";
             }
         }
@@ -182,10 +183,20 @@ void expectBiasShrinksWithTheRadius(const std::string& scene) {
     }
 }
 
-TEST(Merging, BiasShrinksWithTheRadiusOnCornell) { expectBiasShrinksWithTheRadius("cornell"); }
+TEST(Merging, BiasShrinksWithTheRadiusOnCornell) { expectBiasShrinksWithTheRadius("cornell", {"vcm", "bpm", "ppm"}, 0.2f, 16); }
 // With a mirror ball and a glass ball: ppm's camera walks go through them to the walls and floor,
 // and the caustic under the glass ball is a density estimate for all three.
-TEST(Merging, BiasShrinksWithTheRadiusOnCornellSpheres) { expectBiasShrinksWithTheRadius("cornell-spheres"); }
+TEST(Merging, BiasShrinksWithTheRadiusOnCornellSpheres) { expectBiasShrinksWithTheRadius("cornell-spheres", {"vcm", "bpm", "ppm"}, 0.2f, 16); }
+// The plates are narrow strips: at 0.2 R the disc reaches over a whole plate and onto the next,
+// and the bias is not yet linear (vcm: −0.0075 at 0.1 R, −0.0088 at 0.05 R, −0.0038 at 0.025 R).
+// bpm and ppm are left out here. ppm's only estimate of the lights' reflections in the plates is a
+// density estimate under a glossy lobe, which is heavy-tailed (at 0.003 R, 8 runs of 2048 spp,
+// those pixels read 0 but for a rare sample 40 times their mean), so at a test's sample counts
+// the block means are not normal and a 5σ test would judge their tails, not their bias. bpm
+// agrees with bdpt at 0.003 R (whole image 0.2262 against 0.2259 at 512 spp), but between the
+// radii a test can resolve its bias is not linear in r (−0.012 at 0.05 R, −0.0067 at 0.0125 R,
+// ± 0.002 over 8 runs of 1024 spp): the share MIS gives its merges moves with r.
+TEST(Merging, BiasShrinksWithTheRadiusOnVeachMis) { expectBiasShrinksWithTheRadius("veach-mis", {"vcm"}, 0.05f, 32); }
 
 // The progressive schedule r_i = r_1 i^((α−1)/2) makes the same bias vanish. With α = 0.25 the
 // radius of pass i is r_1 / i^⅜ (0.21 r_1 at pass 64, 0.37 r_1 on average over 64 passes): the
