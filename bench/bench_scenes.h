@@ -68,8 +68,9 @@ void setRayRecorder(std::vector<RecordedRay>* recorder);
 // Casts the rays through Embree's own functions alone, in order, on the calling thread; returns
 // the hits (blocked shadow rays count as hits).
 uint64_t replayEmbree(std::span<const RecordedRay> rays);
-// Casts closest-hit rays `width` at a time (1, or 8 through rtcIntersect8 with the coherent flag).
-uint64_t replayClosestHitPackets(std::span<const RecordedRay> rays, int width);
+// Casts closest-hit rays `width` at a time (1, or 8 through rtcIntersect8, with Embree's coherent
+// or incoherent flag).
+uint64_t replayClosestHitPackets(std::span<const RecordedRay> rays, int width, bool coherent);
 // Casts shadow rays `width` at a time (1, or 8 through rtcOccluded8), in order; returns the blocked ones.
 uint64_t replayShadowPackets(std::span<const RecordedRay> rays, int width);
 

@@ -141,10 +141,10 @@ uint64_t replayInPackets(std::span<const RecordedRay> rays, int width, Cast&& ca
 
 }  // namespace
 
-uint64_t replayClosestHitPackets(std::span<const RecordedRay> rays, int width) {
+uint64_t replayClosestHitPackets(std::span<const RecordedRay> rays, int width, bool coherent) {
     alignas(32) RTCRayHit8 packet;
     return replayInPackets(rays, width, [&](const int* valid, RTCIntersectContext& ctx, size_t first, size_t n) {
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
         for (int i = 0; i < 8; ++i) {
             fillLane(packet.ray, i, rays[first + std::min(size_t(i), n - 1)]);
             packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;

@@ -15,6 +15,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <atomic>
 #include <memory>
 
@@ -125,13 +126,81 @@ void runCameraPackets(benchmark::State& state, const std::string& key, int width
                     rays.push_back({probe.at(0).scene, cam.position(), cam.direction({x + jx, y + jy}), 0.0f, 3.0e38f, false});
                 }
     uint64_t hits = 0;
-    for (auto _ : state) hits += replayClosestHitPackets(rays, width);
+    for (auto _ : state) hits += replayClosestHitPackets(rays, width, true);
     using C = benchmark::Counter;
     state.counters["rays_per_s"] = C(double(rays.size()) * double(state.iterations()), C::kIsRate);
     state.counters["hit_fraction"] = double(hits) / (double(rays.size()) * double(state.iterations()));
 }
 
+// 30 bits of Morton order: 10 per axis of p's place in the box [lo, hi].
+uint32_t morton(Vec3 p, Vec3 lo, Vec3 hi) {
+    auto spread = [](uint32_t v) {  // bits 0..9 of v to bits 0, 3, 6, ..., 27
+        v = (v | (v << 16)) & 0x030000FFu;
+        v = (v | (v << 8)) & 0x0300F00Fu;
+        v = (v | (v << 4)) & 0x030C30C3u;
+        return (v | (v << 2)) & 0x09249249u;
+    };
+    uint32_t c[3];
+    for (int a = 0; a < 3; ++a) {
+        const float t = (p[a] - lo[a]) / std::max(hi[a] - lo[a], 1e-20f);
+        c[a] = static_cast<uint32_t>(std::clamp(t, 0.0f, 1.0f) * 1023.0f);
+    }
+    return spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2;
+}
+
+// The most a wavefront could gain in Embree (issue 13: "what it would take"). One pass's rays,
+// recorded on one thread, are split by kind into queues of kChunk rays in the order they were
+// cast (a wavefront's queue of a few tiles' rays); each queue is sorted as a wavefront with ray
+// sorting would sort it -- by direction octant, then by the Morton order of the origin in the
+// scene's box -- and cast one at a time or in packets of 8 (closest-hit rays with Embree's
+// incoherent flag). The sort itself is not timed, and a real wavefront's queues would hold one
+// bounce's rays of many more paths, so this bounds the tracing side from above; against
+// replay/.../threads:1/embree (the same rays, unsorted, one at a time) it says how far packets
+// alone can take a render.
+void runWavefrontBound(benchmark::State& state, const std::string& key, const std::string& name, int width) {
+    const Scene& scene = cachedScene(key);
+    const auto integrator = integratorFor(name);
+    std::vector<RecordedRay> rays;
+    setRayRecorder(&rays);
+    renderPass(scene, *integrator, 0, 1);
+    setRayRecorder(nullptr);
+    std::vector<RecordedRay> queues[2];  // closest-hit, shadow
+    for (const RecordedRay& r : rays) queues[r.shadow].push_back(r);
+    const Vec3 lo = scene.boundsMin(), hi = scene.boundsMax();
+    auto sortKey = [&](const RecordedRay& r) {
+        const uint64_t octant = (r.dir.x < 0) | (r.dir.y < 0) << 1 | (r.dir.z < 0) << 2;
+        return octant << 32 | morton(r.origin, lo, hi);
+    };
+    for (auto& q : queues)
+        for (size_t first = 0; first < q.size(); first += kChunk) {
+            const auto b = q.begin() + std::ptrdiff_t(first), e = q.begin() + std::ptrdiff_t(std::min(q.size(), first + kChunk));
+            std::stable_sort(b, e, [&](const RecordedRay& x, const RecordedRay& y) { return sortKey(x) < sortKey(y); });
+        }
+    uint64_t hits = 0;
+    for (auto _ : state) {
+        for (size_t first = 0; first < std::max(queues[0].size(), queues[1].size()); first += kChunk) {
+            auto chunk = [&](const std::vector<RecordedRay>& q) {
+                return std::span(q).subspan(std::min(first, q.size()), std::min(kChunk, q.size() - std::min(first, q.size())));
+            };
+            hits += replayClosestHitPackets(chunk(queues[0]), width, false);
+            hits += replayShadowPackets(chunk(queues[1]), width);
+        }
+    }
+    using C = benchmark::Counter;
+    state.counters["rays_per_s"] = C(double(rays.size()) * double(state.iterations()), C::kIsRate);
+    state.counters["shadow_share"] = double(queues[1].size()) / double(rays.size());
+    state.counters["hit_fraction"] = double(hits) / (double(rays.size()) * double(state.iterations()));
+}
+
 const bool registered = [] {
+    for (const auto& [label, key] : sampleScenes())
+        for (const char* name : {"pt", "bdpt", "vcm"})
+            for (int width : {1, 8})
+                benchmark::RegisterBenchmark(
+                    (std::string("replay_wavefront/") + name + "/" + label + "/packet:" + std::to_string(width)).c_str(),
+                    [key = key, name, width](benchmark::State& st) { runWavefrontBound(st, key, name, width); })
+                    ->UseRealTime()
+                    ->Unit(benchmark::kMillisecond);
     for (const auto& [label, key] : sampleScenes())
         for (int width : {1, 8})
             benchmark::RegisterBenchmark((std::string("replay_camera/") + label + "/packet:" + std::to_string(width)).c_str(),
