@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "core/error.h"
 #include "evaluation/compare.h"
+#include "integrators/interrupt.h"
 #include "processes.h"
 #include "render_options.h"
 
@@ -52,6 +53,18 @@ void validate(CompareCommand& c) {
     o.team = &team();
     o.narrator = terminalNarrator();
     evaluation::validate(o, Spelling::CommandLine);
+    o.stop = installInterruptHandler();  // Ctrl-C: the render under way stops at its next pass
+}
+
+// Ctrl-C leaves the methods without their equal budgets, so there is no report; what was rendered
+// to the end is kept: a reference rendered here is written with the samples it has.
+std::string interruptedMessage(const evaluation::CompareRequest& o, const evaluation::Comparison& result) {
+    const bool rendered = o.referencePath.empty() && !result.reference.file.empty();
+    return fmt::format("compare interrupted: no report, as the methods did not all get their {} each{}",
+                       evaluation::formatSeconds(o.render.seconds),
+                       rendered ? fmt::format("; the reference ({}) is in {}", result.reference.description,
+                                              result.reference.file)
+                                : std::string());
 }
 
 void run(CompareCommand& c) {
@@ -62,6 +75,7 @@ void run(CompareCommand& c) {
     });
     const evaluation::CompareRequest& o = c.options;
     const evaluation::Comparison result = compare(o, *scene);
+    if (result.interrupted) throw InputError(interruptedMessage(o, result));
     if (!isRankZero()) return;
     const evaluation::MethodSummary& best = result.summaries[bestMethod(result.summaries)];
     std::cerr << fmt::format("lowest error at equal time: {} (relMSE {:.4g}); report in {}\n", best.method,

@@ -9,8 +9,8 @@
 
 int main(int argc, char** argv) {
     tripath::app::Processes processes(argc, argv);  // under mpirun: one of N ranks (processes.h)
-    CLI::App app{"tripath " TRIPATH_VERSION " — path tracing, light tracing and bidirectional path tracing with MIS "
-                 "on one three-point (area-measure) path core."};
+    CLI::App app{"tripath " TRIPATH_VERSION " — path tracing, light tracing, bidirectional path tracing and vertex "
+                 "merging (vcm, bpm, ppm) with MIS on one three-point (area-measure) path core."};
     app.set_version_flag("--version", "tripath " TRIPATH_VERSION);
     app.require_subcommand(1);
     tripath::app::addRenderCommand(app);

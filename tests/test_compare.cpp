@@ -7,15 +7,18 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "scenes/builtin_scenes.h"
@@ -436,6 +439,44 @@ TEST(CompareCommand, RefusesAReferenceThatSharesARunsSeed) {
     // Seeds 51 and 52 share nothing with it.
     const Outcome fine = tripathCli(dir, base + " --seed 51 --runs 2");
     EXPECT_EQ(fine.exitCode, 0) << fine.err;
+}
+
+// Ctrl-C during a comparison: the reference being rendered stops at its next pass and is written
+// with what it has; the runs do not get their budgets, so there is no report, and the command
+// says so in one line and fails. Catches a compare that ignores the interrupt (it would render
+// its 60 s reference and two 6 s runs, and the wait below gives up), one that dies of the signal
+// with nothing written (no reference.exr, no exit status of its own), and one that writes a
+// report of runs cut short (error.csv).
+TEST(CompareCommand, CtrlCKeepsTheReferenceAndWritesNoReport) {
+    TempDir dir;
+    const std::string out = dir / "out", err = dir / "stderr.txt", status = dir / "status";
+    const std::string cmd = std::string("'") + TRIPATH_BINARY + "' compare " + kSmall +
+                            " --integrators pt,bdpt --time 6 --out '" + out + "' > /dev/null 2> '" + err + "'";
+    std::system(("(" + cmd + "; echo $? > '" + status + "') &").c_str());
+    // The reference is announced before it renders, once the interrupt handler is in place.
+    auto waitFor = [](const std::function<bool()>& done, int seconds) {
+        const auto start = std::chrono::steady_clock::now();
+        while (!done() && std::chrono::steady_clock::now() - start < std::chrono::seconds(seconds))
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        return done();
+    };
+    ASSERT_TRUE(waitFor([&] { return readFile(err).find("no reference given") != std::string::npos; }, 60)) << readFile(err);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a few passes of the reference
+    const std::string pattern = "'^" + std::string(TRIPATH_BINARY) + " compare .*" + out + "'";
+    std::system(("pkill -INT -n -f " + pattern).c_str());
+    const bool ended = waitFor([&] { return fs::exists(status) && readFile(status).find('\n') != std::string::npos; }, 30);
+    if (!ended) std::system(("pkill -KILL -f " + pattern).c_str());  // leave nothing running
+    ASSERT_TRUE(ended) << "compare went on after Ctrl-C";
+    EXPECT_EQ(std::stoi(readFile(status)), 1);
+    const std::string text = readFile(err);
+    const std::string last = text.substr(text.rfind('\n', text.size() - 2) + 1);
+    EXPECT_EQ(last.rfind("error: compare interrupted: no report", 0), 0u) << text;
+    EXPECT_NE(last.find(out + "/reference.exr"), std::string::npos) << last;
+    Metadata meta;
+    const Image reference = readExr(out + "/reference.exr", &meta);
+    EXPECT_EQ(reference.width, 32);
+    EXPECT_GE(std::stoi(metaValue(meta, "tripath:spp")), 1);
+    EXPECT_FALSE(fs::exists(out + "/error.csv"));
 }
 
 // The full report from one comparison: every file, a CSV that parses, and errors that fall with
