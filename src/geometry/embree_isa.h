@@ -1,8 +1,8 @@
-// Which of Embree's instruction sets the ray queries run on. Embree picks the widest one the CPU
-// has, and its kernels for different widths (SSE, AVX2, AVX-512) build different BVHs and may
-// return different hits for the same ray. A render shared by processes on different CPUs, or
-// continued on another machine, must therefore run one ISA throughout: the command line pins it
-// (the narrowest of the ranks' best), records it with Embree's version in the EXR
+// Which of Embree's instruction sets the ray queries run on. Left alone, Embree picks the widest
+// one the CPU has, and its kernels for different widths (SSE, AVX2, AVX-512) build different BVHs
+// and may return different hits for the same ray. A render shared by processes on different
+// CPUs, or continued on another machine, must therefore run one ISA throughout: the command line
+// pins it (the narrowest of the ranks' best), records it with Embree's version in the EXR
 // (tripath:embree), and refuses to add samples made with another.
 #pragma once
 #include <string>
@@ -10,8 +10,11 @@
 namespace tripath {
 
 // The ISAs this code pins, narrowest first; a level is an index into this list.
-inline constexpr const char* kEmbreeIsas[] = {"sse2", "sse4.2", "avx", "avx2", "avx512"};
-// The widest ISA of kEmbreeIsas this CPU runs (Embree's own choice when left alone).
+inline constexpr const char* kEmbreeIsas[] = {"sse2", "sse4.2", "avx", "avx2"};
+// The ISA of kEmbreeIsas renders run on by default: the widest this CPU runs, but AVX2 where it
+// also has AVX-512. The renderer casts single rays, and Embree's AVX-512 kernels for them made
+// whole passes 1-4 % slower than its AVX2 kernels (pt and bdpt, 36 to 1M triangles; bench/README.md,
+// "Embree's ISA").
 int bestEmbreeIsaLevel();
 // Every Scene built from now on runs this ISA (default: bestEmbreeIsaLevel()).
 void useEmbreeIsa(int level);
