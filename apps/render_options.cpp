@@ -1,12 +1,14 @@
 #include "render_options.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <iostream>
 #include <sstream>
 
 #include "core/error.h"
+#include "geometry/embree_isa.h"
 #include "processes.h"
 #include "stats_report.h"
 
@@ -79,6 +81,11 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
         ->capture_default_str();
     cmd.add_option("--threads", o.threads, "Worker threads per process (0: all cores; under mpirun give each rank its share)")
         ->capture_default_str();
+    cmd.add_option("--embree-isa", o.embreeIsa,
+                   "Embree's instruction set for the ray queries: sse2, sse4.2, avx, avx2 or avx512. Each builds "
+                   "its own BVH, so the same seed gives another (statistically equal) image, and the EXR records "
+                   "it (tripath:embree): pin the one an image was made with to continue or repeat it. Default: "
+                   "the widest this CPU runs, but avx2 where it also has avx512 (faster for tripath's single rays)");
     cmd.add_option("--checkpoint", o.checkpointSeconds,
                    "Every this many seconds (at the next round of passes), write the image so far to --out and the "
                    "state to go on from to <out>.checkpoint, atomically; a render or reference started again with "
@@ -97,6 +104,14 @@ void validateRenderOptions(const RenderOptions& o) {
     if (!(o.checkpointSeconds >= 0 && o.checkpointSeconds <= 1e7))
         throw InputError(fmt::format("--checkpoint must be a number of seconds, at least 0 and at most 1e7 (got {})",
                                      o.checkpointSeconds));
+    if (o.embreeIsa.empty()) return;
+    const int level = embreeIsaNamed(o.embreeIsa);
+    if (level < 0)
+        throw InputError(fmt::format("--embree-isa must be one of {} (got '{}')", fmt::join(kEmbreeIsas, ", "), o.embreeIsa));
+    if (level > widestEmbreeIsaLevel())
+        throw InputError(fmt::format("--embree-isa {}: this CPU does not run it (the widest it runs is {})", o.embreeIsa,
+                                     kEmbreeIsas[widestEmbreeIsaLevel()]));
+    useEmbreeIsa(level);  // under mpirun every rank gets the same flag: they agree, or one of them fails here
 }
 
 std::function<void(int, double)> progressReporter(const RenderSettings& s, int width, int height,

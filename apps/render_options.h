@@ -22,6 +22,7 @@ namespace tripath::app {
 // what only the command line has.
 struct RenderOptions : RenderRequest {
     double checkpointSeconds = 0;  // --checkpoint: interval; 0 writes none (checkpoint.h)
+    std::string embreeIsa;         // --embree-isa: an ISA of kEmbreeIsas to pin; empty: the default (embree_isa.h)
 };
 
 // A comma-separated flag value as its items, each without surrounding blanks; "" has none, and an
@@ -33,7 +34,8 @@ void addSceneOptions(CLI::App& cmd, std::string& scene, GltfOptions& gltf);
 // Registers the flags on a subcommand (the scene flags included), with help text that states defaults and meanings.
 void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator = true);
 // Throws InputError for values out of range, before any work is done: the request's checks
-// (render_request.h) and --checkpoint's.
+// (render_request.h), --checkpoint's and --embree-isa's. Then pins --embree-isa, if given, for
+// every scene built from now on.
 void validateRenderOptions(const RenderOptions& o);
 
 // A progress line on stderr when it is a terminal (percent, samples/s, time left), updated

@@ -23,6 +23,7 @@
 
 #include "scenes/builtin_scenes.h"
 #include "core/error.h"
+#include "geometry/embree_isa.h"
 #include "image/chart.h"
 #include "image/compose.h"
 #include "image/flip.h"
@@ -382,6 +383,28 @@ TEST(ReferenceCommand, RefusesToAddToAReferenceFromAnotherEmbree) {
         if (key == "tripath:embree") value = here + "-elsewhere";
     writeExr(ref, image, meta);
     expectOneLineError(tripathCli(dir, args), "has embree " + here + "-elsewhere");
+}
+
+// --embree-isa pins the ISA, so a reference made with another one can be continued (the default
+// refuses it, as above), and it is recorded. SSE2 is the ISA every x86-64 CPU runs and never the
+// default where AVX runs. Catches a flag that is parsed but not applied before the scene is built
+// (the file would record the default and the continuation be refused), and a bad name accepted.
+TEST(ReferenceCommand, ContinuesAnotherIsasReferenceWhenThatIsaIsPinned) {
+    TempDir dir;
+    const std::string ref = dir / "ref.exr";
+    const std::string args = "reference " + kSmall + " --spp 2 --out " + ref;
+    ASSERT_EQ(tripathCli(dir, args + " --embree-isa sse2").exitCode, 0);
+    Metadata meta;
+    readExr(ref, &meta);
+    const std::string made = metaValue(meta, "tripath:embree");
+    EXPECT_EQ(made.substr(made.find(' ') + 1), "sse2");
+    if (bestEmbreeIsaLevel() > embreeIsaNamed("sse2")) expectOneLineError(tripathCli(dir, args), "has embree " + made);
+    const Outcome pinned = tripathCli(dir, args + " --embree-isa sse2");
+    EXPECT_EQ(pinned.exitCode, 0) << pinned.err;
+    readExr(ref, &meta);
+    EXPECT_EQ(metaValue(meta, "tripath:spp"), "4");
+    EXPECT_EQ(metaValue(meta, "tripath:embree"), made);
+    expectOneLineError(tripathCli(dir, args + " --embree-isa avx3"), "--embree-isa must be one of sse2, sse4.2");
 }
 
 TEST(CompareCommand, BadInputGivesOneLineError) {

@@ -2,7 +2,9 @@
 
 #include <embree3/rtcore_config.h>
 
+#include <algorithm>
 #include <atomic>
+#include <iterator>
 
 namespace tripath {
 
@@ -10,15 +12,25 @@ namespace {
 std::atomic<int> gLevel{-1};  // -1: not pinned yet
 }  // namespace
 
-int bestEmbreeIsaLevel() {
+int embreeIsaNamed(const std::string& name) {
+    for (int level = 0; level < int(std::size(kEmbreeIsas)); ++level)
+        if (name == kEmbreeIsas[level]) return level;
+    return -1;
+}
+
+int widestEmbreeIsaLevel() {
     __builtin_cpu_init();
-    // Embree's AVX2 kernels also use FMA and BMI. Its AVX-512 kernels are not among the levels:
-    // they were the slower ones for this renderer's single rays (embree_isa.h).
+    // Embree's AVX-512 kernels need the Skylake-server subset; its AVX2 kernels also use FMA and BMI.
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+        __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl"))
+        return 4;
     if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2")) return 3;
     if (__builtin_cpu_supports("avx")) return 2;
     if (__builtin_cpu_supports("sse4.2")) return 1;
     return 0;
 }
+
+int bestEmbreeIsaLevel() { return std::min(widestEmbreeIsaLevel(), embreeIsaNamed("avx2")); }
 
 void useEmbreeIsa(int level) { gLevel.store(level); }
 
