@@ -217,6 +217,15 @@ protected:
             EXPECT_EQ(message.find('\n'), std::string::npos) << message;
         }
     }
+    // A single triangle whose material is `material` (the file's only one): loading it must fail
+    // with a message containing `fragment`.
+    void expectMaterialRefused(const tinygltf::Material& material, const std::string& fragment) {
+        GltfBuilder b;
+        b.model.materials = {material};
+        b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
+        b.addRoot({.mesh = 0});
+        expectInputError(b.write(file("material.gltf")), fragment);
+    }
 
     std::vector<std::string> warnings;
 
@@ -758,49 +767,33 @@ TEST_F(GltfTest, VertexIndexOutOfRangeThrows) {
 }
 
 TEST_F(GltfTest, NonFiniteBaseColorThrows) {
-    GltfBuilder b;
-    b.model.materials = {pbrMaterial("bad", {1e39, 0.5, 0.5, 1}, 1, 1)};
-    b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
-    b.addRoot({.mesh = 0});
-    expectInputError(b.write(file("nan.gltf")), "material 'bad': baseColorFactor is not finite");
+    expectMaterialRefused(pbrMaterial("bad", {1e39, 0.5, 0.5, 1}, 1, 1), "material 'bad': baseColorFactor is not finite");
 }
 
 // A name from the file is quoted in the message with its line break escaped: the message stays the
 // one line the user sees (expectInputError checks for '\n'). Catches names quoted as they are.
 TEST_F(GltfTest, NamesWithLineBreaksStayOnTheMessagesOneLine) {
-    GltfBuilder b;
-    b.model.materials = {pbrMaterial("bad\nerror: forged\x1b[2J", {1e39, 0.5, 0.5, 1}, 1, 1)};
-    b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
-    b.addRoot({.mesh = 0});
-    expectInputError(b.write(file("newline.gltf")), "material 'bad\\nerror: forged\\x1b[2J': baseColorFactor is not finite");
+    expectMaterialRefused(pbrMaterial("bad\nerror: forged\x1b[2J", {1e39, 0.5, 0.5, 1}, 1, 1),
+                          "material 'bad\\nerror: forged\\x1b[2J': baseColorFactor is not finite");
 }
 
 TEST_F(GltfTest, NegativeEmissionThrows) {
-    GltfBuilder b;
-    b.model.materials.emplace_back().name = "neg";
-    b.model.materials[0].emissiveFactor = {1, -0.5, 0};
-    b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
-    b.addRoot({.mesh = 0});
-    expectInputError(b.write(file("negative.gltf")), "material 'neg': emission is negative");
+    tinygltf::Material m;
+    m.name = "neg";
+    m.emissiveFactor = {1, -0.5, 0};
+    expectMaterialRefused(m, "material 'neg': emission is negative");
 }
 
 TEST_F(GltfTest, NegativeEmissiveStrengthThrows) {
-    GltfBuilder b;
-    b.model.materials.emplace_back().name = "neg";
-    b.model.materials[0].emissiveFactor = {1, 1, 1};
-    setExtension(b.model.materials[0].extensions, "KHR_materials_emissive_strength", "emissiveStrength",
-                 tinygltf::Value(-2));
-    b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
-    b.addRoot({.mesh = 0});
-    expectInputError(b.write(file("strength.gltf")), "material 'neg': emissiveStrength is negative");
+    tinygltf::Material m;
+    m.name = "neg";
+    m.emissiveFactor = {1, 1, 1};
+    setExtension(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength", tinygltf::Value(-2));
+    expectMaterialRefused(m, "material 'neg': emissiveStrength is negative");
 }
 
 TEST_F(GltfTest, MaterialRejectedByValidateMaterialThrows) {
-    GltfBuilder b;
-    b.model.materials = {pbrMaterial("bright", {2, 0.5, 0.5, 1}, 1, 1)};
-    b.addTriangleMesh(b.addVec3(kTriangle), -1, 0);
-    b.addRoot({.mesh = 0});
-    expectInputError(b.write(file("albedo.gltf")), "material 'bright': ");
+    expectMaterialRefused(pbrMaterial("bright", {2, 0.5, 0.5, 1}, 1, 1), "material 'bright': ");
 }
 
 TEST_F(GltfTest, ZeroScaleTransformThrows) {
