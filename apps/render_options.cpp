@@ -85,7 +85,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                    "Embree's instruction set for the ray queries: sse2, sse4.2, avx, avx2 or avx512. Each builds "
                    "its own BVH, so the same seed gives another (statistically equal) image, and the EXR records "
                    "it (tripath:embree): pin the one an image was made with to continue or repeat it. Default: "
-                   "the widest this CPU runs, but avx2 where it also has avx512 (faster for tripath's single rays)");
+                   "the widest this CPU runs (under mpirun, the narrowest of the ranks' widest)");
     cmd.add_option("--checkpoint", o.checkpointSeconds,
                    "Every this many seconds (at the next round of passes), write the image so far to --out and the "
                    "state to go on from to <out>.checkpoint, atomically; a render or reference started again with "
@@ -108,9 +108,9 @@ void validateRenderOptions(const RenderOptions& o) {
     const int level = embreeIsaNamed(o.embreeIsa);
     if (level < 0)
         throw InputError(fmt::format("--embree-isa must be one of {} (got '{}')", fmt::join(kEmbreeIsas, ", "), o.embreeIsa));
-    if (level > widestEmbreeIsaLevel())
+    if (level > bestEmbreeIsaLevel())
         throw InputError(fmt::format("--embree-isa {}: this CPU does not run it (the widest it runs is {})", o.embreeIsa,
-                                     kEmbreeIsas[widestEmbreeIsaLevel()]));
+                                     kEmbreeIsas[bestEmbreeIsaLevel()]));
     useEmbreeIsa(level);  // under mpirun every rank gets the same flag: they agree, or one of them fails here
 }
 

@@ -2,7 +2,6 @@
 
 #include <embree3/rtcore_config.h>
 
-#include <algorithm>
 #include <atomic>
 #include <iterator>
 
@@ -18,7 +17,7 @@ int embreeIsaNamed(const std::string& name) {
     return -1;
 }
 
-int widestEmbreeIsaLevel() {
+int bestEmbreeIsaLevel() {
     __builtin_cpu_init();
     // Embree's AVX-512 kernels need the Skylake-server subset; its AVX2 kernels also use FMA and BMI.
     if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
@@ -29,8 +28,6 @@ int widestEmbreeIsaLevel() {
     if (__builtin_cpu_supports("sse4.2")) return 1;
     return 0;
 }
-
-int bestEmbreeIsaLevel() { return std::min(widestEmbreeIsaLevel(), embreeIsaNamed("avx2")); }
 
 void useEmbreeIsa(int level) { gLevel.store(level); }
 

@@ -13,12 +13,9 @@ namespace tripath {
 inline constexpr const char* kEmbreeIsas[] = {"sse2", "sse4.2", "avx", "avx2", "avx512"};
 // The level of an ISA's name in kEmbreeIsas, or -1.
 int embreeIsaNamed(const std::string& name);
-// The widest ISA of kEmbreeIsas this CPU runs (Embree's own choice when left alone).
-int widestEmbreeIsaLevel();
-// The ISA renders run on by default: the widest this CPU runs, but AVX2 where it also has
-// AVX-512. The renderer casts single rays, and Embree's AVX-512 kernels for them made whole
-// passes 1-4 % slower than its AVX2 kernels (pt and bdpt, 36 to 1M triangles; bench/README.md,
-// "Embree's ISA"). The command line's --embree-isa pins another.
+// The widest ISA of kEmbreeIsas this CPU runs (Embree's own choice when left alone), which renders
+// run on unless the command line's --embree-isa pins another. (AVX2 instead of AVX-512 made
+// one-thread passes 1-4 % faster but left two-thread renders level: bench/README.md, "Embree's ISA".)
 int bestEmbreeIsaLevel();
 // Every Scene built from now on runs this ISA (default: bestEmbreeIsaLevel()).
 void useEmbreeIsa(int level);
