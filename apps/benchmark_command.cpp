@@ -65,6 +65,11 @@ void addBenchmarkCommand(CLI::App& app) {
                     "The unbiased method whose runs each method's runs are tested against for bias (rendered as well "
                     "if it is not one of --integrators)")
         ->capture_default_str();
+    cmd->add_option("--bias-level", c->options.biasLevel,
+                    "Family-wise level of the bias test: the chance, for a method as unbiased as --bias-reference, that "
+                    "any of its blocks is flagged (Holm's correction over the blocks); lower it to flag only stronger "
+                    "evidence. The test assumes each run's block means roughly normal: give runs enough samples")
+        ->capture_default_str();
     cmd->add_option("--baseline", c->options.baseline, "The integrator speed-ups are measured against (default: the first)");
     cmd->add_option("--out", c->options.outDir, "Output directory (created if missing)")->required();
     cmd->callback([c] { run(*c); });

@@ -161,7 +161,7 @@ py::dict compareScene(PyScene& scene, double seconds, const std::vector<std::str
 py::list benchmarkScenes(const std::vector<std::string>& scenes, double seconds, const std::string& out,
                          const std::vector<std::string>& integrators, int runs, const std::string& referenceIntegrator,
                          std::optional<double> referenceSeconds, const std::string& biasReference,
-                         const std::optional<std::string>& baseline, int width, int height, uint64_t seed, int maxDepth,
+                         double biasLevel, const std::optional<std::string>& baseline, int width, int height, uint64_t seed, int maxDepth,
                          const std::string& mis, int threads, const Progress& progress, bool verbose,
                          const py::kwargs& options) {
     evaluation::BenchmarkRequest b;
@@ -175,6 +175,7 @@ py::list benchmarkScenes(const std::vector<std::string>& scenes, double seconds,
     b.referenceIntegrator = referenceIntegrator;
     b.referenceSeconds = referenceBudget(referenceSeconds);
     b.biasReference = biasReference;
+    b.biasLevel = biasLevel;
     b.baseline = baseline.value_or("");
     b.outDir = out;
     Watch watch;
@@ -228,12 +229,12 @@ void defineEvaluation(py::module_& m) {
     m.def("benchmark", &benchmarkScenes, py::arg("scenes"), py::arg("seconds"), py::arg("out"),
           py::arg("integrators") = benchmarked, py::arg("runs") = 4, py::arg("reference_integrator") = "vcm",
           py::arg("reference_seconds") = py::none(), py::arg("bias_reference") = "bdpt",
-          py::arg("baseline") = py::none(), py::arg("width") = 512, py::arg("height") = 512, py::arg("seed") = 1,
+          py::arg("bias_level") = 0.01, py::arg("baseline") = py::none(), py::arg("width") = 512, py::arg("height") = 512, py::arg("seed") = 1,
           py::arg("max_depth") = 16, py::arg("mis") = "power", py::arg("threads") = 0, py::arg("progress") = py::none(),
           py::arg("verbose") = false,
           "Every integrator on every scene (built-in names or glTF files) for seconds each, runs independent runs "
           "(at least 2), against a reference per scene cached in out/references (rendered with reference_integrator "
-          "when missing), with a per-block bias test against bias_reference, as `tripath benchmark` does; the report "
+          "when missing), with a per-block bias test against bias_reference at family-wise level bias_level, as `tripath benchmark` does; the report "
           "goes to out. Returns the rows of results.csv as a list of dicts: scene, integrator, relmse, relmse_sd, "
           "relmse_without_tail, mse, mae, hdr_flip, spp, seconds, inefficiency, speedup (against baseline, default "
           "the first integrator), biased_blocks, blocks, rays_per_s, counters, and the rest of compare()'s summary "

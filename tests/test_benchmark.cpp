@@ -46,9 +46,14 @@ std::map<std::pair<std::string, std::string>, std::map<std::string, std::string>
     return rows;
 }
 
+// The unbiased methods on `cornell` must pass, the light tracer on `sds` must not. At the default
+// family-wise level, 0.01, an unbiased method gets a block flagged in about one benchmark in a
+// hundred by design, more where the runs' block means are not yet normal (measured: 1 of 30 for
+// pt at 95 spp per run, 3 of 44 at 13 spp; the sanitizer build makes about 130 here). At 1e-4
+// that false alarm is rare, and lt still has 17 of `sds`'s 64 blocks flagged (22 at 0.01).
 TEST_F(Benchmark, TablesEveryMethodOnEverySceneAndFlagsBias) {
     const std::string out = (dir_ / "b").string();
-    const std::string args = "benchmark --scenes cornell,sds --integrators pt,lt --runs 4 --time 0.25 --reference-time 1 "
+    const std::string args = "benchmark --scenes cornell,sds --integrators pt,lt --runs 4 --time 0.25 --reference-time 1 --bias-level 1e-4 "
                              "--width 32 --height 32 --threads 2 --out " + out;
     const Outcome first = tripath(args);
     ASSERT_EQ(first.exitCode, 0) << first.err;
@@ -93,7 +98,8 @@ TEST_F(Benchmark, BadListsAreRefusedInOneLine) {
     const std::string out = " --time 0.1 --out " + (dir_ / "b").string();
     for (const std::string args : {"--scenes cornell,,sds", "--scenes cornell --integrators pt,pt",
                                    "--scenes cornell --integrators pt,magic", "--scenes cornell --runs 1",
-                                   "--scenes cornell --integrators pt --baseline lt"}) {
+                                   "--scenes cornell --integrators pt --baseline lt", "--scenes cornell --bias-level 0",
+                                   "--scenes cornell --bias-level 1", "--scenes cornell --bias-level nan"}) {
         const Outcome o = tripath("benchmark " + args + out);
         EXPECT_EQ(o.exitCode, 1) << args;
         EXPECT_EQ(o.err.rfind("error: ", 0), 0u) << args << ": " << o.err;

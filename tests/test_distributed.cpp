@@ -33,10 +33,29 @@ const std::string kTripath = std::string("'") + TRIPATH_BINARY + "'";
 
 class Distributed : public test::ShellTest {
 protected:
+    // Every mpirun makes its session directory under one shared folder (/tmp/ompi.<host>.<uid>)
+    // and removes the folder when it ends; two jobs starting and ending at once (ctest -j2 runs
+    // two of these tests side by side) can race there, and the loser fails in orte_init with
+    // "mkdir ... File exists". So each test's jobs get a folder of their own, kept short:
+    // PMIx puts its sockets in it, and a socket's path must fit in 108 bytes.
+    void SetUp() override {
+        ShellTest::SetUp();
+        sessions_ = fs::temp_directory_path() / ("tripath-mpi-" + std::to_string(getpid()));
+        fs::create_directories(sessions_);
+    }
+    void TearDown() override {
+        fs::remove_all(sessions_);
+        ShellTest::TearDown();
+    }
+    // The mpirun command line with this test's session folder.
+    std::string mpirun() const { return "OMPI_MCA_orte_tmpdir_base='" + sessions_.string() + "' " + kMpirun; }
     // `tripath <args>` alone (ranks == 0) or under mpirun with that many ranks.
     Outcome tripath(const std::string& args, int ranks = 0) const {
-        return shell((ranks > 0 ? kMpirun + " -np " + std::to_string(ranks) + " " : std::string()) + kTripath + " " + args);
+        return shell((ranks > 0 ? mpirun() + " -np " + std::to_string(ranks) + " " : std::string()) + kTripath + " " + args);
     }
+
+private:
+    fs::path sessions_;
 };
 
 struct Rendered {
@@ -187,7 +206,7 @@ TEST_F(Distributed, AReferenceAddsToItsCheckpointExactly) {
 // image so far is written, with whole passes.
 TEST_F(Distributed, InterruptingMpirunWritesTheImageSoFar) {
     const std::string out = path("int.exr");
-    const std::string cmd = kMpirun + " -np 2 " + kTripath + " render --scene cornell --width 32 --height 32 --threads 1 "
+    const std::string cmd = mpirun() + " -np 2 " + kTripath + " render --scene cornell --width 32 --height 32 --threads 1 "
                             "--spp 100000 --checkpoint 0.05 --out " + out;
     killWhenWritten(cmd, out + ".checkpoint", "^" + std::string(TRIPATH_MPIEXEC) + ".* --out " + out, dir_, "INT");
     ASSERT_TRUE(fs::exists(out));
@@ -204,7 +223,7 @@ TEST_F(Distributed, InterruptingMpirunWritesTheImageSoFar) {
 TEST_F(Distributed, AKilledRankEndsTheJobAndTheLastCheckpointStaysLoadable) {
     const std::string out = path("job.exr"), checkpoint = out + ".checkpoint";
     const std::string args = "render --scene cornell --integrator pt --width 64 --height 64 --threads 1 --checkpoint 0.05 --out " + out;
-    const int status = killWhenWritten(kMpirun + " -np 2 " + kTripath + " " + args + " --spp 100000", checkpoint,
+    const int status = killWhenWritten(mpirun() + " -np 2 " + kTripath + " " + args + " --spp 100000", checkpoint,
                                        "^" + std::string(TRIPATH_BINARY) + ".* --out " + out, dir_);
     EXPECT_NE(status, 0);
     EXPECT_NE(status, 124) << "the job hung until `timeout` ended it";
@@ -229,7 +248,7 @@ TEST_F(Distributed, ARankThatCannotReadTheSceneEndsTheJobWithItsReason) {
     fs::create_directories(dir_ / "lacks");
     ASSERT_EQ(tripath("export --scene cornell --out " + path("has/scene.gltf")).exitCode, 0);
     const std::string render = kTripath + " render --scene scene.gltf --spp 2 --width 16 --height 16 --out " + path("out.exr");
-    const Outcome o = shell(kMpirun + " -np 1 --wdir '" + path("has") + "' " + render + " : -np 1 --wdir '" +
+    const Outcome o = shell(mpirun() + " -np 1 --wdir '" + path("has") + "' " + render + " : -np 1 --wdir '" +
                             path("lacks") + "' " + render);
     EXPECT_NE(o.exitCode, 0);
     EXPECT_NE(o.exitCode, 124) << "the job hung until `timeout` ended it";

@@ -148,7 +148,8 @@ std::vector<Cell> benchmarkScene(const BenchmarkRequest& b, const std::string& s
         cell.relMseWithoutTail /= n;
         for (double& e : cell.events) e /= n;
         if (m != b.biasReference) {
-            const BiasMap map = biasMap(kept.everyImage[m], kept.everyImage[b.biasReference], biasBlockSize(co.render.width, co.render.height));
+            const BiasMap map = biasMap(kept.everyImage[m], kept.everyImage[b.biasReference],
+                                         biasBlockSize(co.render.width, co.render.height), b.biasLevel);
             cell.biasedBlocks = map.count();
             cell.blocks = int(map.tests.size());
             cell.biasMap = (fs::path(slug(scene)) / ("bias-" + m + ".png")).string();
@@ -169,7 +170,7 @@ constexpr const char* kFormulas =
     "set from the scene's reference, at 67 pixels per degree (0 none, 1 the largest); "
     "inefficiency: relMSE × seconds (lower is better); speed-up: the baseline's inefficiency over the method's; "
     "biased blocks: blocks where Welch's t-test of the runs' mean luminance against the bias reference's runs is "
-    "significant at family-wise level 0.01 (Holm's correction).";
+    "significant at the family-wise level below (Holm's correction).";
 
 std::vector<std::string> scenesOf(const std::vector<Cell>& cells) {
     std::vector<std::string> out;
@@ -218,8 +219,8 @@ std::string markdownTable(const std::vector<Cell>& cells) {
 
 void writeResults(const BenchmarkRequest& c, const std::vector<Cell>& cells) {
     std::string csv = std::string("# ") + kFormulas + "\n";
-    csv += fmt::format("# per run: {} s, {} runs; bias reference {}; baseline {}\n", c.render.seconds, c.runs,
-                       c.biasReference, baselineOf(c));
+    csv += fmt::format("# per run: {} s, {} runs; bias reference {} at family-wise level {}; baseline {}\n",
+                       c.render.seconds, c.runs, c.biasReference, c.biasLevel, baselineOf(c));
     csv += "# counters (rays, BSDF calls, merges, ...): what the renderer counted, mean per run\n";
     csv += "scene,integrator,relmse,relmse_sd,relmse_without_tail,mse,mae,hdr_flip,spp,seconds,inefficiency,speedup,"
            "biased_blocks,blocks,rays_per_s" + counterColumns() + "\n";
@@ -241,9 +242,9 @@ void writeResults(const BenchmarkRequest& c, const std::vector<Cell>& cells) {
                        "th:first-child,td:first-child{text-align:left}td.best{background:#ffe98a;font-weight:bold}"
                        "td small{color:#555}.maps img{width:160px;image-rendering:pixelated;margin:.2em}</style></head><body>\n";
     html += fmt::format("<h1>tripath benchmark</h1>\n<p>{} s per run, {} runs per method, {}×{} pixels; references by {}; "
-                        "bias tested against {}; speed-up against {}.</p>\n",
+                        "bias tested against {} at family-wise level {}; speed-up against {}.</p>\n",
                         c.render.seconds, c.runs, c.render.width, c.render.height, escapeMarkup(c.referenceIntegrator),
-                        escapeMarkup(c.biasReference), escapeMarkup(baselineOf(c)));
+                        escapeMarkup(c.biasReference), c.biasLevel, escapeMarkup(baselineOf(c)));
     html += "<table><tr><th>scene</th>";
     for (const std::string& m : methods) html += "<th>" + escapeMarkup(m) + "</th>";
     html += "</tr>\n";
@@ -294,6 +295,8 @@ void validate(const BenchmarkRequest& r, Spelling spelling) {
     for (const std::string& m : r.methods) makeIntegrator(m, {});
     makeIntegrator(r.referenceIntegrator, {});
     makeIntegrator(r.biasReference, {});
+    if (!(r.biasLevel > 0 && r.biasLevel < 1))
+        throw InputError(fmt::format("{} must be between 0 and 1, exclusive (got {})", name("bias-level"), r.biasLevel));
     if (std::find(r.methods.begin(), r.methods.end(), baselineOf(r)) == r.methods.end())
         throw InputError(fmt::format("{} '{}' is not one of {}", name("baseline"), r.baseline, name("integrators")));
     if (r.outDir.empty()) throw InputError(fmt::format("{} is needed: the report and the reference cache go there", name("out")));

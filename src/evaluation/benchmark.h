@@ -18,6 +18,7 @@ struct BenchmarkRequest {
     std::string referenceIntegrator = "vcm";  // renders a scene's reference when the cache has none
     double referenceSeconds = 0;              // its budget; 0: kReferenceBudget x render.seconds
     std::string biasReference = "bdpt";       // the unbiased method every method's runs are tested against
+    double biasLevel = 0.01;                  // the bias test's family-wise level: the chance that an unbiased method gets any block flagged
     std::string baseline;                     // speed-ups are against it; empty: the first method
     int runs = 4;                             // at least 2, for the bias test
     std::string outDir;                       // the report, the per-scene comparisons and references/ (the cache)
