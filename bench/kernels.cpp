@@ -186,8 +186,9 @@ void registerPathKernels() {
             const auto& [light, v, camera] = p.triples[i];
             const Vec3 l = normalize(light.p - v.p), c = normalize(camera.p - v.p);
             const LocalScattering at(scene, v, &l, &c);
+            // (surface vertices: the N_L the sensor's pdf would be over does not matter here)
             Spectrum f = at.value();
-            float pdfs = at.pdfTowardCamera() + at.pdfTowardLight();
+            float pdfs = at.pdfTowardCamera() + at.pdfTowardLight(0);
             benchmark::DoNotOptimize(f);
             benchmark::DoNotOptimize(pdfs);
         });

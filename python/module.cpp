@@ -44,9 +44,11 @@ void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
         else if (k == "radius_factor") r.merge.radiusFactor = value.cast<float>(), r.radiusFactorGiven = true;
         else if (k == "radius_pixels") r.merge.radiusPixels = value.cast<float>();
         else if (k == "alpha") r.merge.alpha = value.cast<float>();
+        else if (k == "light_paths") r.lightPaths = value.cast<int64_t>(), r.lightPathsGiven = true;
         else
             throw InputError("unknown option '" + k +
-                             "' (the integrator options are rr_depth, radius, radius_factor, radius_pixels and alpha)");
+                             "' (the integrator options are rr_depth, radius, radius_factor, radius_pixels, alpha and "
+                             "light_paths)");
     }
 }
 
@@ -198,7 +200,7 @@ PYBIND11_MODULE(tripath, m) {
           "strategy_images = K: {(s, t, 'connect' | 'merge'): {'weighted', 'unweighted'}} for k <= K), spp, seconds, "
           "interrupted, dropped_samples, guarded_weights, counters (rays, BSDF calls, ...), metadata (as the EXR's). "
           "Keyword options: rr_depth (3), and for vcm, bpm, ppm radius, radius_factor, radius_pixels (0.75), alpha "
-          "(0.75). progress(passes, seconds) is called after each pass. The same settings give the same image as "
+          "(0.75), and for lt, bdpt, vcm, bpm, ppm light_paths (light paths per pass; one per pixel). progress(passes, seconds) is called after each pass. The same settings give the same image as "
           "`tripath render`, whatever the thread count. Ctrl-C stops at the next pass and returns what is done "
           "(interrupted = True).");
 

@@ -152,6 +152,14 @@ TEST_F(Cli, BadMergeRadiusSettingsAreRefused) {
     expectRefused(render(vcm + "--radius-factor 0.01 --radius-pixels 2 " + out()), "--radius");
 }
 
+TEST_F(Cli, BadLightPathCountsAreRefused) {
+    const std::string vcm = "--integrator vcm --width 8 --height 8 --spp 1 ";
+    expectRefused(render(vcm + "--light-paths 0 " + out()), "--light-paths");
+    expectRefused(render(vcm + "--light-paths -3 " + out()), "--light-paths");
+    expectRefused(render(vcm + "--light-paths 67108865 " + out()), "--light-paths");
+    expectRefused(render(vcm + "--light-paths many " + out()), "--light-paths");
+}
+
 // A merging reference continues its radius schedule from the passes in the file, so adding
 // samples with another schedule would mix two different estimates: refused, and the file kept.
 TEST_F(Cli, AReferenceIsNotContinuedWithAnotherRadiusSchedule) {
@@ -165,6 +173,11 @@ TEST_F(Cli, AReferenceIsNotContinuedWithAnotherRadiusSchedule) {
     const Outcome r = run(ref + "--radius 0.5");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.err.find("radius"), std::string::npos) << r.err;
+    // η = π r² N_L: another light path count is another estimate too.
+    const Outcome n = run(ref + "--light-paths 30");
+    EXPECT_EQ(n.exitCode, 1);
+    EXPECT_NE(n.err.find("light-paths"), std::string::npos) << n.err;
+    EXPECT_EQ(run(ref + "--light-paths 64").exitCode, 0) << "64 is the one per pixel of 8x8, as the file was made";
 }
 
 TEST_F(Cli, OutputInAMissingFolderIsRefusedBeforeRendering) {

@@ -49,6 +49,35 @@ void expectFurnace(float albedo) {
     }
 }
 
+// The furnace again with N_L other than the 64 pixels: 21 light paths a pass (pixels 21 … 63
+// connect with light paths already used, and splat none) and 160 (each pixel's sample joins two
+// or three light paths to the sensor). Catches a splat, a merge's η or the sensor's MIS pdf that
+// counts the pixels instead of N_L (lt, bpm and ppm would be off by the ratio; vcm and bdpt would
+// weigh their strategies with weights that do not sum to 1), and light paths that are traced but
+// never splatted.
+TEST(Furnace, AnyNumberOfLightPaths) {
+    const SceneDesc desc = furnaceScene(0.5f, 1.0f);
+    for (const int lightPaths : {21, 160})
+        for (const char* integrator : {"lt", "bdpt", "vcm", "bpm", "ppm"}) {
+            std::vector<double> runs;
+            for (uint64_t seed = 1; seed <= 8; ++seed) {
+                RenderRequest r = test::smallRequest();
+                r.integrator = integrator;
+                r.width = r.height = 8;
+                r.spp = 128;  // 21 light paths a pass make lt and ppm noisy
+                r.seed = seed;
+                r.maxDepth = 1000;
+                r.merge.radiusFactor = 0.1f;
+                r.lightPaths = lightPaths;
+                r.lightPathsGiven = true;
+                runs.push_back(imageMean(test::renderDesc(desc, r).image()));
+            }
+            const auto m = meanAndError(runs);
+            EXPECT_NEAR(m.mean, 2.0, 4 * m.stderr_) << integrator << " with " << lightPaths << " light paths";
+            EXPECT_LT(m.stderr_, 0.04) << integrator << " with " << lightPaths << " light paths: too noisy for the test to mean anything";
+        }
+}
+
 // The roulette depth a render uses is the one its EXR metadata and its convergence settings record
 // (references, checkpoints and the benchmark's cache are matched on them): the integrator's
 // documented default when none is given (3 for pt, 2 with light subpaths), the request's otherwise.
@@ -316,6 +345,23 @@ TEST(Determinism, SameSeedSameImageWhateverTheThreadCount) {
                     << render;
             r.seed = 43;  // the comparison can fail: another seed gives another image
             EXPECT_NE(one.rgb, renderBuiltWith(desc, r, 2, 2).rgb) << name << " " << integrator;
+        }
+    // With more light paths than pixels (their splats gathered from several pixels' samples) and
+    // with fewer (light paths shared by several camera samples).
+    for (const int lightPaths : {2400, 300})
+        for (const char* integrator : {"lt", "vcm"}) {
+            RenderRequest r = test::smallRequest();
+            r.integrator = integrator;
+            r.width = 40;
+            r.height = 24;
+            r.spp = 3;
+            r.seed = 42;
+            r.merge.radiusFactor = 0.05f;
+            r.lightPaths = lightPaths;
+            r.lightPathsGiven = true;
+            const SceneDesc desc = builtinScene("cornell-spheres");
+            const Image one = renderBuiltWith(desc, r, 1, 1);
+            EXPECT_EQ(one.rgb, renderBuiltWith(desc, r, 2, 2).rgb) << integrator << " with " << lightPaths << " light paths";
         }
 }
 

@@ -464,6 +464,59 @@ TEST(Mis, MergeWeightsMatchBruteForce) {
     }
 }
 
+// An emitter seen directly (k = 1) has two strategies: the camera walk hits it, (0, 2), or a light
+// path's y0 is joined to the sensor, (1, 1). The camera samples once per pixel, light tracing N_L
+// times per pass over the whole image, so the odds of (1, 1) against (0, 2) grow as N_L (balance
+// heuristic) or N_L² (power): at 3 or 1/4 of a light path per pixel they are 3 and 1/4 (9 and
+// 1/16) times those at one per pixel, and the two weights still sum to 1. Catches the sensor's
+// pdf ignoring N_L (the odds stay put), and the camera walk and the t = 1 connection counting it
+// differently (the sum leaves 1).
+TEST(Mis, LightTracingsOddsGrowWithTheLightPaths) {
+    const Scene scene(builtinScene("cornell"), 24, 24);
+    const double pixels = 24.0 * 24.0;
+    for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power}) {
+        const double beta = h == MisHeuristic::Power ? 2.0 : 1.0;
+        int checked = 0;
+        for (int i = 0; i < 16000 && checked < 40; ++i) {  // the light covers ~0.7 % of the image
+            Rng rng(5, static_cast<uint64_t>(StreamDomain::Test), i);
+            const Vec2 raster{rng.uniform() * 24, rng.uniform() * 24};
+            double odds[3];
+            const double share[3] = {1.0, 3.0, 0.25};  // N_L / pixels
+            bool seen = true;
+            for (int n = 0; n < 3 && seen; ++n) {
+                WalkSettings ws{1, 1000};
+                ws.lightPaths = share[n] * pixels;
+                const MisContext mis{h, StrategySet{}, kNoRoulette, 0.0f, ws.lightPaths};
+                Subpath camera;
+                Rng walk = rng;
+                cameraSubpath(scene, raster, walk, ws, WalkPdfs::All, camera);
+                if (camera.size() < 2 || camera[1].emitter < 0) {
+                    seen = false;
+                    break;
+                }
+                const Connection hit = connect(scene, {}, 0, camera, 2, mis);
+                Vertex y0 = camera[1];
+                y0.kind = Vertex::Kind::Emitter;
+                y0.pdfFwd = scene.emitters().pdfA(y0.emitter);
+                y0.beta = Spectrum(1.0f / y0.pdfFwd);
+                const Connection splat = connect(scene, std::span<const Vertex>(&y0, 1), 1, std::span(camera).first(1), 1, mis);
+                if (isBlack(hit.unweighted) || isBlack(splat.unweighted)) {
+                    seen = false;
+                    break;
+                }
+                EXPECT_NEAR(hit.weight + splat.weight, 1.0, 1e-4) << "N_L/pixels " << share[n] << " h=" << int(h);
+                odds[n] = double(splat.weight) / double(hit.weight);
+            }
+            if (!seen) continue;
+            for (int n = 1; n < 3; ++n)
+                EXPECT_NEAR(odds[n] / odds[0], std::pow(share[n], beta), 1e-3 * std::pow(share[n], beta))
+                    << "N_L/pixels " << share[n] << " h=" << int(h);
+            ++checked;
+        }
+        EXPECT_GE(checked, 40) << "too few camera rays hit the light";
+    }
+}
+
 TEST(Mis, EnabledStrategyWeightsSumToOne) {
     for (const SceneDesc& desc : oracleScenes()) {
         const Scene scene(desc, 24, 24);

@@ -68,6 +68,8 @@ def test_bad_input_is_a_value_error_with_the_command_lines_message(tmp_path, cor
         tripath.render(cornell, "pt", spp=1, seconds=1)
     with pytest.raises(ValueError, match="^strategy_images needs"):
         tripath.render(cornell, "pt", strategy_images=2)
+    with pytest.raises(ValueError, match="^light_paths must be between 1 and"):
+        tripath.render(cornell, "vcm", light_paths=0)
 
 
 def write_gltf_with_degenerate_triangle(path):
@@ -126,6 +128,21 @@ def test_python_and_the_command_line_give_the_same_bits(tmp_path):
     # A different seed differs: the comparison can fail.
     other = tripath.render(scene, "bdpt", spp=3, width=24, height=16, seed=6, max_depth=8)["image"]
     assert not np.array_equal(other, cli)
+
+
+def test_light_paths_give_the_command_lines_bits_and_are_recorded(tmp_path):
+    out = tmp_path / "cli.exr"
+    args = ["--scene", "cornell-spheres", "--integrator", "vcm", "--spp", "2", "--width", "24", "--height", "16",
+            "--light-paths", "1000"]
+    subprocess.run([TRIPATH, "render", *args, "--out", str(out)], check=True, capture_output=True)
+    cli, meta = tripath.read_exr(str(out))
+    assert meta["tripath:light-paths-per-pass"] == "1000"
+    r = tripath.render(tripath.load("cornell-spheres"), "vcm", spp=2, width=24, height=16, light_paths=1000)
+    assert np.array_equal(r["image"], cli)
+    assert r["metadata"]["tripath:light-paths-per-pass"] == "1000"
+    default = tripath.render(tripath.load("cornell-spheres"), "vcm", spp=2, width=24, height=16)
+    assert default["metadata"]["tripath:light-paths-per-pass"] == str(24 * 16)
+    assert not np.array_equal(default["image"], cli)
 
 
 def test_one_loaded_scene_renders_at_any_size(cornell):

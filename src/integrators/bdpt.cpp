@@ -2,7 +2,9 @@
 //
 // Joins each camera subpath to the pass's light subpath of the same index (the light phase) and
 // evaluates every strategy (s, t) over their prefixes, weighted by MIS over all of them.
-// Parameters: --max-depth, --rr-depth (default 2), --mis (balance | power | none). With a pinhole
+// Parameters: --max-depth, --rr-depth (default 2), --mis (balance | power | none), --light-paths
+// (N_L per pass, one per pixel by default: pixel i's sample connects with light path i mod N_L and
+// joins light paths i, i + P, … to the sensor). With a pinhole
 // and a point light, specular-diffuse-specular paths have no strategy at all and stay black.
 #include "integrators/integrator.h"
 

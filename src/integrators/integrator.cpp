@@ -43,22 +43,33 @@ float Integrator::mergeRadius(float firstRadius, uint64_t index) const {
     return static_cast<float>(firstRadius * std::pow(double(index + 1), 0.5 * (double(settings_.merge.alpha) - 1.0)));
 }
 
+double Integrator::lightPaths(const Scene& scene) const { return lightPathsPerPass(scene.camera(), settings_.walk.lightPaths); }
+
 MisContext Integrator::misContext(const Scene& scene, float radius) const {
-    const float eta = radius > 0 ? mergeEta(radius, lightPathsPerPass(scene.camera())) : 0.0f;
-    MisContext mis{settings_.mis, strategies(), Roulette{settings_.walk.rrDepth}, eta};
+    const double lightPaths = this->lightPaths(scene);
+    const float eta = radius > 0 ? mergeEta(radius, lightPaths) : 0.0f;
+    MisContext mis{settings_.mis, strategies(), Roulette{settings_.walk.rrDepth}, eta, lightPaths};
     mis.runningSums = canUseRunningSums(mis);
     return mis;
 }
 
 void Integrator::sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
                         ContributionSink& sink) const {
-    const std::span<const Vertex> light = pass.light ? pass.light->path(pixel) : std::span<const Vertex>();
+    const std::span<const Vertex> light = pass.light ? pass.light->path(size_t(pixel) % pass.light->paths()) : std::span<const Vertex>();
     // The light path was traced by another task, likely on another core: ask for its cache lines
     // now, so that they arrive while the camera walk runs rather than stall the first connection.
     for (size_t i = 0; i < light.size_bytes(); i += 64) __builtin_prefetch(reinterpret_cast<const char*>(light.data()) + i);
     cameraWalk(scene, pass, ray, rng, paths.camera);
-    connectAll(scene, pass, light, paths.camera, rng, sink);
+    splatLightPaths(scene, pass, pixel, std::span<const Vertex>(paths.camera).first(1), rng, sink);
+    connectAll(scene, pass, light, paths.camera, 2, rng, sink);
     if (pass.search) mergeAll(scene, pass, paths.camera, sink);
+}
+
+void Integrator::splatLightPaths(const Scene& scene, const Pass& pass, int pixel, std::span<const Vertex> sensor, Rng& rng,
+                                 ContributionSink& sink) const {
+    if (!pass.light || !strategies().enabled(1, 1)) return;
+    const size_t pixels = size_t(scene.camera().width()) * scene.camera().height();
+    for (size_t j = size_t(pixel); j < pass.light->paths(); j += pixels) connectAll(scene, pass, pass.light->path(j), sensor, 1, rng, sink);
 }
 
 void Integrator::cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng, Subpath& camera) const {

@@ -61,11 +61,12 @@ public:
     virtual std::string name() const = 0;
     virtual StrategySet strategies() const = 0;
     // One sample for pixel `pixel` whose camera ray is `ray` (its raster position already jittered
-    // inside the pixel, and its hit found when the render loop traced it in a packet); it pairs
-    // with the pass's light path number `pixel`. By default: a camera walk, every enabled
-    // connection with that light path (an empty one without a light phase), and every merge with
-    // the pass's light vertices if the integrator merges. What an integrator estimates is then
-    // its strategy set and its settings; lt, which has no camera walk, overrides this.
+    // inside the pixel, and its hit found when the render loop traced it in a packet). By default:
+    // a camera walk; the splats of the pass's light paths that fall to this pixel's sample
+    // (splatLightPaths); every enabled connection with t ≥ 2 with light path number pixel mod N_L
+    // (an empty one without a light phase); and every merge with the pass's light vertices if
+    // the integrator merges. What an integrator estimates is then its strategy set and its
+    // settings; lt, which has no camera walk, overrides this.
     virtual void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
                         ContributionSink& sink) const;
     // Whether sample() traces the camera ray it is given (lt does not): the render loop then traces
@@ -75,6 +76,9 @@ public:
 
     // Whether passes trace and store light subpaths first: for any strategy with s ≥ 2 or a merge.
     bool hasLightPhase() const { return strategies().merges() || strategies().maxS >= 2; }
+    // N_L, the light paths each pass traces when it has a light phase: the settings' count, or
+    // one per pixel (paths/kernels.h).
+    double lightPaths(const Scene& scene) const;
     // The first pass's merge radius r_1 (0 when the integrator does not merge). It may trace a
     // few hundred rays (the default measures pixels): compute it once per render.
     float firstMergeRadius(const Scene& scene) const;
@@ -87,12 +91,18 @@ protected:
     // The sample's camera subpath along `ray`, with the MIS running sums of
     // the pass's context where it keeps them.
     void cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng, Subpath& camera) const;
-    // Runs every enabled connection over the two subpaths into the sink.
-    void connectAll(const Scene& scene, const Pass& pass, std::span<const Vertex> light, const Subpath& camera,
-                    Rng& rng, ContributionSink& sink) const {
-        evaluateStrategies(scene, light, camera, rng, settings_.walk.maxDepth, pass.mis,
+    // Runs every enabled connection with t ≥ firstT over the two subpaths into the sink.
+    void connectAll(const Scene& scene, const Pass& pass, std::span<const Vertex> light, std::span<const Vertex> camera,
+                    int firstT, Rng& rng, ContributionSink& sink) const {
+        evaluateStrategies(scene, light, camera, firstT, rng, settings_.walk.maxDepth, pass.mis,
                            [&](Strategy st, const Connection& c) { sink.add(st, c); });
     }
+    // The t = 1 connections (light tracing's splats) of the pass's light paths j = pixel,
+    // pixel + P, pixel + 2P, … below N_L, P being the pixel count: every light path is joined to
+    // the sensor `sensor` once per pass, whatever N_L, in the order of the pixels' samples (so the
+    // film's sums do not depend on threads). Each draws what it needs from the pixel's stream.
+    void splatLightPaths(const Scene& scene, const Pass& pass, int pixel, std::span<const Vertex> sensor, Rng& rng,
+                         ContributionSink& sink) const;
     // Runs every merge of the camera subpath with the pass's light vertices into the sink.
     void mergeAll(const Scene& scene, const Pass& pass, const Subpath& camera, ContributionSink& sink) const {
         evaluateMerges(scene, *pass.search, camera, settings_.walk.maxDepth, pass.mis,

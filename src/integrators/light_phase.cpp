@@ -18,7 +18,7 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     search_.reset();
     if (!integrator.hasLightPhase()) return pass;
 
-    const uint64_t paths = static_cast<uint64_t>(lightPathsPerPass(scene.camera()));
+    const uint64_t paths = static_cast<uint64_t>(integrator.lightPaths(scene));
     const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
     const WalkPdfs pdfs = integrator.strategies().lightWalkPdfs();
     const WalkSettings& walk = integrator.settings().walk;

@@ -1,10 +1,11 @@
 // lt — light tracing (particle tracing) with connections to the sensor.
 //
-// Connects every vertex of the pass's light subpaths (the light phase: one per pixel, so a pass of
-// N pixels traces N light paths) to the pinhole (strategy t = 1) and splats it into the pixel it
-// projects to; camera sample i takes light path i. Parameters: --max-depth, --rr-depth (default 2)
-// (--mis has nothing to weigh: one strategy per path length). Cannot see emitters or paths through
-// delta surfaces next to the sensor (a mirror seen directly is black), as it must.
+// Connects every vertex of the pass's light subpaths (the light phase: N_L of them, one per pixel
+// by default) to the pinhole (strategy t = 1) and splats it into the pixel it projects to; pixel
+// i's sample joins light paths i, i + P, … (P pixels). Parameters: --max-depth, --rr-depth
+// (default 2), --light-paths (--mis has nothing to weigh: one strategy per path length). Cannot see
+// emitters or paths through delta surfaces next to the sensor (a mirror seen directly is black),
+// as it must.
 #include "integrators/integrator.h"
 
 namespace tripath {
@@ -18,7 +19,7 @@ public:
     void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay&, Rng& rng, PathBuffers& paths,
                 ContributionSink& sink) const override {
         paths.camera.assign(1, sensorVertex(scene));
-        connectAll(scene, pass, pass.light->path(pixel), paths.camera, rng, sink);
+        splatLightPaths(scene, pass, pixel, paths.camera, rng, sink);
     }
 };
 

@@ -39,8 +39,8 @@ struct TileOutput {
 // added in the same order whatever the thread count.
 class TileSink final : public ContributionSink {
 public:
-    TileSink(Film& film, const Camera& camera, TileOutput& out, uint64_t pass)
-        : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPathsPerPass(camera))),
+    TileSink(Film& film, const Camera& camera, double lightPaths, TileOutput& out, uint64_t pass)
+        : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPathsPerPass(camera, lightPaths))),
           pass_(pass) {}
     void setPixel(int pixel) { pixel_ = pixel; }
     void add(Strategy st, const Connection& c) override {
@@ -88,7 +88,7 @@ void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pa
     const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
     const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
     thread_local PathBuffers paths;
-    TileSink sink(film, cam, out, pass.index);
+    TileSink sink(film, cam, pass.mis.lightPaths, out, pass.index);
     enrolThread();
     const PhaseScope scope(Phase::Sampling);
     const bool packets = integrator.tracesCameraRays();

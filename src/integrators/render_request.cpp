@@ -54,6 +54,8 @@ void validate(const RenderRequest& r, Spelling spelling) {
         fail(fmt::format("{} must be above 0 and at most 1 (got {})", name("radius-factor"), r.merge.radiusFactor));
     if (!(r.merge.radiusPixels > 0 && r.merge.radiusPixels <= 1000))
         fail(fmt::format("{} must be above 0 and at most 1000 (got {})", name("radius-pixels"), r.merge.radiusPixels));
+    if (r.lightPathsGiven && (r.lightPaths < 1 || r.lightPaths > kMaxLightPaths))
+        fail(fmt::format("{} must be between 1 and {} (got {})", name("light-paths"), kMaxLightPaths, r.lightPaths));
     if (!(r.merge.alpha > 0 && r.merge.alpha <= 1))
         fail(fmt::format("{} must be above 0 and at most 1 (got {})", name("alpha"), r.merge.alpha));
     if (r.strategyImages < 0 || r.strategyImages > 16)
@@ -75,6 +77,7 @@ IntegratorSettings integratorSettings(const RenderRequest& r) {
     s.walk.rrDepth = rouletteDepth(r, r.integrator);
     s.mis = parseMisHeuristic(r.mis);
     s.merge = r.merge;
+    s.walk.lightPaths = r.lightPathsGiven ? double(r.lightPaths) : 0.0;
     return s;
 }
 
@@ -130,7 +133,7 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
 Metadata lightPhaseMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator) {
     Metadata m;
     if (integrator.hasLightPhase())
-        m.push_back({"tripath:light-paths-per-pass", fmt::format("{:.0f}", lightPathsPerPass(scene.camera()))});
+        m.push_back({"tripath:light-paths-per-pass", fmt::format("{:.0f}", integrator.lightPaths(scene))});
     if (integrator.strategies().merges()) {
         m.push_back({"tripath:radius", fmt::format("{:.9g}", integrator.firstMergeRadius(scene))});
         m.push_back({"tripath:alpha", fmt::format("{:.9g}", r.merge.alpha)});

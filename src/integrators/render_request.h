@@ -15,6 +15,10 @@
 
 namespace tripath {
 
+// The most light paths a pass may trace: as many as the largest image has pixels (each stored
+// light path takes some 350 bytes).
+inline constexpr int64_t kMaxLightPaths = int64_t(8192) * 8192;
+
 struct RenderRequest {
     std::string scene;                    // a built-in's name or a .gltf/.glb file
     GltfOptions gltf;
@@ -27,6 +31,8 @@ struct RenderRequest {
     int rrDepth = 0;                      // Russian roulette from this many subpath vertices on; 0: the integrator's default
     std::string mis = "power";            // balance, power or none
     MergeSettings merge;                  // vcm, bpm, ppm: the radius schedule
+    int64_t lightPaths = 0;               // light paths per pass, N_L, when lightPathsGiven (else one per pixel); nothing for pt
+    bool lightPathsGiven = false;
     uint64_t seed = 1;
     int threads = 0;                      // 0: all cores
     bool stats = false;                   // run the phase timers (the counts are always kept)

@@ -4,8 +4,9 @@
 // Paths are stored end to end in chunks of kPathsPerChunk consecutive light paths, each chunk one
 // flat array; a chunk is filled by one task, so the light phase needs no copy to put its paths in
 // order, and the arrays keep their capacity from pass to pass (no allocation once warm). The
-// store is the same whatever thread traced which chunk. Camera sample i connects to light path i
-// (bdpt, lt, vcm); merges search every stored vertex at once (LightVertexSearch). Nothing writes
+// store is the same whatever thread traced which chunk. Camera sample i connects to light path
+// i mod N_L (bdpt, vcm; Integrator::sample); merges search every stored vertex at once
+// (LightVertexSearch). Nothing writes
 // into a stored vertex after the light phase: MIS reads the subpaths and takes what a strategy
 // defines at its junction apart (mis.h), so all threads can share the store.
 #pragma once

@@ -29,7 +29,7 @@ Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::
     Junction junction;
     junction.cameraEnd = y.pdfFwd;
     junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), zBefore);
-    junction.lightEnd = incoming.toArea(at.pdfTowardLight(), yBefore);
+    junction.lightEnd = incoming.toArea(at.pdfTowardLight(mis.lightPaths), yBefore);
     if (s >= 3) junction.lightBeforeEnd = light[s - 3].pdfRev;
     c.setWeight(mergeWeight(light, s, camera, t, junction, mis));
     return c;

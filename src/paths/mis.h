@@ -149,6 +149,7 @@ struct MisContext {
     StrategySet strategies;
     Roulette roulette;
     float mergeEta = 0;
+    double lightPaths = 0;  // N_L as requested (0: one per pixel; lightPathsPerPass): the sensor's pdf in t = 1 connections
     // The subpaths carry running sums recorded for this context (recordRunningSums): weights in
     // O(1). Only for a summable set under the balance or power heuristic.
     bool runningSums = false;

@@ -18,18 +18,19 @@
 namespace tripath {
 
 // Strategy (1, t): next-event estimation from a fresh emitter point.
-inline Connection connectNextEvent(const Scene& scene, Rng& rng, const Subpath& camera, int t, const MisContext& mis) {
+inline Connection connectNextEvent(const Scene& scene, Rng& rng, std::span<const Vertex> camera, int t, const MisContext& mis) {
     const Vertex y0 = sampleEmitterVertex(scene, rng);
     return connect(scene, std::span<const Vertex>(&y0, 1), 1, camera, t, mis);
 }
 
-// Calls sink(strategy, connection) for each enabled (s, t) with 1 ≤ k = s + t − 1 ≤ maxDepth and
-// a non-zero contribution.
+// Calls sink(strategy, connection) for each enabled (s, t) with t ≥ firstT, 1 ≤ k = s + t − 1 ≤
+// maxDepth and a non-zero contribution. (A camera subpath of the sensor alone gives the t = 1
+// strategies only, the splats of light tracing.)
 template <class Sink>
-void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, const Subpath& camera, Rng& rng, int maxDepth,
-                        const MisContext& mis, Sink&& sink) {
+void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, std::span<const Vertex> camera, int firstT, Rng& rng,
+                        int maxDepth, const MisContext& mis, Sink&& sink) {
     const int nl = static_cast<int>(light.size()), nc = static_cast<int>(camera.size());
-    for (int t = 1; t <= nc; ++t) {
+    for (int t = firstT; t <= nc; ++t) {
         const int sMax = std::min(std::max(nl, 1), maxDepth + 1 - t);
         for (int s = 0; s <= sMax; ++s) {
             if (s + t < 2 || !mis.strategies.enabled(s, t)) continue;

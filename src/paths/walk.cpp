@@ -30,8 +30,9 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
 // The area pdfs of the segment just traced from `from` (the path's last vertex) to v, the
 // vertex about to be appended: v's pdfFwd, and the pdfRev of the vertex before `from`, which
 // `from` would generate having been reached from v. A camera walk goes against the light's
-// flow, so v lies on `from`'s light side; a light walk goes with it.
-void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode) {
+// flow, so v lies on `from`'s light side; a light walk goes with it. `lightPaths`: N_L as
+// requested, which the sensor's pdf is over.
+void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode, double lightPaths) {
     const PhaseScope scope(Phase::Mis);
     const Vertex& from = path.back();
     Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
@@ -39,9 +40,9 @@ void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode
     const bool cameraWalk = mode == TransportMode::Radiance;
     const LocalScattering at(scene, from, cameraWalk ? ahead.towardB() : behind.towardB(),
                              cameraWalk ? behind.towardB() : ahead.towardB());
-    v.pdfFwd = ahead.toArea(cameraWalk ? at.pdfTowardLight() : at.pdfTowardCamera(), v);
+    v.pdfFwd = ahead.toArea(cameraWalk ? at.pdfTowardLight(lightPaths) : at.pdfTowardCamera(), v);
     if (beforeFrom) {
-        const float pdfBack = cameraWalk ? at.pdfTowardCamera() : at.pdfTowardLight();
+        const float pdfBack = cameraWalk ? at.pdfTowardCamera() : at.pdfTowardLight(lightPaths);
         beforeFrom->pdfRev = behind.toArea(pdfBack, *beforeFrom);
     }
 }
@@ -92,7 +93,7 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, f
         v.beta = beta * stepFactor(path, v, scatter, pdf, mode);
         if (!isFinite(v.beta) || isBlack(v.beta)) return;  // a grazing hit (p_A = 0) or coincident points
         if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0))
-            recordPdfs(scene, path, v, mode);
+            recordPdfs(scene, path, v, mode, settings.lightPaths);
         path.push_back(v);
         if (path.size() == maxVertices || (mode == TransportMode::Radiance && settings.cameraUntilNonDelta && !v.delta)) return;
 

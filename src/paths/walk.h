@@ -12,6 +12,7 @@ struct WalkSettings {
     int maxDepth = 16;  // longest path in segments: camera subpaths get ≤ maxDepth+1 vertices, light ≤ maxDepth
     int rrDepth = 3;    // Russian roulette once a subpath has this many vertices (roulette.h); the front ends default per integrator (integrator.h)
     bool cameraUntilNonDelta = false;  // end camera walks at their first vertex that scatters through no delta lobe
+    double lightPaths = 0;  // N_L per pass as requested (0: one per pixel): the camera walk's first pdf is over it (kernels.h)
 };
 
 // The sensor endpoint z0 of every camera subpath.
