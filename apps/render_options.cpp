@@ -80,8 +80,8 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     cmd.add_option_function<int64_t>(
         "--light-paths", [&o](int64_t v) { o.lightPaths = v, o.lightPathsGiven = true; },
         "lt, bdpt, vcm, bpm, ppm: light paths traced per pass, N_L (default: one per pixel). Pixel i's camera sample "
-        "connects with light path i mod N_L; every light path is joined to the sensor and merged with once; MIS and "
-        "the merges' 1/(pi r^2 N_L) count N_L. The image converges to the same, with other noise and speed; "
+        "connects with light path i mod N_L; each light path is joined to the sensor once per pass; splats, MIS "
+        "weights and the merges' 1/(pi r^2 N_L) count N_L. Converges to the same image, with other noise and cost; "
         "no effect on pt");
     cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
         ->capture_default_str();
