@@ -53,28 +53,52 @@ public:
     size_t bytes() const { return begin_.capacity() * sizeof(uint32_t) + sorted_.capacity() * sizeof(Entry); }
 
     // Calls f(payload) for every point within distance r of p (|q − p|² ≤ r²), in a fixed order.
-    // The table and the runs are far larger than the caches and a query's buckets lie anywhere
-    // in them, so the reads are requested in two waves before they are used -- every bucket's
-    // bounds, then the start of every run -- and the misses overlap instead of following one another.
     template <class F>
     void forEachWithin(Vec3 p, F&& f) const {
+        forEachWithin(std::span<const Vec3>(&p, 1), [&](int, const Payload& payload) { f(payload); });
+    }
+
+    // Calls f(i, payload) for every point within distance r of each query point qs[i], query by
+    // query in the order given, each in a fixed order. The table and the runs are far larger than
+    // the caches and a query's buckets lie anywhere in them, so the reads are requested in two
+    // waves before they are used -- every bucket's bounds, then the start of every run -- for all
+    // the queries at once (at most kBatch at a time): the misses of a camera path's vertices
+    // overlap instead of following one another.
+    static constexpr int kBatch = 16;
+    template <class F>
+    void forEachWithin(std::span<const Vec3> qs, F&& f) const {
         if (sorted_.empty()) return;
-        uint32_t buckets[27];
-        const int n = bucketsAround(p, buckets);
-        for (int b = 0; b < n; ++b) __builtin_prefetch(&begin_[buckets[b]]);
-        uint32_t first[27], last[27];
-        for (int b = 0; b < n; ++b) {
-            first[b] = begin_[buckets[b]];
-            last[b] = begin_[buckets[b] + 1];
-            if (first[b] < last[b]) __builtin_prefetch(&sorted_[first[b]]);
+        for (size_t start = 0; start < qs.size(); start += kBatch) {
+            const int n = static_cast<int>(std::min<size_t>(kBatch, qs.size() - start));
+            Runs runs[kBatch];
+            for (int i = 0; i < n; ++i) {
+                runs[i].n = bucketsAround(qs[start + i], runs[i].first);
+                for (int b = 0; b < runs[i].n; ++b) __builtin_prefetch(&begin_[runs[i].first[b]]);
+            }
+            for (int i = 0; i < n; ++i)
+                for (int b = 0; b < runs[i].n; ++b) {
+                    const uint32_t bucket = runs[i].first[b];
+                    runs[i].first[b] = begin_[bucket];
+                    runs[i].last[b] = begin_[bucket + 1];
+                    if (runs[i].first[b] < runs[i].last[b]) __builtin_prefetch(&sorted_[runs[i].first[b]]);
+                }
+            const float r2 = radius_ * radius_;
+            for (int i = 0; i < n; ++i) {
+                const Vec3 p = qs[start + i];
+                for (int b = 0; b < runs[i].n; ++b)
+                    for (uint32_t j = runs[i].first[b]; j < runs[i].last[b]; ++j)
+                        if (lengthSquared(sorted_[j].p - p) <= r2) f(static_cast<int>(start) + i, sorted_[j].payload);
+            }
         }
-        const float r2 = radius_ * radius_;
-        for (int b = 0; b < n; ++b)
-            for (uint32_t j = first[b]; j < last[b]; ++j)
-                if (lengthSquared(sorted_[j].p - p) <= r2) f(sorted_[j].payload);
     }
 
 private:
+    // One query's runs: first holds its buckets until their bounds are read.
+    struct Runs {
+        int n;
+        uint32_t first[27], last[27];
+    };
+
     int64_t cellCoordinate(float v) const { return static_cast<int64_t>(std::floor(v * invCell_)); }
 
     uint32_t bucketOf(int64_t x, int64_t y, int64_t z) const {

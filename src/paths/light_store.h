@@ -70,29 +70,39 @@ public:
     LightVertexSearch(const LightStore& store, float radius);
     float radius() const { return grid_.radius(); }
     size_t bytes() const { return grid_.bytes(); }
-    // Calls f(prefix, s) for each mergeable light vertex within the radius of p, in a fixed order:
-    // `prefix` is its light subpath up to and including it, which is y_{s−1} of that prefix.
-    // The vertices found are gathered first and their cache lines requested before the first
-    // is used: each merge reads a light vertex and its predecessors from anywhere in the store,
-    // and waiting for those reads one merge after another took most of a merge's time.
+    // Calls f(i, prefix, s) for each mergeable light vertex within the radius of each query point
+    // qs[i], query by query in the order given, each in a fixed order: `prefix` is its light
+    // subpath up to and including it, which is y_{s−1} of that prefix. The grid overlaps the
+    // queries' reads (PointGrid); the vertices found are gathered and their cache lines requested
+    // before the first is used: each merge reads a light vertex and its predecessors from anywhere
+    // in the store, and waiting for those reads one merge after another took most of a merge's time.
     template <class F>
-    void forEachWithin(Vec3 p, F&& f) const {
+    void forEachWithin(std::span<const Vec3> qs, F&& f) const {
         constexpr int kBatch = 32;
-        Candidate found[kBatch];
+        struct Found {
+            int query;
+            Candidate c;
+        } found[kBatch];
         int n = 0;
         auto flush = [&] {
-            for (int i = 0; i < n; ++i) f(std::span<const Vertex>(found[i].vertex + 1 - found[i].s, found[i].s), int(found[i].s));
+            for (int i = 0; i < n; ++i)
+                f(found[i].query, std::span<const Vertex>(found[i].c.vertex + 1 - found[i].c.s, found[i].c.s), int(found[i].c.s));
             n = 0;
         };
-        grid_.forEachWithin(p, [&](Candidate c) {
+        grid_.forEachWithin(qs, [&](int query, Candidate c) {
             // The vertex and the one before it: the merge's first reads.
             __builtin_prefetch(c.vertex);
             __builtin_prefetch(reinterpret_cast<const char*>(c.vertex) + 64);
             __builtin_prefetch(c.vertex - 1);
-            found[n++] = c;
+            found[n++] = {query, c};
             if (n == kBatch) flush();
         });
         flush();
+    }
+    // The same for one query point: f(prefix, s).
+    template <class F>
+    void forEachWithin(Vec3 p, F&& f) const {
+        forEachWithin(std::span<const Vec3>(&p, 1), [&](int, std::span<const Vertex> prefix, int s) { f(prefix, s); });
     }
 
 private:

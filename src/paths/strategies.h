@@ -48,16 +48,28 @@ void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, std::
 template <class Sink>
 void evaluateMerges(const Scene& scene, const LightVertexSearch& search, const Subpath& camera, int maxDepth,
                     const MisContext& mis, Sink&& sink) {
-    for (int t = 2; t <= static_cast<int>(camera.size()) && t <= maxDepth; ++t) {
-        if (camera[t - 1].delta) continue;
-        count(Event::RangeQueries);
+    // The camera vertices that merge, queried together (at most kBatch at a time) so that the
+    // range search overlaps their memory reads (LightVertexSearch::forEachWithin).
+    constexpr int kBatch = 16;
+    Vec3 points[kBatch];
+    int ts[kBatch];
+    const int last = std::min(static_cast<int>(camera.size()), maxDepth);
+    for (int t = 2; t <= last;) {
+        int n = 0;
+        for (; t <= last && n < kBatch; ++t)
+            if (!camera[t - 1].delta) {
+                points[n] = camera[t - 1].p;
+                ts[n++] = t;
+            }
+        count(Event::RangeQueries, uint64_t(n));
         const PhaseScope searching(Phase::Search);
-        search.forEachWithin(camera[t - 1].p, [&](std::span<const Vertex> light, int s) {
-            if (s + t - 2 > maxDepth) return;
+        search.forEachWithin(std::span<const Vec3>(points, n), [&](int query, std::span<const Vertex> light, int s) {
+            const int tq = ts[query];
+            if (s + tq - 2 > maxDepth) return;
             count(Event::Merges);
             const PhaseScope merging(Phase::Sampling);
-            const Connection c = merge(scene, light, s, camera, t, mis);
-            if (!isBlack(c.unweighted)) sink(Strategy{s, t, true}, c);
+            const Connection c = merge(scene, light, s, camera, tq, mis);
+            if (!isBlack(c.unweighted)) sink(Strategy{s, tq, true}, c);
         });
     }
 }
