@@ -16,8 +16,8 @@
 #
 # Knobs: SECONDS_EACH=20, SEED=7 (the runs' seed in both renderers: another seed is another
 # independent run against the same references), OUT=out/peers-smallvcm, TRIPATH=<binary>
-# (default: build Release into build-bench/ as bench/run.sh does), TRIPATH_REF_SECONDS=600,
-# SMALLVCM_REF_ITERATIONS=800 (SmallVCM bpt at 512², 4 samples per 256² pixel each). References
+# (default: build Release into build-bench/ as bench/run.sh does, with scripts/build.sh's profile),
+# TRIPATH_REF_SECONDS=600, SMALLVCM_REF_ITERATIONS=800 (SmallVCM bpt at 512², 4 samples per 256² pixel each). References
 # already in OUT are reused; delete them to render new ones. About 3 minutes plus the references
 # on the 2-core machine.
 #
@@ -52,7 +52,8 @@ grep -q SMALLVCM_SEED "$SMALLVCM" \
 "$PY" -c "import OpenImageIO, numpy" 2>/dev/null || die "$PY needs python3-openimageio and python3-numpy"
 
 if [ -z "${TRIPATH:-}" ]; then
-    cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DTRIPATH_TESTS=OFF >/dev/null
+    profile=$(bash scripts/pgo-profile.sh build/pgo | tail -n 1)
+    cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DTRIPATH_TESTS=OFF -DTRIPATH_PGO_PROFILE="$profile" >/dev/null
     cmake --build build-bench -j2 --target tripath
     TRIPATH=build-bench/tripath
 fi

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The one documented benchmark command (bench/README.md): builds Release into build-bench/, runs
+# The one documented benchmark command (bench/README.md): builds Release into build-bench/ (with
+# the profile-guided optimisation of scripts/build.sh), runs
 # every microbenchmark with JSON to out/bench.json, measures the 1M-triangle scene's memory in a
 # fresh process (out/memory.json), times full 512×512 renders of cornell per integrator
 # (out/render-*.txt), and prints the README's tables (also kept in out/report.md).
@@ -15,7 +16,9 @@ MIN_TIME=${MIN_TIME:-0.5}
 REPS=${REPS:-3}
 FILTER=${FILTER:-.}
 
-cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DTRIPATH_TESTS=OFF >/dev/null
+# Built as scripts/build.sh builds: with the profile of the training renders (made or reused in build/pgo).
+profile=$(bash scripts/pgo-profile.sh build/pgo | tail -n 1)
+cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DTRIPATH_TESTS=OFF -DTRIPATH_PGO_PROFILE="$profile" >/dev/null
 cmake --build build-bench -j"$(nproc)" --target tripath_bench tripath
 
 mkdir -p out

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Checks that a GCC build and a Clang build of tripath render bit-identical images.
+# Checks that a GCC build and a Clang build of tripath render bit-identical images, and so does the
+# profile-guided GCC build that scripts/build.sh makes.
 #
 #   scripts/check-compilers.sh [SIZE] [SPP]       defaults: 64 (pixels a side), 4 samples per pixel
 #
@@ -18,14 +19,18 @@
 # with FMA both compilers fuse (GCC across statements, Clang within expressions), so native
 # builds are not expected to match each other or the portable one, and are not compared here.
 #
-# It builds the portable configuration (the default: no -DTRIPATH_NATIVE, only the x86-64
-# baseline instructions) with g++ into build-gcc/ and with clang++ into build-clang/ (the program
-# only: no tests, no benchmarks), renders every built-in scene (`tripath scenes`) with pt, lt and
-# bdpt with both binaries (same seed, --threads 2) into build-compilers/, and compares the pixels
-# bit for bit (scripts/exr-identical.py; the metadata differs, e.g. the render time). Prints one
-# row per scene and integrator and exits 1 if any image differs.
+# Profile-guided optimisation (scripts/pgo-profile.sh) reorders and duplicates code by how often
+# it runs; it changes no floating-point operation, so its images must match too.
 #
-# Not part of CI (two more builds); scripts/test-sanitized.sh mentions it. Installs clang and
+# It builds the portable configuration (the default: no -DTRIPATH_NATIVE, only the x86-64
+# baseline instructions) with g++ into build-gcc/, with clang++ into build-clang/, and with g++
+# and the profile of build/pgo into build-gcc-pgo/ (the program only: no tests, no benchmarks),
+# renders every built-in scene (`tripath scenes`) with every integrator with each binary (same
+# seed, --threads 2) into build-compilers/, and compares the pixels of Clang's and the
+# profile-guided images with GCC's bit for bit (scripts/exr-identical.py; the metadata differs,
+# e.g. the render time). Prints one row per pair and exits 1 if any image differs.
+#
+# Not part of CI (three more builds); scripts/test-sanitized.sh mentions it. Installs clang and
 # the Python OpenImageIO bindings if they are missing (scripts/install-deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,10 +39,12 @@ spp="${2:-4}"
 bash scripts/install-deps.sh clang python3-openimageio python3-numpy
 
 out=build-compilers
-declare -A cxx=([gcc]=g++ [clang]=clang++)
-for c in gcc clang; do
+profile=$(CXX=g++ bash scripts/pgo-profile.sh build/pgo | tail -n 1)
+declare -A cxx=([gcc]=g++ [clang]=clang++ [gcc-pgo]=g++)
+declare -A pgo=([gcc]= [clang]= [gcc-pgo]="$profile")
+for c in gcc clang gcc-pgo; do
   cmake -S . -B "build-$c" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER="${cxx[$c]}" \
-    -DTRIPATH_TESTS=OFF -DTRIPATH_BENCH=OFF >/dev/null
+    -DTRIPATH_TESTS=OFF -DTRIPATH_BENCH=OFF -DTRIPATH_PGO_PROFILE="${pgo[$c]}" >/dev/null
   cmake --build "build-$c" -j"$(nproc)" --target tripath
   mkdir -p "$out/$c"
 done
@@ -45,21 +52,22 @@ done
 mapfile -t scenes < <(./build-gcc/tripath scenes | awk '{ print $1 }')
 pairs=()
 for scene in "${scenes[@]}"; do
-  for integrator in pt lt bdpt; do
-    for c in gcc clang; do
+  for integrator in pt lt bdpt vcm bpm ppm; do
+    for c in gcc clang gcc-pgo; do
       "./build-$c/tripath" render --scene "$scene" --integrator "$integrator" --spp "$spp" \
         --width "$size" --height "$size" --seed 7 --threads 2 \
         --out "$out/$c/$scene-$integrator.exr" 2>>"$out/$c/render.log" ||
         { tail -n 5 "$out/$c/render.log" >&2; exit 1; }
     done
-    pairs+=("$scene $integrator" "$out/gcc/$scene-$integrator.exr" "$out/clang/$scene-$integrator.exr")
+    pairs+=("$scene $integrator clang" "$out/gcc/$scene-$integrator.exr" "$out/clang/$scene-$integrator.exr")
+    pairs+=("$scene $integrator gcc-pgo" "$out/gcc/$scene-$integrator.exr" "$out/gcc-pgo/$scene-$integrator.exr")
   done
 done
 
-echo "GCC ($(g++ -dumpfullversion)) against Clang ($(clang++ -dumpversion)), ${size}x${size}, $spp spp:"
+echo "GCC ($(g++ -dumpfullversion)) against Clang ($(clang++ -dumpversion)) and against itself profile-guided, ${size}x${size}, $spp spp:"
 if /usr/bin/python3 scripts/exr-identical.py "${pairs[@]}"; then
-  echo "all ${#scenes[@]} scenes x 3 integrators are bit-identical"
+  echo "all ${#scenes[@]} scenes x 6 integrators are bit-identical in all three builds"
 else
-  echo "error: the GCC and Clang builds render different images (rows marked 'differs')" >&2
+  echo "error: the builds render different images (rows marked 'differs')" >&2
   exit 1
 fi
