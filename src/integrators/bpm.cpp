@@ -4,8 +4,9 @@
 // merge radius (paths/merge.h); emitters the camera walk hits count through s = 0. MIS weighs the
 // merges at the different vertices of a path, and s = 0, against each other: no shadow-ray
 // connections at all. Parameters: --max-depth, --rr-depth (default 2), --mis, --radius or
-// --radius-factor, --alpha, --light-paths (N_L, one per pixel by default). Biased for a fixed radius; consistent for α < 1. Direct light comes
-// from merges alone, so it is noisier than any method with next-event estimation.
+// --radius-factor, --alpha, --light-paths (N_L, one per pixel by default). Biased for a fixed
+// radius; consistent for α < 1. Direct light comes from merges alone, so it is noisier than any
+// method with next-event estimation.
 #include "integrators/integrator.h"
 
 namespace tripath {

@@ -5,8 +5,9 @@
 // there; that vertex merges with every stored light vertex of the pass within the merge radius
 // (paths/merge.h). Emitters seen directly or through deltas count through s = 0. Each path has
 // exactly one strategy, so there is nothing to weigh (--mis has no effect). Parameters:
-// --max-depth, --rr-depth (default 2), --radius or --radius-factor, --alpha, --light-paths. Biased for a fixed
-// radius; consistent for α < 1. All indirect light comes from the density estimate, blur included.
+// --max-depth, --rr-depth (default 2), --radius or --radius-factor, --alpha, --light-paths. Biased
+// for a fixed radius; consistent for α < 1. All indirect light comes from the density estimate,
+// blur included.
 #include "integrators/integrator.h"
 
 namespace tripath {
