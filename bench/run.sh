@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The one documented benchmark command (bench/README.md): builds Release into build-bench/ (with
-# the profile-guided optimisation of scripts/build.sh), runs
-# every microbenchmark with JSON to out/bench.json, measures the 1M-triangle scene's memory in a
-# fresh process (out/memory.json), times full 512×512 renders of cornell per integrator
-# (out/render-*.txt), and prints the README's tables (also kept in out/report.md).
+# the profile-guided optimisation of scripts/build.sh), runs every microbenchmark with JSON to
+# out/bench.json, measures the 1M-triangle scene's memory in a fresh process (out/memory.json),
+# times full 512×512 renders of cornell per integrator (out/render-*.txt), and prints the
+# README's tables (also kept in out/report.md).
 #
 # About 6 minutes on the 2-core development machine at load 3, 9 at load 5-8. Knobs:
 #   MIN_TIME=0.5   seconds per benchmark and repetition (Google Benchmark 1.7 takes a bare number)

@@ -3,7 +3,8 @@
 # with a GCC profile of its own training renders (scripts/pgo-profile.sh, made into build/pgo and
 # remade when the sources change; TRIPATH_PGO=0 builds without one). Extra arguments go to CMake.
 # After editing the code, `cmake --build build` rebuilds with the old profile, which GCC applies
-# to the functions that did not change.
+# to the functions that did not change (it warns "Missing counts for called function" about the
+# others: harmless; this script remakes the profile).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh

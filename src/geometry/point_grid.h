@@ -22,6 +22,10 @@
 
 namespace tripath {
 
+// How many query points one call's reads are overlapped for at once (PointGrid::forEachWithin over a
+// span): about what a camera path holds, and as many misses as a core keeps in flight.
+inline constexpr int kPointGridBatch = 16;
+
 template <class Payload>
 class PointGrid {
 public:
@@ -64,7 +68,7 @@ public:
     // waves before they are used -- every bucket's bounds, then the start of every run -- for all
     // the queries at once (at most kBatch at a time): the misses of a camera path's vertices
     // overlap instead of following one another.
-    static constexpr int kBatch = 16;
+    static constexpr int kBatch = kPointGridBatch;
     template <class F>
     void forEachWithin(std::span<const Vec3> qs, F&& f) const {
         if (sorted_.empty()) return;

@@ -76,6 +76,9 @@ public:
     // queries' reads (PointGrid); the vertices found are gathered and their cache lines requested
     // before the first is used: each merge reads a light vertex and its predecessors from anywhere
     // in the store, and waiting for those reads one merge after another took most of a merge's time.
+    // How many query points the grid's reads overlap for at once: a caller gathering points for
+    // forEachWithin gains nothing from more.
+    static constexpr int kQueriesAtOnce = kPointGridBatch;
     template <class F>
     void forEachWithin(std::span<const Vec3> qs, F&& f) const {
         constexpr int kBatch = 32;

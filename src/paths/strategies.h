@@ -48,9 +48,9 @@ void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, std::
 template <class Sink>
 void evaluateMerges(const Scene& scene, const LightVertexSearch& search, const Subpath& camera, int maxDepth,
                     const MisContext& mis, Sink&& sink) {
-    // The camera vertices that merge, queried together (at most kBatch at a time) so that the
-    // range search overlaps their memory reads (LightVertexSearch::forEachWithin).
-    constexpr int kBatch = 16;
+    // The camera vertices that merge, queried together so that the range search overlaps their
+    // memory reads (LightVertexSearch::forEachWithin), as many at a time as it overlaps.
+    constexpr int kBatch = LightVertexSearch::kQueriesAtOnce;
     Vec3 points[kBatch];
     int ts[kBatch];
     const int last = std::min(static_cast<int>(camera.size()), maxDepth);
