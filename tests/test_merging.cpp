@@ -49,6 +49,53 @@ TEST(PointGrid, FindsExactlyThePointsWithinTheRadius) {
     }
 }
 
+// A table of few buckets: nearly every query's rows of cells wrap past the table's end (split in
+// two intervals) and overlap other rows' intervals (merged). Each point within the radius is still
+// found exactly once, against a brute-force scan. Catches a wrapped row read only up to the end,
+// a second piece starting past bucket 0, and overlapping intervals read twice or merged short.
+TEST(PointGrid, RowsWrappingPastTheTableEndAreReadOnce) {
+    Rng rng(7, static_cast<uint64_t>(StreamDomain::Test), 0);
+    const float radius = 0.1f;
+    std::vector<PointGrid<uint32_t>::Entry> points;
+    for (uint32_t i = 0; i < 7; ++i) points.push_back({Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 0.4f, i});
+    const PointGrid<uint32_t> grid(points, radius);
+    int within = 0;
+    for (int q = 0; q < 4000; ++q) {
+        const Vec3 query = points[size_t(q) % points.size()].p + (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - Vec3(0.5f)) * 0.25f;
+        std::vector<int> found(points.size(), 0);
+        grid.forEachWithin(query, [&](uint32_t i) { ++found[i]; });
+        for (size_t i = 0; i < points.size(); ++i) {
+            const bool inside = lengthSquared(points[i].p - query) <= radius * radius;
+            within += inside;
+            ASSERT_EQ(found[i], inside ? 1 : 0) << "query " << q << " point " << i;
+        }
+    }
+    EXPECT_GT(within, 1000);  // the queries do find points
+}
+
+// A grid built from several parts (the light phase's chunks) finds what the grid of their
+// concatenation finds, in the same order: the parts are one sequence, an empty part included.
+TEST(PointGrid, PartsIndexAsTheirConcatenation) {
+    Rng rng(9, static_cast<uint64_t>(StreamDomain::Test), 0);
+    const float radius = 0.05f;
+    std::vector<PointGrid<uint32_t>::Entry> all;
+    for (uint32_t i = 0; i < 3000; ++i) all.push_back({Vec3(rng.uniform(), rng.uniform(), 0.1f * rng.uniform()), i});
+    const std::span<const PointGrid<uint32_t>::Entry> whole(all);
+    const std::vector<std::span<const PointGrid<uint32_t>::Entry>> parts = {whole.subspan(0, 1000), whole.subspan(1000, 0),
+                                                                            whole.subspan(1000)};
+    const PointGrid<uint32_t> one(whole, radius), pieces(parts, radius);
+    size_t found = 0;
+    for (int q = 0; q < 300; ++q) {
+        const Vec3 query(rng.uniform(), rng.uniform(), 0.05f);
+        std::vector<uint32_t> a, b;
+        one.forEachWithin(query, [&](uint32_t i) { a.push_back(i); });
+        pieces.forEachWithin(query, [&](uint32_t i) { b.push_back(i); });
+        EXPECT_EQ(a, b) << "query " << q;
+        found += a.size();
+    }
+    EXPECT_GT(found, 300u);
+}
+
 // Queries asked together (as a camera path's vertices are) find for each query exactly the points
 // a brute-force scan finds within the radius, in the order the query finds them alone: 203 queries
 // span several of the grid's batches and end in a partial one, and neighbouring queries share
@@ -82,7 +129,8 @@ TEST(PointGrid, QueriesAskedTogetherFindWhatEachFindsAlone) {
 }
 
 TEST(PointGrid, EmptyFindsNothing) {
-    const PointGrid<uint32_t> grid({}, 0.5f);
+    const std::vector<PointGrid<uint32_t>::Entry> none;
+    const PointGrid<uint32_t> grid(none, 0.5f);
     int n = 0;
     grid.forEachWithin(Vec3(0.0f), [&](uint32_t) { ++n; });
     EXPECT_EQ(n, 0);

@@ -23,6 +23,8 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     const WalkPdfs pdfs = integrator.strategies().lightWalkPdfs();
     const WalkSettings& walk = integrator.settings().walk;
     store_.reset(paths);
+    const bool merges = radius > 0;
+    mergeable_.resize(merges ? store_.chunks() : 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, store_.chunks(), 1), [&](const tbb::blocked_range<size_t>& r) {
         thread_local Subpath path;
         enrolThread();
@@ -37,12 +39,16 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
                 count(Event::LightVertices, path.size());
                 chunk.append(path);
             }
+            if (merges) {
+                mergeable_[c].clear();
+                LightVertexSearch::mergeable(chunk, mergeable_[c]);
+            }
         }
     });
     pass.light = &store_;
-    if (radius > 0) {
+    if (merges) {
         const PhaseScope scope(Phase::Search);
-        search_.emplace(store_, radius);
+        search_.emplace(mergeable_, radius);
         pass.search = &*search_;
     }
     return pass;

@@ -26,6 +26,7 @@ public:
 
 private:
     LightStore store_;
+    std::vector<std::vector<LightVertexSearch::Entry>> mergeable_;  // per chunk of the store, when merging
     std::optional<LightVertexSearch> search_;
     std::optional<float> firstRadius_;
 };

@@ -31,7 +31,7 @@ namespace tripath {
 
 // |cos θ| at vertex v for the unit direction w: geometric normal, or the sensor's axis;
 // 1 at a point light (it has no surface to foreshorten).
-inline float cosine(const Vertex& v, Vec3 w) { return v.isDeltaLight() ? 1.0f : absDot(v.ng, w); }
+[[gnu::always_inline]] inline float cosine(const Vertex& v, Vec3 w) { return v.isDeltaLight() ? 1.0f : absDot(v.ng, w); }
 
 // The segment between two vertices, its direction and length computed once for the kernels
 // that share it (g, the cosines of ρ or ε, and the area pdfs at either end).

@@ -20,17 +20,18 @@ size_t LightStore::bytes() const {
     return n;
 }
 
-LightVertexSearch::LightVertexSearch(const LightStore& store, float radius) : grid_(mergeable(store), radius) {}
+static std::vector<std::span<const LightVertexSearch::Entry>> spans(std::span<const std::vector<LightVertexSearch::Entry>> chunks) {
+    return {chunks.begin(), chunks.end()};
+}
 
-std::vector<LightVertexSearch::Grid::Entry> LightVertexSearch::mergeable(const LightStore& store) {
-    std::vector<Grid::Entry> out;
-    out.reserve(store.vertices());
-    for (size_t i = 0; i < store.paths(); ++i) {
-        const std::span<const Vertex> path = store.path(i);
+LightVertexSearch::LightVertexSearch(std::span<const std::vector<Entry>> chunks, float radius) : grid_(spans(chunks), radius) {}
+
+void LightVertexSearch::mergeable(const LightStore::Chunk& chunk, std::vector<Entry>& out) {
+    for (size_t i = 0; i < chunk.paths(); ++i) {
+        const std::span<const Vertex> path = chunk.path(i);
         for (size_t j = 1; j < path.size(); ++j)
             if (!path[j].delta) out.push_back({path[j].p, {&path[j], static_cast<uint32_t>(j + 1)}});
     }
-    return out;
 }
 
 }  // namespace tripath

@@ -67,7 +67,19 @@ private:
 // arrives at) that scatter through no delta lobe (a merge evaluates the BSDF there).
 class LightVertexSearch {
 public:
-    LightVertexSearch(const LightStore& store, float radius);
+    struct Candidate {
+        const Vertex* vertex;  // in the store
+        uint32_t s;            // its index in its light subpath, plus one
+    };
+    using Entry = PointGrid<Candidate>::Entry;
+    // Appends the mergeable vertices of one chunk of the store to `out`, in the chunk's order. The
+    // light phase calls it in the task that traced the chunk, while the chunk's vertices are
+    // still in that core's cache: a pass over the whole store after the light phase, in one
+    // thread, cost 1 % of the pass.
+    static void mergeable(const LightStore::Chunk& chunk, std::vector<Entry>& out);
+    // Indexes the mergeable vertices of every chunk of a store (mergeable's output per chunk,
+    // in chunk order) for queries of radius `radius`.
+    LightVertexSearch(std::span<const std::vector<Entry>> chunks, float radius);
     float radius() const { return grid_.radius(); }
     size_t bytes() const { return grid_.bytes(); }
     // Calls f(i, prefix, s) for each mergeable light vertex within the radius of each query point
@@ -109,13 +121,7 @@ public:
     }
 
 private:
-    struct Candidate {
-        const Vertex* vertex;  // in the store
-        uint32_t s;            // its index in its light subpath, plus one
-    };
-    using Grid = PointGrid<Candidate>;
-    static std::vector<Grid::Entry> mergeable(const LightStore& store);
-    Grid grid_;
+    PointGrid<Candidate> grid_;
 };
 
 }  // namespace tripath
