@@ -10,6 +10,7 @@
 // into a stored vertex after the light phase: MIS reads the subpaths and takes what a strategy
 // defines at its junction apart (mis.h), so all threads can share the store.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -105,10 +106,12 @@ public:
             n = 0;
         };
         grid_.forEachWithin(qs, [&](int query, Candidate c) {
-            // The vertex and the one before it: the merge's first reads.
-            __builtin_prefetch(c.vertex);
-            __builtin_prefetch(reinterpret_cast<const char*>(c.vertex) + 64);
-            __builtin_prefetch(c.vertex - 1);
+            // The vertex and the three before it, what a merge and its weight read (merge.cpp,
+            // mis.h): the reference connection's junction, and the weight's steps up to the
+            // vertex whose running sum it takes.
+            const uintptr_t from = reinterpret_cast<uintptr_t>(c.vertex - std::min<uint32_t>(c.s - 1, 3)) & ~uintptr_t(63);
+            for (uintptr_t line = from; line < reinterpret_cast<uintptr_t>(c.vertex + 1); line += 64)
+                __builtin_prefetch(reinterpret_cast<const void*>(line));
             found[n++] = {query, c};
             if (n == kBatch) flush();
         });

@@ -65,7 +65,6 @@ Competition compete(std::span<const Vertex> light, int s, std::span<const Vertex
     const int k = s + t - 1;
     auto lightDelta = [&](int i) { return scattersDelta(light[i], i, k); };
     auto cameraDelta = [&](int i) { return scattersDelta(camera[i], k - i, k); };
-    const bool pointLight = s > 0 && light[0].isDeltaLight();
     const StrategySet strategies = mis.strategies;
     const Roulette& roulette = mis.roulette;
     const bool merges = strategies.merges();
@@ -124,7 +123,9 @@ Competition compete(std::span<const Vertex> light, int s, std::span<const Vertex
         // the merge at y_i adds r times x_i's light-side pdf (own) times η.
         r *= (other * qOther) / own;
         if (merges && i >= 1 && !lightDelta(i)) c.sum += term(mergeTerm(r, own), mis.heuristic);
-        const bool possible = i > 0 ? !lightDelta(i) && !lightDelta(i - 1) : !pointLight;
+        // (y0 is read only here: a merge's light subpath lies anywhere in the store, and with
+        // running sums the walk seldom reaches its start.)
+        const bool possible = i > 0 ? !lightDelta(i) && !lightDelta(i - 1) : !light[0].isDeltaLight();
         if (possible && strategies.enabled(i, s + t - i)) c.sum += term(r, mis.heuristic);
     }
     if (lightStop > 0) c.sum += term(r, mis.heuristic) * light[lightStop - 1].misSum;
