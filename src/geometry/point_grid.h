@@ -4,8 +4,9 @@
 // one radius for the whole pass, so the structure is a hashed uniform grid of cell size 2r built
 // by a counting sort (Georgiev et al.'s choice, and what SmallVCM uses): build is two linear passes
 // with no allocation per point, and a query reads the 2×2×2 cells that cover the ball, in four
-// contiguous runs of points (each two cells next to each other along x: rowOf). A kd-tree (nanoflann) would adapt to uneven density, but its build
-// sorts and its queries walk a tree; with one fixed radius the grid does strictly less work.
+// contiguous runs of points (each two cells next to each other along x: rowOf). A kd-tree
+// (nanoflann) would adapt to uneven density, but its build sorts and its queries walk a tree;
+// with one fixed radius the grid does strictly less work.
 // Hash collisions only add candidates, which the distance test removes; a bucket reached from two
 // of those rows is read once. Each point is stored with its payload (what the caller needs to
 // use it), so a query touches nothing outside the runs it reads. Points keep their input order
@@ -35,7 +36,8 @@ public:
     };
 
     // Indexes `entries` for queries of radius `radius` > 0.
-    PointGrid(std::span<const Entry> entries, float radius) : PointGrid(std::span<const std::span<const Entry>>(&entries, 1), radius) {}
+    PointGrid(std::span<const Entry> entries, float radius)
+        : PointGrid(std::span<const std::span<const Entry>>(&entries, 1), radius) {}
     // The same for the entries of several parts, taken in order as if they were one span.
     PointGrid(std::span<const std::span<const Entry>> parts, float radius) : radius_(radius), invCell_(0.5f / radius) {
         size_t n = 0;

@@ -20,11 +20,16 @@ size_t LightStore::bytes() const {
     return n;
 }
 
-static std::vector<std::span<const LightVertexSearch::Entry>> spans(std::span<const std::vector<LightVertexSearch::Entry>> chunks) {
-    return {chunks.begin(), chunks.end()};
-}
+namespace {
 
-LightVertexSearch::LightVertexSearch(std::span<const std::vector<Entry>> chunks, float radius) : grid_(spans(chunks), radius) {}
+using Entry = LightVertexSearch::Entry;
+
+std::vector<std::span<const Entry>> spans(std::span<const std::vector<Entry>> chunks) { return {chunks.begin(), chunks.end()}; }
+
+}  // namespace
+
+LightVertexSearch::LightVertexSearch(std::span<const std::vector<Entry>> chunks, float radius)
+    : grid_(spans(chunks), radius) {}
 
 void LightVertexSearch::mergeable(const LightStore::Chunk& chunk, std::vector<Entry>& out) {
     for (size_t i = 0; i < chunk.paths(); ++i) {

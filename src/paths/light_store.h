@@ -75,8 +75,8 @@ public:
     using Entry = PointGrid<Candidate>::Entry;
     // Appends the mergeable vertices of one chunk of the store to `out`, in the chunk's order. The
     // light phase calls it in the task that traced the chunk, while the chunk's vertices are
-    // still in that core's cache: a pass over the whole store after the light phase, in one
-    // thread, cost 1 % of the pass.
+    // still in that core's cache: one thread's pass over the whole store after the light phase
+    // took 2.5 % of a two-thread pass on smallvcm-5 (bench/README.md, "Merges that wait less").
     static void mergeable(const LightStore::Chunk& chunk, std::vector<Entry>& out);
     // Indexes the mergeable vertices of every chunk of a store (mergeable's output per chunk,
     // in chunk order) for queries of radius `radius`.
