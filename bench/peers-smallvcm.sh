@@ -17,9 +17,9 @@
 # Knobs: SECONDS_EACH=20, SEED=7 (the runs' seed in both renderers: another seed is another
 # independent run against the same references), OUT=out/peers-smallvcm, TRIPATH=<binary>
 # (default: build Release into build-bench/ as bench/run.sh does, with scripts/build.sh's profile),
-# TRIPATH_REF_SECONDS=600, SMALLVCM_REF_ITERATIONS=800 (SmallVCM bpt at 512², 4 samples per 256² pixel each). References
-# already in OUT are reused; delete them to render new ones. About 3 minutes plus the references
-# on the 2-core machine.
+# TRIPATH_REF_SECONDS=600, SMALLVCM_REF_ITERATIONS=800 (SmallVCM bpt at 512², 4 samples per 256²
+# pixel each). References already in OUT are reused; delete them to render new ones. About 3
+# minutes plus the references on the 2-core machine.
 #
 # SmallVCM's traps, handled here: it ignores OMP_NUM_THREADS (it is pinned with `taskset -c 0,1`
 # and uses what it is given), its -t counts CPU time summed over threads (so it is run for a
