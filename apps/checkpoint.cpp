@@ -101,7 +101,7 @@ RenderResult renderResumable(const Scene& scene, const Integrator& integrator, R
                              const RenderOptions& o, const Resumable& how) {
     const std::string path = checkpointPath(how.out);
     FilmLayers layers = rs.layers;
-    layers.merges = integrator.strategies().merges();
+    layers.strategies = integrator.strategies();
     const Film shape(o.width, o.height, layers);
     // Rank 0 reads the checkpoint (the others may not see its folder) and tells them its counts.
     std::optional<RenderResult> old;

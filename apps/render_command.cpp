@@ -143,9 +143,9 @@ void addRenderCommand(CLI::App& app) {
                   "Also write <out>-k<K>.exr for each path length K = 1..max-depth: the Neumann-series terms, which "
                   "add up to the full image");
     cmd->add_option("--strategy-images", c->options.strategyImages,
-                    "bdpt, vcm, bpm, ppm: also write <out>-s<S>-t<T>-weighted.exr and -unweighted.exr for every "
-                    "connection (s,t) of path length k <= this value (k = s+t-1), and <out>-s<S>-t<T>-merge-*.exr for "
-                    "every merge (k = s+t-2)");
+                    "pt, bdpt, vcm, bpm, ppm: also write <out>-s<S>-t<T>-weighted.exr and -unweighted.exr for every "
+                    "connection (s,t) the integrator has, of path length k <= this value (k = s+t-1; pt has (0,k+1) "
+                    "and (1,k)), and <out>-s<S>-t<T>-merge-*.exr for every merge (k = s+t-2)");
     cmd->add_option("--replay", c->replay,
                     "PASS,PIXEL: render that one sample again (PIXEL = y * width + x; for lt the light path's index) with "
                     "the other flags as given, and print each of its contributions (strategy, f/p, MIS weight), NaN or "

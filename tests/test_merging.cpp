@@ -128,6 +128,47 @@ TEST(PointGrid, QueriesAskedTogetherFindWhatEachFindsAlone) {
     EXPECT_GT(found, queries.size());  // the queries do find points (about 6 each)
 }
 
+// Grids of one, two and three points, some sharing a cell, far from the origin: a table of one or
+// two buckets, smaller than the three cells a query may span along x where p ± r round across two
+// cell boundaries (at x = 1e6 a float's spacing is 0.06 and r = 0.1: a fifth of the queries). Each
+// point within the radius is found exactly once, against a brute-force scan, and no payload is
+// made up. Catches a row of cells wider than the table read past its end: begin_[2] of a
+// one-bucket table, a garbage bound that scripts/test-sanitized.sh reports (the plain build may
+// read a bound that happens to be harmless).
+TEST(PointGrid, TablesSmallerThanAQueryRowFindEachPointOnce) {
+    Rng rng(11, static_cast<uint64_t>(StreamDomain::Test), 0);
+    const float radius = 0.1f;
+    const Vec3 far(1e6f, 0.0f, 0.0f);
+    const std::vector<std::vector<Vec3>> layouts = {
+        {far},
+        {far, far + Vec3(0.125f, 0, 0)},
+        {far, far + Vec3(0.0625f, 0.02f, 0), far + Vec3(-0.125f, 0.05f, 0.03f)},
+        {far, far, far + Vec3(0.0f, 0.0f, 0.01f)},  // one cell holds all three
+    };
+    for (const std::vector<Vec3>& layout : layouts) {
+        std::vector<PointGrid<uint32_t>::Entry> points;
+        for (const Vec3& p : layout) points.push_back({p, static_cast<uint32_t>(points.size())});
+        const PointGrid<uint32_t> grid(points, radius);
+        int within = 0;
+        for (int q = 0; q < 4000; ++q) {
+            const Vec3 query = layout[size_t(q) % layout.size()] + (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - Vec3(0.5f)) * 0.3f;
+            std::vector<int> found(points.size(), 0);
+            bool madeUp = false;
+            grid.forEachWithin(query, [&](uint32_t i) {
+                if (i < found.size()) ++found[i];
+                else madeUp = true;
+            });
+            ASSERT_FALSE(madeUp) << layout.size() << " points, query " << q;
+            for (size_t i = 0; i < points.size(); ++i) {
+                const bool inside = lengthSquared(points[i].p - query) <= radius * radius;
+                within += inside;
+                ASSERT_EQ(found[i], inside ? 1 : 0) << layout.size() << " points, query " << q << " point " << i;
+            }
+        }
+        EXPECT_GT(within, 400) << layout.size() << " points";  // the queries do find points
+    }
+}
+
 TEST(PointGrid, EmptyFindsNothing) {
     const std::vector<PointGrid<uint32_t>::Entry> none;
     const PointGrid<uint32_t> grid(none, 0.5f);

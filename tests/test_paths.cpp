@@ -2,6 +2,8 @@
 // MIS weights checked against a brute-force computation over whole paths.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "integrators/integrator.h"
 #include "paths/connect.h"
 #include "paths/kernels.h"
@@ -182,15 +184,33 @@ std::vector<SampledPath> samplePaths(const Scene& scene, int samples, const MisC
 
 // The oracles run on every material and emitter kind the loader accepts: delta, glossy and diffuse
 // surfaces, emitters of each material (an emissive mirror or pane is a scatterer to the walk that
-// hits it and x0 of the path that ends there), two-sided emitters, point lights, smooth normals.
-std::vector<SceneDesc> oracleScenes() {
-    std::vector<SceneDesc> v;
+// hits it and x0 of the path that ends there), two-sided emitters, point lights, smooth normals;
+// and on the failure scenes, where pdfs span the float range: surfaces in contact, grazing
+// angles, needle and zero-area triangles, a millimetre in ten kilometres, coordinates near 1e6.
+// Light reaches the camera of a failure scene by few paths, so there the tests ask only that some
+// were checked. sds-mirrors is not among them: its light is an SDS caustic under a point light,
+// which no connection samples (its closed form holds the merging integrators, test_sds_analytic).
+struct OracleScene {
+    SceneDesc desc;
+    bool sparse = false;  // a failure scene: few sampled paths carry light
+};
+// Where pdfs are recomputed from a path's points (the brute-force oracles), degenerate-tiny is
+// left out: its hit points on the 10 km ground carry errors of 3e-4 (the float spacing of its
+// vertices at 5000), a tenth of the 3 mm between them and the camera, so a direction recomputed
+// from two points may leave the pixel that sampled it (pdf 0). Comparisons of two computations
+// from the same recorded pdfs (running sums against the walk) run on it.
+enum class Pdfs { FromPoints, Recorded };
+std::vector<OracleScene> oracleScenes(Pdfs pdfs = Pdfs::FromPoints) {
+    std::vector<OracleScene> v;
     for (const char* name : {"cornell", "cornell-spheres", "cornell-small", "cornell-point", "veach-mis", "furnace", "smallvcm-5"})
-        v.push_back(builtinScene(name));
-    v.push_back(cornellTessellated(100));
+        v.push_back({builtinScene(name)});
+    v.push_back({cornellTessellated(100)});
     for (MaterialType type : {MaterialType::Mirror, MaterialType::Dielectric, MaterialType::Conductor})
-        v.push_back(test::cornellEmissive(type));
-    v.push_back(test::everyEmitterKind());
+        v.push_back({test::cornellEmissive(type)});
+    v.push_back({test::everyEmitterKind()});
+    for (const char* name : {"caustic", "caustic-point", "sds", "sds-point", "door-ajar", "contact", "grazing", "degenerate",
+                             "degenerate-tiny", "degenerate-far"})
+        if (pdfs == Pdfs::Recorded || std::string(name) != "degenerate-tiny") v.push_back({builtinScene(name), true});
     return v;
 }
 // The strategy sets the integrators render with, taken from them (so the oracle checks the sets in
@@ -217,9 +237,10 @@ std::vector<float> etasOf(StrategySet set) {
 }
 
 TEST(Mis, ConnectionWeightsMatchBruteForce) {
-    for (const SceneDesc& desc : oracleScenes()) {
+    for (const auto& [desc, sparse] : oracleScenes()) {
         const Scene scene(desc, 24, 24);
         const std::string& name = desc.name;
+        size_t checked = 0;
         for (StrategySet set : kSets)
             for (float eta : etasOf(set))
                 for (MisHeuristic h : kHeuristics) {
@@ -228,9 +249,10 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
                     // The photon-mapping sets connect only s = 0: camera walks that hit an emitter, rarer
                     // (none at all under a point light); their merges are checked below.
                     const auto paths = samplePaths(scene, set.maxS == 0 ? 1000 : 150, mis);
-                    if (set.maxS > 0) {
+                    if (set.maxS > 0 && !sparse) {
                         ASSERT_GT(paths.size(), 20u) << name << " set=" << setName(set);
                     }
+                    checked += paths.size();
                     for (const SampledPath& p : paths) {
                         const double expected = bruteForceWeight(scene, p.x, {p.s, false}, mis);
                         ASSERT_NEAR(p.c.weight, expected, 2e-3 * std::max(1.0, expected))
@@ -238,6 +260,7 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
                             << " h=" << int(h) << " eta=" << eta;
                     }
                 }
+        EXPECT_GT(checked, 0u) << name;
     }
 }
 
@@ -250,7 +273,7 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
 // reads a pdf the junction redefines, or stops a step short.
 TEST(Mis, RunningSumsGiveTheWeightsOfTheFullWalk) {
     constexpr int kMaxDepth = 10;
-    for (const SceneDesc& desc : oracleScenes()) {
+    for (const auto& [desc, sparse] : oracleScenes(Pdfs::Recorded)) {
         const Scene scene(desc, 24, 24);
         int checked = 0;
         for (StrategySet set : kSets) {
@@ -273,6 +296,9 @@ TEST(Mis, RunningSumsGiveTheWeightsOfTheFullWalk) {
                             recordRunningSums(light, true, sums);
                             auto expectSame = [&](const Connection& a, const Connection& b, const char* what, int s, int t) {
                                 if (isBlack(a.unweighted)) return;
+                                ASSERT_EQ(a.weightGuarded, b.weightGuarded)
+                                    << desc.name << " " << what << " s=" << s << " t=" << t << " set=" << setName(set)
+                                    << " rr=" << rrDepth << " eta=" << eta << " h=" << int(h);
                                 ASSERT_NEAR(a.weight, b.weight, 1e-3 * std::max(1.0f, b.weight))
                                     << desc.name << " " << what << " s=" << s << " t=" << t << " set=" << setName(set)
                                     << " rr=" << rrDepth << " eta=" << eta << " h=" << int(h);
@@ -290,7 +316,7 @@ TEST(Mis, RunningSumsGiveTheWeightsOfTheFullWalk) {
                         }
                     }
         }
-        EXPECT_GT(checked, 300) << desc.name;
+        EXPECT_GT(checked, sparse ? 0 : 300) << desc.name;
     }
 }
 
@@ -391,6 +417,32 @@ TEST(Mis, ANonFiniteRatioGivesWeightZeroAndIsReported) {
     }
 }
 
+// A prefix whose running sum overflows, met by a junction whose ratio underflows: (s, t) = (1, 5)
+// with roulette from the first vertex, so the weight steps over z4 and z3 and takes the rest from
+// z2's running sum. z1 is 1e20 times likelier from the light side (its term, squared, is +inf in
+// float), and z4 and z3 are each 1e15 times likelier from the camera (the ratio to them is 1e-30,
+// squared 0). Step by step the ratios meet first: z1's term is (1e-30 · 1e20)² = 1e-20, so the
+// weight is 1 / (1 + 0.25), 0.25 being (1, 5)'s rival on the light side, x0 from x1 (ratio 1/2).
+// Running sums alone form 0 · ∞ and guard the weight to 0.
+TEST(Mis, RunningSumsGiveTheWalksWeightWhereTheirProductsLeaveTheFloatRange) {
+    HandPath h = handPath({1.0f, 1.0f, 1.0f, 1.0f});
+    h.camera[1].pdfRev = 1e20f;
+    h.camera[2].pdfRev = 1.0f;
+    h.junction.cameraEnd = 1e-15f;
+    h.junction.cameraBeforeEnd = 1e-15f;
+    h.junction.lightEnd = 1.0f;
+    MisContext mis{MisHeuristic::Power, StrategySet{}, Roulette{1}};
+    const MisWeight walked = misWeight(h.light, 1, h.camera, 5, h.junction, mis);
+    mis.runningSums = true;
+    recordRunningSums(h.camera, false, mis);
+    recordRunningSums(h.light, true, mis);
+    ASSERT_FALSE(std::isfinite(h.camera[2].misSum));  // the case this test is about
+    const MisWeight summed = misWeight(h.light, 1, h.camera, 5, h.junction, mis);
+    EXPECT_NEAR(walked.value, 0.8, 1e-6);
+    EXPECT_FALSE(walked.guarded);
+    EXPECT_EQ(summed.value, walked.value);
+    EXPECT_FALSE(summed.guarded);
+}
 
 // Re-splits one full path into every strategy (s', t') and runs the production `connect` on each:
 // the weights of the strategies that can sample the path add up to 1.
@@ -439,7 +491,7 @@ Connection mergeAt(const Scene& scene, const Path& x, int j, const MisContext& m
 // force over every strategy of the path. The paths come from bdpt's connections, so they include
 // caustics and specular chains on both sides of the merged vertex.
 TEST(Mis, MergeWeightsMatchBruteForce) {
-    for (const SceneDesc& desc : oracleScenes()) {
+    for (const auto& [desc, sparse] : oracleScenes()) {
         const Scene scene(desc, 24, 24);
         const auto paths = samplePaths(scene, 100, {MisHeuristic::Power, StrategySet{}, Roulette{3}});
         int checked = 0;
@@ -460,7 +512,7 @@ TEST(Mis, MergeWeightsMatchBruteForce) {
                         }
                 }
         }
-        EXPECT_GT(checked, 100) << desc.name;
+        EXPECT_GT(checked, sparse ? 0 : 100) << desc.name;
     }
 }
 
@@ -518,7 +570,7 @@ TEST(Mis, LightTracingsOddsGrowWithTheLightPaths) {
 }
 
 TEST(Mis, EnabledStrategyWeightsSumToOne) {
-    for (const SceneDesc& desc : oracleScenes()) {
+    for (const auto& [desc, sparse] : oracleScenes()) {
         const Scene scene(desc, 24, 24);
         const std::string& name = desc.name;
         for (StrategySet set : kSets)
@@ -569,7 +621,7 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
 // shading correction and the leak mask cuts paths. The camera's pdf per pixel is N times the
 // image pdf.
 TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
-    for (const SceneDesc& desc : oracleScenes()) {
+    for (const auto& [desc, sparse] : oracleScenes()) {
         const Scene scene(desc, 24, 24);
         const MisContext mis{MisHeuristic::Balance, StrategySet{}, Roulette{2}};
         const auto paths = samplePaths(scene, 200, mis);
@@ -586,7 +638,7 @@ TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
                     << desc.name << " s=" << p.s << " t=" << t;
             ++checked;
         }
-        EXPECT_GT(checked, 50) << desc.name;
+        EXPECT_GT(checked, sparse ? 0 : 50) << desc.name;
     }
 }
 

@@ -137,7 +137,8 @@ private:
             lo[a] = cellCoordinate(p[a] - radius_);
             hi[a] = std::min(lo[a] + 2, cellCoordinate(p[a] + radius_));
         }
-        const uint32_t cells = static_cast<uint32_t>(hi[0] - lo[0] + 1), end = mask_ + 1;
+        // A row wider than the table (a table of one or two buckets) reads the whole table once.
+        const uint32_t end = mask_ + 1, cells = std::min(static_cast<uint32_t>(hi[0] - lo[0] + 1), end);
         int n = 0;
         auto add = [&](uint32_t a, uint32_t b) {  // insertion in order of first bucket
             int i = n++;

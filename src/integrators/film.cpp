@@ -11,8 +11,9 @@ Film::Film(int width, int height, FilmLayers layers)
     : width_(width), height_(height), layers_(layers), main_(3 * size_t(width) * height) {
     depth_.assign(std::max(0, layers.depthImages), main_);
     for (int k = 1; k <= layers.strategyLength; ++k) {
-        for (int s = 0; s <= k; ++s) order_.push_back({s, k + 1 - s});  // connections: t ≥ 1
-        if (layers.merges)
+        for (int s = 0; s <= k; ++s)  // connections: t ≥ 1
+            if (layers.strategies.enabled(s, k + 1 - s)) order_.push_back({s, k + 1 - s});
+        if (layers.strategies.merges())
             for (int s = 2; s <= k; ++s) order_.push_back({s, k + 2 - s, true});  // merges: s, t ≥ 2
     }
     for (const Strategy& st : order_) strategy_.emplace(st, std::make_pair(main_, main_));

@@ -21,7 +21,7 @@ namespace tripath {
 struct FilmLayers {
     int depthImages = 0;      // > 0: one layer per path length k = 1..depthImages
     int strategyLength = 0;   // > 0: weighted and unweighted layers per strategy with k ≤ strategyLength
-    bool merges = false;      // the strategy layers include merges (set by the render loop)
+    StrategySet strategies;   // the integrator's: layers only for the strategies it enables (set by the render loop)
 };
 
 class Film {

@@ -232,7 +232,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     const Camera& cam = scene.camera();
     Team& team = settings.team ? *settings.team : solo();
     FilmLayers layers = settings.layers;
-    layers.merges = integrator.strategies().merges();
+    layers.strategies = integrator.strategies();
     RenderResult result{.film = Film(cam.width(), cam.height(), layers)};
     const RenderResult* resume = settings.resume;
     const uint64_t firstPass = resume ? resume->nextPass : settings.firstPass;

@@ -60,8 +60,9 @@ void validate(const RenderRequest& r, Spelling spelling) {
         fail(fmt::format("{} must be above 0 and at most 1 (got {})", name("alpha"), r.merge.alpha));
     if (r.strategyImages < 0 || r.strategyImages > 16)
         fail(fmt::format("{} must be between 0 (none) and 16 (got {})", name("strategy-images"), r.strategyImages));
-    if (r.strategyImages > 0 && (r.integrator == "pt" || r.integrator == "lt"))
-        fail(fmt::format("{} needs the integrator bdpt, vcm, bpm or ppm (pt and lt have no (s,t) to separate)",
+    if (r.strategyImages > 0 && r.integrator == "lt")
+        fail(fmt::format("{} has nothing to separate for lt: its one strategy per path length, (k, 1), is its "
+                         "depth image (--depth-images)",
                          name("strategy-images")));
     parseMisHeuristic(r.mis);
     makeIntegrator(r.integrator, {});

@@ -132,6 +132,19 @@ Competition compete(std::span<const Vertex> light, int s, std::span<const Vertex
     return c;
 }
 
+// compete() with the context's running sums, or step by step where they fail: a sum recorded
+// along a subpath holds products of ratios that the walk from a junction forms only times the
+// junction's own ratio, so a prefix whose sum overflows can meet a junction whose ratio underflows
+// (0 · ∞), where the walk's products stay in range. The step-by-step walk is then the weight.
+Competition competeInRange(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
+                           const Junction& junction, const MisContext& mis, bool countBase) {
+    const Competition c = compete(light, s, camera, t, junction, mis, countBase);
+    if (!mis.runningSums || std::isfinite(c.sum)) return c;
+    MisContext walk = mis;
+    walk.runningSums = false;
+    return compete(light, s, camera, t, junction, walk, countBase);
+}
+
 }  // namespace
 
 bool canUseRunningSums(const MisContext& mis) {
@@ -187,7 +200,7 @@ MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex
                     const Junction& junction, const MisContext& mis) {
     if (mis.strategies.uniqueStrategy()) return firstHitWeight(camera, t);
     const PhaseScope scope(Phase::Mis);
-    const Competition c = compete(light, s, camera, t, junction, mis, true);
+    const Competition c = competeInRange(light, s, camera, t, junction, mis, true);
     if (!std::isfinite(c.sum)) return {0.0f, true};
     return {1.0f / c.sum, false};
 }
@@ -201,7 +214,7 @@ MisWeight mergeWeight(std::span<const Vertex> light, int s, std::span<const Vert
     // happen only where it does not -- but y_{s−2} may).
     const int k = s + t - 2;
     const bool base = mis.strategies.enabled(s - 1, t) && !scattersDelta(light[s - 2], s - 2, k);
-    const Competition c = compete(light, s - 1, camera, t, junction, mis, base);
+    const Competition c = competeInRange(light, s - 1, camera, t, junction, mis, base);
     if (!std::isfinite(c.sum)) return {0.0f, true};
     if (!(c.mergeAtCameraEnd > 0)) return {0.0f, false};  // a zero pdf: this merge cannot sample the path
     return {term(c.mergeAtCameraEnd, mis.heuristic) / c.sum, false};
