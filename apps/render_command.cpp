@@ -147,7 +147,7 @@ void addRenderCommand(CLI::App& app) {
                     "connection (s,t) the integrator has, of path length k <= this value (k = s+t-1; pt has (0,k+1) "
                     "and (1,k)), and <out>-s<S>-t<T>-merge-*.exr for every merge (k = s+t-2)");
     cmd->add_option("--replay", c->replay,
-                    "PASS,PIXEL: render that one sample again (PIXEL = y * width + x; for lt the light path's index) with "
+                    "PASS,PIXEL: render that one sample again (PIXEL = y * width + x; for lt that pixel's light paths PIXEL, PIXEL + width * height, ...) with "
                     "the other flags as given, and print each of its contributions (strategy, f/p, MIS weight), NaN or "
                     "infinite ones marked; writes no image (--out is still required). A render that drops NaN/Inf "
                     "samples prints the first ones' PASS,PIXEL");

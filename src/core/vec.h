@@ -49,7 +49,8 @@ inline Vec3 max(Vec3 a, Vec3 b) { return {std::max(a.x, b.x), std::max(a.y, b.y)
 inline float maxComponent(Vec3 a) { return std::max(a.x, std::max(a.y, a.z)); }
 inline bool isBlack(Spectrum s) { return s.x == 0 && s.y == 0 && s.z == 0; }
 inline bool isFinite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
-// Rec. 709 luminance: used to weigh emitters by power and for Russian roulette.
+// Rec. 709 luminance: used to weigh emitters by power (Russian roulette bounds a material by its
+// albedo's largest component instead: roulette.h).
 inline float luminance(Spectrum s) { return 0.2126f * s.x + 0.7152f * s.y + 0.0722f * s.z; }
 inline float average(Spectrum s) { return (s.x + s.y + s.z) / 3.0f; }
 

@@ -27,11 +27,12 @@ constexpr int kPassesPerBlock = 4;
 
 struct RenderResult;
 
-// A camera sample (for lt: a light path) that made a NaN or infinite contribution, which the film
-// dropped: enough to render that one sample again with replaySample. A render keeps the first few.
+// A pixel's sample that made a NaN or infinite contribution, which the film dropped: enough to
+// render that one sample again with replaySample. A render keeps the first few. For lt the sample
+// is the pixel's share of the pass's light paths (Integrator::splatLightPaths).
 struct DroppedSample {
     uint64_t pass = 0;
-    int pixel = 0;  // y · width + x (lt: the light path's index in its pass)
+    int pixel = 0;  // y · width + x of the sample (lt too: its light paths are pixel, pixel + P, …)
 };
 constexpr size_t kDroppedLogSize = 16;
 
@@ -87,8 +88,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
 
 // Renders camera sample (pass, pixel) of a render with these settings again, exactly as render()
 // did (after the light phase of its pass, when the integrator has one), and hands each of its
-// contributions to `sink`, finite or not: `tripath render --replay`. For lt, `pixel` is the light
-// path's index.
+// contributions to `sink`, finite or not: `tripath render --replay`. For lt, the pixel's sample
+// is its light paths pixel, pixel + P, … below N_L (P pixels), each joined to the sensor.
 void replaySample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, uint64_t pass, int pixel,
                   ContributionSink& sink);
 

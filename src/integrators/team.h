@@ -1,8 +1,8 @@
 // The processes that share one render. The render loop (render.h) deals canonical blocks of passes
 // out to them round by round and asks the team, at each round's end, whether any of them must
 // stop; at the end it adds their films into rank 0's. Comparisons (evaluation/) deal whole runs
-// out and gather them as bytes. One process is a team of one (`solo()`);
-// under mpirun the command line passes apps/mpi_team.cpp's, so that this layer knows nothing of
+// out and gather them as bytes. One process is a team of one (`solo()`); under mpirun the command
+// line passes the team of its MPI ranks (apps/processes.h), so that this layer knows nothing of
 // MPI and a render gives the same bits whichever team renders it.
 #pragma once
 #include <cstdint>
