@@ -1,4 +1,4 @@
-// What distributed rendering adds to every render (issue "distributed rendering", §2 and §5): the
+// What distributed rendering adds to every render: the
 // exact film totals that make N processes give one process's bits.
 //
 //   film/end_block/<W>x<H>   folding one block of passes (its double sums) into the exact
