@@ -1,6 +1,6 @@
-// What the bench files share: scenes built once per process and cached, the one parallel harness
-// that both the whole-sample and the ray-ceiling benchmarks run in (so their rays/s compare like
-// with like), per-thread ray counters, and readings of /proc/self/status.
+// What the bench files share: scenes built once per process and cached, the TBB arena per thread
+// count that both the whole-sample and the ray-ceiling benchmarks run in (so their rays/s compare
+// like with like), per-thread ray counters, and readings of /proc/self/status.
 #pragma once
 #include <tbb/task_arena.h>
 

@@ -1,6 +1,6 @@
-// Vertex merging's costs (issue "vertex merging", §8): the light phase that every bidirectional
-// pass runs first (light paths traced, stored and indexed), the range query, the merges a vcm
-// sample makes, and whole vcm / bpm / ppm passes next to bdpt's, at 512² and at 1920×1080.
+// Vertex merging's costs: the light phase that every bidirectional pass runs first (light paths
+// traced, stored and indexed), the range query, the merges a vcm sample makes, and whole vcm /
+// bpm / ppm passes next to bdpt's, at 512² and at 1920×1080.
 //
 //   merging/light_phase/<scene>/<W>x<H>   one light phase of vcm at the default radius (2 threads):
 //                                         light paths/s, stored vertices per path, store bytes per

@@ -7,7 +7,7 @@
 // While a thread has a recorder set (replay.cpp), its rays are also appended there as Embree got
 // them, and replayEmbree casts such a list through the real functions alone.
 //
-// The brief's estimate (vertices + delivered connections) misses rays that leave the scene and
+// The rays_est estimate (vertices + delivered connections) misses rays that leave the scene and
 // shadow rays that turn out blocked; samples.cpp reports both so the README can show the gap.
 #include <dlfcn.h>
 #include <embree3/rtcore.h>

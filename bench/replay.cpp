@@ -1,4 +1,4 @@
-// The ceiling on the renderer's own rays (issue 13 §1). ceiling.cpp casts random rays; a render's
+// The ceiling on the renderer's own rays. ceiling.cpp casts random rays; a render's
 // rays are not random (they start on surfaces, many are short shadow rays, camera rays are
 // coherent), so "fraction of the ceiling" is only meaningful for the same rays. Here one pass of
 // the production render loop (render(): light phase, camera samples, film) is recorded ray by ray
@@ -148,7 +148,7 @@ uint32_t morton(Vec3 p, Vec3 lo, Vec3 hi) {
     return spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2;
 }
 
-// The most a wavefront could gain in Embree (issue 13: "what it would take"). One pass's rays,
+// The most a wavefront could gain in Embree. One pass's rays,
 // recorded on one thread, are split by kind into queues of kChunk rays in the order they were
 // cast (a wavefront's queue of a few tiles' rays); each queue is sorted as a wavefront with ray
 // sorting would sort it -- by direction octant, then by the Morton order of the origin in the

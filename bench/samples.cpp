@@ -1,5 +1,5 @@
 // Whole samples: a camera subpath, a light subpath, and one pt / lt / bdpt sample, on the scenes
-// the issue names, at max-depth 8 (the depth the targets are stated at), on 1 and 2 threads.
+// of sampleScenes(), at max-depth 8 (the depth of bench/README.md's targets), on 1 and 2 threads.
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>

@@ -2,8 +2,8 @@
 // evaluation.cpp). `render` fills the library's
 // render request (integrators/render_request.h) from its keyword arguments, so the same settings
 // give the same bits as `tripath render`, and bad values are refused with the same reasons (as
-// ValueError, in Python's spelling of the parameters). The image comes back as a NumPy array over
-// the film's own memory, without a copy. The GIL is released while rendering; between passes the
+// ValueError, in Python's spelling of the parameters). The image comes back as a NumPy array that
+// owns the image's pixels, without a copy. The GIL is released while rendering; between passes the
 // render takes it back to run the progress callback and Python's signal handlers, so Ctrl-C stops
 // the render at the next pass and the partial image is returned.
 #include "module.h"

@@ -1,4 +1,4 @@
-// Where a render's work and time go (issue 13 §1): event counters that are always on, and phase
+// Where a render's work and time go: event counters that are always on, and phase
 // sampling that runs only when asked for (`tripath render --stats`).
 //
 // Counters. Each thread counts into its own thread-local array (an increment is one instruction:
@@ -11,7 +11,7 @@
 //
 // Phases. With timing on, each thread keeps a tag of the phase it is in (a PhaseScope sets it and
 // puts the outer one back, so phases are exclusive: a shadow ray cast inside a connection is
-// traversal, not connection), and a profiling timer (SIGPROF every millisecond of the process's
+// traversal, not sampling), and a profiling timer (SIGPROF every millisecond of the process's
 // CPU time) samples the tag of the thread that is running. The shares of the samples are the
 // shares of CPU time, to within the sampling error (about 1/sqrt(samples), which the report
 // shows). Tagging is one load and two stores per scope, so the render runs at its own speed;

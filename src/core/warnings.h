@@ -1,5 +1,6 @@
 // Warnings about input that was accepted but not fully used (ignored glTF features, dropped
-// triangles): reported through a sink so tests can capture them; each kind once.
+// triangles): reported through a sink so tests can capture them (the glTF loader sends each
+// distinct message once).
 #pragma once
 #include <functional>
 #include <string>

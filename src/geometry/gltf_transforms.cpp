@@ -1,6 +1,6 @@
 // Node transforms in glm (gltf_transforms.h). glm supplies the types, products, determinant and
 // quaternion rotation; where its own operators would add in another order or move signs of
-// zero, the functions below say so and keep the loader's earlier arithmetic.
+// zero, the functions below say so and fix the order and the signs themselves.
 #include "geometry/gltf_transforms.h"
 
 #include <glm/gtc/matrix_access.hpp>

@@ -1,8 +1,8 @@
 // Node transforms of the glTF loader, in glm's double precision: a node's own transform
 // (node.matrix, or translation × rotation × scale), their composition down the node hierarchy,
-// and what meshes, cameras and lights take from the result. The arithmetic is the loader's
-// hand-written 4×4 code's, bit for bit: the scene files render the same, and zero components
-// keep their sign (gltf_transforms.cpp says where glm's own order would differ). A header of
+// and what meshes, cameras and lights take from the result. The sums run in a fixed order and
+// zero components keep their sign, which the tangent frames built around normals see
+// (gltf_transforms.cpp says where glm's own order would differ). A header of
 // the geometry library's own (the loader's interface is gltf_loader.h).
 #pragma once
 #include <glm/glm.hpp>

@@ -1,5 +1,5 @@
 // Float RGB images and their file I/O (OpenEXR for data, PNG for previews).
-// OpenImageIO stays private to image.cpp so that the rest of the renderer
+// OpenImageIO stays private to image.cpp (and text.cpp) so that the rest of the renderer
 // does not pay its compile cost or inherit its headers.
 #pragma once
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Escaping text for HTML and SVG, which the compare report and the charts both write.
+// Escaping text for HTML, which the comparison's and the benchmark's report pages write.
 #pragma once
 #include <string>
 

@@ -1,7 +1,7 @@
 // The film: sums of contributions per pixel, with optional per-path-length (Neumann series term)
 // and per-strategy layers. A pixel's value is its sum over the number of passes: a camera sample
-// and a splat are both estimates over one sample per pixel per pass (a pass traces one light path
-// per pixel), so one accumulator serves both.
+// and a splat are both estimates over one sample per pixel per pass (the render loop weighs each
+// splat by 1/N_L, N_L the pass's light paths), so one accumulator serves both.
 //
 // Each sum has two parts: the current block of passes, added in double in the render loop's fixed
 // order, and the exact total of the finished blocks (exact_sum.h), to which endBlock() moves it.

@@ -1,4 +1,4 @@
-// The kernels of the three-point form (DESIGN.md §1, seeds/000 §2–4), as every walk, connection
+// The kernels of the three-point form (DESIGN.md §1), as every walk, connection
 // and merge evaluates them:
 //
 //   g(x, x')            = V(x, x') / |x − x'|²                              [1/m²]

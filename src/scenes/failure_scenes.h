@@ -1,5 +1,5 @@
-// Built-in scenes where light-transport methods fail, each for a reason that is known in advance
-// (issue 6, "Stability where methods fail"). They are registered with the other built-ins
+// Built-in scenes where light-transport methods fail, each for a reason that is known in advance.
+// They are registered with the other built-ins
 // (builtin_scenes.cpp) and exported as scenes/<name>.gltf; tests/test_stability.cpp renders each
 // with every integrator and checks what must hold (no NaN, bounded work, agreement where a method
 // can sample the light, black where it provably cannot); docs/failures.md tabulates the errors.
