@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Fuzzes the glTF loader and Scene construction (fuzz/gltf_fuzzer.cpp) with libFuzzer and
-# AddressSanitizer, at the lowest CPU priority.
+# Fuzzes the glTF loader, Scene construction and a vcm pass over the scene (fuzz/gltf_fuzzer.cpp)
+# with libFuzzer and AddressSanitizer, at the lowest CPU priority.
 #
 #   scripts/fuzz-gltf.sh [SECONDS]      default 600
 #   KEEP_GOING=1 scripts/fuzz-gltf.sh   fork mode: save each crash, hang or OOM and carry on
@@ -10,7 +10,9 @@
 # build-fuzz/ (-DTRIPATH_FUZZ=ON). The seed corpus is scenes/*.gltf plus fuzz/seeds/ (a .glb and
 # small hand-made files); the growing corpus lives in build-fuzz/corpus/. Crashes, hangs
 # (-timeout) and out-of-memory inputs are written to build-fuzz/artifacts/: copy each into
-# tests/data/fuzz/ once the bug is fixed, where Fuzz.SavedInputsLoadOrFailCleanly replays it.
+# tests/data/fuzz/ once the bug is fixed, where Fuzz.EntryPointSurvivesEverySavedFind
+# (tests/test_fuzz_inputs.cpp) feeds it to the same entry point, as it feeds the seeds, in the
+# ordinary test build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-600}"

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "scenes/builtin_scenes.h"
 #include "geometry/point_grid.h"
 #include "core/rng.h"
+#include "image/bias.h"
 #include "integrators/integrator.h"
 #include "support.h"
 
@@ -245,50 +247,76 @@ RenderRequest request(const std::string& integrator, int spp, float radiusFactor
     return r;
 }
 
+// Block-by-block comparisons of pairs of renders, judged together: Welch's t-test of each block's
+// run means (image/bias.h), Holm-corrected over every comparison made, so that the chance of any
+// false alarm between unbiased renderers is at most 1 % (if the run means are normal), as in
+// Agreement.* (test_integrators.cpp). With 16 blocks Holm's first threshold, 0.01/16, is |t| ≈ 4.
+class BlockAgreement {
+public:
+    void compare(const Runs& a, const Runs& b, const std::string& what) {
+        for (int block = 0; block < 16; ++block)
+            comparisons_.push_back({what + ", block " + std::to_string(block), meanAndError(a.blocks[block]),
+                                    meanAndError(b.blocks[block]), welchTest(a.blocks[block], b.blocks[block])});
+    }
+    void expectNoBias() const {
+        std::vector<double> p;
+        for (const Comparison& c : comparisons_) p.push_back(c.test.p);
+        const std::vector<bool> biased = holmSignificant(p, 0.01);
+        for (size_t i = 0; i < comparisons_.size(); ++i) {
+            const Comparison& c = comparisons_[i];
+            EXPECT_FALSE(biased[i]) << c.what << ": " << c.a.mean << " ± " << c.a.stderr_ << " against " << c.b.mean
+                                    << " ± " << c.b.stderr_ << " (t = " << c.test.t << ", p = " << c.test.p << ")";
+        }
+    }
+
+private:
+    struct Comparison {
+        std::string what;
+        test::MeanError a, b;
+        WelchTest test;
+    };
+    std::vector<Comparison> comparisons_;
+};
+
 // vcm with a small radius agrees with bdpt on every block within statistical error: merges only
 // add strategies, and where connections sample a path well, MIS gives merges little weight (and
-// their bias with it). |Δ| < 5σ per block (16 blocks, 15 degrees of freedom). Catches merges whose
-// weights do not compete with the connections' (a merge weight fixed at 0.5 fails all three) and
-// a vcm that pairs or connects its subpaths otherwise than bdpt. Too weak for the connections
-// ignoring the merges' terms (merges counted twice): at this radius their share is under the
-// noise; the furnace and Merging.BiasShrinksWithTheRadius* catch that one.
+// their bias with it). Catches merges whose weights do not compete with the connections' (a merge
+// weight fixed at 0.5 fails all three) and a vcm that pairs or connects its subpaths otherwise
+// than bdpt. Too weak for the connections ignoring the merges' terms (merges counted twice): at
+// this radius their share is under the noise; the furnace and Merging.BiasShrinksWithTheRadius*
+// catch that one.
 void expectVcmAgreesWithBdpt(const std::string& name) {
     const SceneDesc desc = builtinScene(name);
     const Runs bdpt = renderRuns(desc, request("bdpt", 8, 0, 1), 16);
     const Runs vcm = renderRuns(desc, request("vcm", 8, 0.005f, 0.75f), 16);
-    for (int b = 0; b < 16; ++b) {
-        const auto a = meanAndError(bdpt.blocks[b]), v = meanAndError(vcm.blocks[b]);
-        EXPECT_LT(std::abs(a.mean - v.mean), 5 * std::hypot(a.stderr_, v.stderr_) + 1e-6)
-            << name << " block " << b << ": bdpt " << a.mean << " ± " << a.stderr_ << ", vcm " << v.mean << " ± " << v.stderr_;
-    }
+    BlockAgreement agreement;
+    agreement.compare(bdpt, vcm, name + ": bdpt against vcm");
+    agreement.expectNoBias();
 }
 
 TEST(Merging, VcmAgreesWithBdptOnCornell) { expectVcmAgreesWithBdpt("cornell"); }
 
 // With N_L other than the 1024 pixels -- 341 light paths a pass, and 2560 -- bdpt and vcm still
-// agree with bdpt at one per pixel on every block, |Δ| < 5σ, and lt with lt at one per pixel (it
-// cannot see the light or the spheres' reflections). Catches the count entering the MIS weights,
-// the splats or the merges' η inconsistently (the furnace, whose light is uniform, cannot see a
-// weight that is off in one direction and compensated in another), and camera samples connecting
-// with a light path other than their own index modulo N_L.
+// agree with bdpt at one per pixel on every block, and lt with lt at one per pixel (it cannot see
+// the light or the spheres' reflections); the 96 comparisons are judged together. Catches the
+// count entering the MIS weights, the splats or the merges' η inconsistently (the furnace, whose
+// light is uniform, cannot see a weight that is off in one direction and compensated in another),
+// and camera samples connecting with a light path other than their own index modulo N_L.
 TEST(Merging, AnyNumberOfLightPathsAgreesWithOnePerPixel) {
     const SceneDesc desc = builtinScene("cornell-spheres");
     const Runs bdpt = renderRuns(desc, request("bdpt", 8, 0, 1), 16);
     const Runs lt = renderRuns(desc, request("lt", 8, 0, 1), 16);
+    BlockAgreement agreement;
     for (const int lightPaths : {341, 2560})
         for (const std::string integrator : {"lt", "bdpt", "vcm"}) {
             RenderRequest r = request(integrator, 8, 0.005f, 0.75f);
             r.lightPaths = lightPaths;
             r.lightPathsGiven = true;
-            const Runs runs = renderRuns(desc, r, 16);
             const Runs& reference = integrator == "lt" ? lt : bdpt;
-            for (int b = 0; b < 16; ++b) {
-                const auto a = meanAndError(reference.blocks[b]), v = meanAndError(runs.blocks[b]);
-                EXPECT_LT(std::abs(a.mean - v.mean), 5 * std::hypot(a.stderr_, v.stderr_) + 1e-6)
-                    << integrator << " with " << lightPaths << " light paths, block " << b << ": one per pixel "
-                    << a.mean << " ± " << a.stderr_ << ", " << lightPaths << ": " << v.mean << " ± " << v.stderr_;
-            }
+            const std::string what = "one per pixel against " + integrator + " with " + std::to_string(lightPaths);
+            agreement.compare(reference, renderRuns(desc, r, 16), what + " light paths");
         }
+    agreement.expectNoBias();
 }
 TEST(Merging, VcmAgreesWithBdptOnCornellSpheres) { expectVcmAgreesWithBdpt("cornell-spheres"); }
 TEST(Merging, VcmAgreesWithBdptOnVeachMis) { expectVcmAgreesWithBdpt("veach-mis"); }
