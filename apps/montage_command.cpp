@@ -1,15 +1,21 @@
 // `tripath montage`: a labelled grid of EXR renders in one PNG (the contact sheet of
 // docs/failures.md). Each row is scaled by one factor, so the methods in a row stay comparable
-// while rows of very different brightness (a caustic, a dim room) are each readable.
+// while rows of very different brightness (a caustic, a dim room) are each readable. The factor
+// is the smallest of the row's images' own (each maps a luminance percentile of that image to
+// white), so that no image is blown out by another's darkness: a method that renders a scene
+// black (pt on sds-mirrors) neither sets its row's scale nor goes unnoticed (a warning names it).
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
 #include "commands.h"
 #include "core/error.h"
+#include "core/warnings.h"
 #include "image/draw.h"
+#include "image/exposure.h"
 #include "image/image.h"
 #include "image/text.h"
 #include "render_options.h"
@@ -25,7 +31,7 @@ struct MontageCommand {
     int scale = 1;
     int shrink = 1;
     std::string columnLabels, rowLabels;
-    float percentile = 0.98f;
+    float percentile = kAutoExposurePercentile;
 };
 
 // Averages each shrink × shrink block into one pixel (a box filter), for a sheet small enough to
@@ -44,19 +50,22 @@ Image shrinkImage(const Image& img, int shrink) {
     return out;
 }
 
-// The factor that maps the given luminance percentile of `img` to 1 (white after sRGB); 1 for a
-// black image.
-float rowScale(const Image& img, float percentile) {
-    std::vector<float> lum;
-    for (size_t i = 0; i < img.pixelCount(); ++i) {
-        const float* p = img.rgb.data() + 3 * i;
-        const float l = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
-        if (std::isfinite(l)) lum.push_back(l);
+// The factor of the row of images [first, end): the smallest of their own factors, each the one
+// that maps the image's luminance percentile to 1 (white after sRGB). A black image has none and
+// is warned about; a row of black images keeps factor 1.
+float rowScale(const std::vector<Image>& images, const std::vector<std::string>& paths, size_t first, size_t end,
+               float percentile) {
+    float scale = 0;
+    for (size_t i = first; i < end; ++i) {
+        const float white = luminancePercentile(images[i], percentile);
+        if (white > 0) {
+            scale = scale > 0 ? std::min(scale, 1.0f / white) : 1.0f / white;
+        } else {
+            printWarning(paths[i] + ": the image is black (no pixel of finite luminance above 0); it does not set "
+                         "its row's scale");
+        }
     }
-    if (lum.empty()) return 1.0f;
-    const size_t k = std::min(lum.size() - 1, static_cast<size_t>(percentile * lum.size()));
-    std::nth_element(lum.begin(), lum.begin() + static_cast<long>(k), lum.end());
-    return lum[k] > 0 ? 1.0f / lum[k] : 1.0f;
+    return scale > 0 ? scale : 1.0f;
 }
 
 void run(const MontageCommand& c) {
@@ -96,7 +105,9 @@ void run(const MontageCommand& c) {
     for (int r = 0; r < rows; ++r) {
         const int y = top + r * (cellH + gap);
         if (r < static_cast<int>(rowLabels.size())) drawText(sheet, 4, y + cellH / 2 + 5, rowLabels[r], style);
-        const float k = rowScale(images[static_cast<size_t>(r * c.columns)], c.percentile);
+        const size_t first = static_cast<size_t>(r * c.columns);
+        const float k = rowScale(images, c.inputs, first, std::min(images.size(), first + size_t(c.columns)),
+                                 c.percentile);
         for (int col = 0; col < c.columns; ++col) {
             const size_t i = static_cast<size_t>(r * c.columns + col);
             if (i >= images.size()) break;
@@ -124,7 +135,9 @@ void addMontageCommand(CLI::App& app) {
     cmd->add_option("--column-labels", c->columnLabels, "Comma-separated labels above the columns");
     cmd->add_option("--row-labels", c->rowLabels, "Comma-separated labels left of the rows");
     cmd->add_option("--percentile", c->percentile,
-                    "Each row is scaled so that this luminance percentile of its first image is white")
+                    "Each row is scaled by one factor: the smallest of those that map this luminance percentile "
+                    "(of the pixels above 0) of each of its images to white, so that no image is blown out; black "
+                    "images are warned about and do not count")
         ->capture_default_str();
     cmd->callback([c] { run(*c); });
 }

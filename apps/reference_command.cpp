@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "geometry/embree_isa.h"
 #include "core/error.h"
+#include "image/exposure.h"
 #include "processes.h"
 #include "evaluation/reference_file.h"
 #include "render_options.h"
@@ -139,7 +140,7 @@ void run(const ReferenceCommand& c) {
                                  c.out, spp, seconds);
     }
     writeExr(c.out, image, meta);
-    if (!c.png.empty()) writePng(c.png, image);
+    if (!c.png.empty()) writePreviewPng(c.png, image, std::nullopt);
     std::cerr << "wrote " << c.out << (c.png.empty() ? "" : " and " + c.png) << "\n";
 }
 
@@ -159,7 +160,9 @@ void addReferenceCommand(CLI::App& app) {
                     "Reference EXR. If it exists (same scene, integrator, size, max depth, RR depth, MIS and seed), "
                     "the new samples are added to it and its spp and seconds become the totals")
         ->required();
-    cmd->add_option("--png", c->png, "Also write an sRGB PNG preview of the (combined) reference here");
+    cmd->add_option("--png", c->png,
+                    "Also write an sRGB PNG preview of the (combined) reference here, exposed from the image as "
+                    "render's --png is without --exposure");
     cmd->callback([c] { run(*c); });
 }
 

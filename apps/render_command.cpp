@@ -4,10 +4,12 @@
 #include <filesystem>
 #include <charconv>
 #include <iostream>
+#include <optional>
 
 #include "checkpoint.h"
 #include "commands.h"
 #include "core/error.h"
+#include "image/exposure.h"
 #include "processes.h"
 #include "render_options.h"
 
@@ -19,7 +21,7 @@ struct RenderCommand {
     RenderOptions options;
     std::string out, png;
     std::string replay;  // --replay PASS,PIXEL
-    float exposure = 0;
+    std::optional<float> exposure;  // none: exposed from the image (image/exposure.h)
 };
 
 // "<dir>/<stem><suffix>.exr" beside the main output.
@@ -41,7 +43,7 @@ void validate(const RenderCommand& c) {
 
 void write(const RenderCommand& c, const RenderSettings& rs, const Metadata& meta, const RenderResult& r) {
     writeExr(c.out, r.image(), meta);
-    if (!c.png.empty()) writePng(c.png, r.image(), c.exposure);
+    if (!c.png.empty()) writePreviewPng(c.png, r.image(), c.exposure);
     for (int k = 1; k <= rs.layers.depthImages; ++k) writeExr(sibling(c.out, fmt::format("-k{}", k)), r.film.depthImage(k, r.passes), meta);
     for (const Strategy& st : r.film.strategies()) {
         const std::string name = fmt::format("-s{}-t{}{}", st.s, st.t, st.merge ? "-merge" : "");
@@ -138,7 +140,9 @@ void addRenderCommand(CLI::App& app) {
     addRenderOptions(*cmd, c->options);
     cmd->add_option("--out", c->out, "Output EXR: linear radiance, 32-bit float, with the settings as metadata")->required();
     cmd->add_option("--png", c->png, "Also write an sRGB PNG preview here");
-    cmd->add_option("--exposure", c->exposure, "PNG exposure in stops (the EXR is never scaled)")->capture_default_str();
+    cmd->add_option("--exposure", c->exposure,
+                    "PNG exposure in stops (the EXR is never scaled); without it the PNG is exposed from the image: "
+                    "the 98th luminance percentile of its pixels above 0 maps to white, in whole thirds of a stop");
     cmd->add_flag("--depth-images", c->options.depthImages,
                   "Also write <out>-k<K>.exr for each path length K = 1..max-depth: the Neumann-series terms, which "
                   "add up to the full image");

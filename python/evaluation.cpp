@@ -112,11 +112,13 @@ py::list runRows(const std::vector<evaluation::Run>& runs) {
     return rows;
 }
 
-py::dict compareScene(PyScene& scene, double seconds, const std::vector<std::string>& integrators, int runs,
-                      const py::object& reference, const std::string& referenceIntegrator,
+py::dict compareScene(const py::object& sceneArgument, double seconds, const std::vector<std::string>& integrators,
+                      int runs, const py::object& reference, const std::string& referenceIntegrator,
                       std::optional<double> referenceSeconds, const std::string& out, int width, int height, uint64_t seed,
                       int maxDepth, const std::string& mis, int threads, std::optional<std::array<int, 4>> crop,
                       const Progress& progress, bool verbose, const py::kwargs& options) {
+    const SceneArgument argument(sceneArgument);
+    PyScene& scene = *argument;
     evaluation::CompareRequest r;
     r.render = requestOf(scene.name(), scene.gltf(), integrators.empty() ? "bdpt" : integrators.front(), width, height,
                          seed, maxDepth, mis, threads, options);
@@ -215,17 +217,17 @@ void defineEvaluation(py::module_& m) {
           py::arg("height") = 512, py::arg("seed") = 1, py::arg("max_depth") = 16, py::arg("mis") = "power",
           py::arg("threads") = 0, py::arg("crop") = py::none(), py::arg("progress") = py::none(),
           py::arg("verbose") = false,
-          "Renders scene with each of integrators for the same wall-clock time (seconds each; runs independent runs "
-          "with seeds seed, seed+1, ...) and measures their error against a reference at checkpoints spaced "
-          "logarithmically in time, as `tripath compare` does. reference: an EXR path, an array (height x width x 3), "
-          "or None to render one with reference_integrator for reference_seconds (default 10 x seconds) in the "
-          "reference streams. out: a directory for the full report (error.csv, chart, images, index.html); none by "
-          "default. Returns a dict: summary (a row per integrator: relmse (mean over runs), relmse_sd, mse, mae, "
-          "tail_share, hdr_flip, spp, seconds, relmse_x_spp, efficiency, time_to_best, rays_per_s), checkpoints (the "
-          "rows of error.csv), runs (per run: counters), images (run 0's image per integrator), reference, "
-          "reference_description, report (out's index.html or None). progress(label, passes, seconds) is called after "
-          "each pass of each render; verbose prints what the command line prints. Ctrl-C raises KeyboardInterrupt at "
-          "the next pass. Keyword options as for render().");
+          "Renders scene (as for render()) with each of integrators for the same wall-clock time (seconds each; "
+          "runs independent runs with seeds seed, seed+1, ...) and measures their error against a reference at "
+          "checkpoints spaced logarithmically in time, as `tripath compare` does. reference: an EXR path, an array "
+          "(height x width x 3), or None to render one with reference_integrator for reference_seconds (default 10 "
+          "x seconds) in the reference streams. out: a directory for the full report (error.csv, chart, images, "
+          "index.html); none by default. Returns a dict: summary (a row per integrator: relmse (mean over runs), "
+          "relmse_sd, mse, mae, tail_share, hdr_flip, spp, seconds, relmse_x_spp, efficiency, time_to_best, "
+          "rays_per_s), checkpoints (the rows of error.csv), runs (per run: counters), images (run 0's image per "
+          "integrator), reference, reference_description, report (out's index.html or None). progress(label, "
+          "passes, seconds) is called after each pass of each render; verbose prints what the command line prints. "
+          "Ctrl-C raises KeyboardInterrupt at the next pass. Keyword options as for render().");
     m.def("benchmark", &benchmarkScenes, py::arg("scenes"), py::arg("seconds"), py::arg("out"),
           py::arg("integrators") = benchmarked, py::arg("runs") = 4, py::arg("reference_integrator") = "vcm",
           py::arg("reference_seconds") = py::none(), py::arg("bias_reference") = "bdpt",

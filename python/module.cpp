@@ -1,5 +1,5 @@
-// tripath's Python module: load a scene, render it, measure images (compare and benchmark are in
-// evaluation.cpp). `render` fills the library's
+// tripath's Python module: load a scene, render it, save and measure images (compare and benchmark
+// are in evaluation.cpp). `render` fills the library's
 // render request (integrators/render_request.h) from its keyword arguments, so the same settings
 // give the same bits as `tripath render`, and bad values are refused with the same reasons (as
 // ValueError, in Python's spelling of the parameters). The image comes back as a NumPy array that
@@ -10,8 +10,13 @@
 
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+#include <filesystem>
 
 #include "core/error.h"
+#include "image/exposure.h"
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "scenes/builtin_scenes.h"
@@ -31,6 +36,29 @@ Image fromArray(const ArrayIn& a, const char* what) {
     Image img(int(a.shape(1)), int(a.shape(0)));
     std::copy(a.data(), a.data() + img.rgb.size(), img.rgb.begin());
     return img;
+}
+
+std::unique_ptr<PyScene> loadPyScene(const std::string& nameOrPath, bool allowExternalFiles) {
+    Warnings warnings;
+    GltfOptions gltf;
+    gltf.allowExternalFiles = allowExternalFiles;
+    auto scene = std::make_unique<PyScene>(nameOrPath, gltf, warnings);
+    warnings.raise();
+    return scene;
+}
+
+SceneArgument::SceneArgument(const py::object& scene) {
+    if (py::isinstance<PyScene>(scene)) {
+        scene_ = &scene.cast<PyScene&>();
+        return;
+    }
+    if (!py::isinstance<py::str>(scene) && !py::hasattr(scene, "__fspath__"))
+        throw py::type_error("scene must be a tripath.Scene (from load()), a built-in scene's name or a glTF file's "
+                             "path, not " + std::string(py::str(py::type::of(scene).attr("__name__"))));
+    const py::object name = py::module_::import("os").attr("fspath")(scene);
+    if (!py::isinstance<py::str>(name)) throw py::type_error("scene: a path must be a str, not bytes");
+    loaded_ = loadPyScene(name.cast<std::string>(), false);
+    scene_ = loaded_.get();
 }
 
 namespace {
@@ -84,10 +112,13 @@ py::dict strategyLayers(const RenderResult& r) {
     return layers;
 }
 
-py::dict renderScene(PyScene& scene, const std::string& integrator, std::optional<int> spp, std::optional<double> seconds,
-                     int width, int height, uint64_t seed, int maxDepth, const std::string& mis, int threads,
+py::dict renderScene(const py::object& sceneArgument, const std::string& integrator, std::optional<int> spp,
+                     std::optional<double> seconds, int width, int height, uint64_t seed, int maxDepth,
+                     const std::string& mis, int threads,
                      bool depthImages, int strategyImages, const std::function<void(int, double)>& progress,
                      const py::kwargs& options) {
+    const SceneArgument argument(sceneArgument);
+    PyScene& scene = *argument;
     RenderRequest request =
         requestOf(scene.name(), scene.gltf(), integrator, width, height, seed, maxDepth, mis, threads, options);
     if (spp) request.spp = *spp, request.sppGiven = true;
@@ -134,9 +165,32 @@ py::dict renderScene(PyScene& scene, const std::string& integrator, std::optiona
     return out;
 }
 
-py::tuple readExrFile(const std::string& path) {
+// Metadata from a dict of str keys; each value is written as str(value).
+Metadata metadataOf(const std::optional<py::dict>& dict) {
     Metadata meta;
-    Image img = readExr(path, &meta);
+    if (!dict) return meta;
+    for (const auto& [key, value] : *dict) {
+        if (!py::isinstance<py::str>(key))
+            throw py::type_error("metadata keys must be str, not " +
+                                 std::string(py::str(py::type::of(key).attr("__name__"))));
+        meta.emplace_back(key.cast<std::string>(), std::string(py::str(value)));
+    }
+    return meta;
+}
+
+void writeExrFile(const std::filesystem::path& path, const ArrayIn& image, const std::optional<py::dict>& metadata) {
+    const Metadata meta = metadataOf(metadata);
+    writeExr(path.string(), fromArray(image, "image"), meta);
+}
+
+float writePngFile(const std::filesystem::path& path, const ArrayIn& image, std::optional<float> exposure) {
+    if (exposure && !std::isfinite(*exposure)) throw InputError("exposure must be a finite number of stops");
+    return writePreviewPng(path.string(), fromArray(image, "image"), exposure);
+}
+
+py::tuple readExrFile(const std::filesystem::path& path) {
+    Metadata meta;
+    Image img = readExr(path.string(), &meta);
     py::dict d;
     for (const auto& [key, value] : meta) d[py::str(key)] = value;
     return py::make_tuple(toArray(std::move(img)), d);
@@ -169,17 +223,7 @@ PYBIND11_MODULE(tripath, m) {
         .def_property_readonly("triangles", &PyScene::triangles)
         .def("__repr__", [](const PyScene& s) { return "<tripath.Scene '" + s.name() + "'>"; });
 
-    m.def(
-        "load",
-        [](const std::string& nameOrPath, bool allowExternalFiles) {
-            Warnings warnings;
-            GltfOptions gltf;
-            gltf.allowExternalFiles = allowExternalFiles;
-            auto scene = std::make_unique<PyScene>(nameOrPath, gltf, warnings);
-            warnings.raise();
-            return scene;
-        },
-        py::arg("path_or_builtin"), py::arg("allow_external_files") = false,
+    m.def("load", &loadPyScene, py::arg("path_or_builtin"), py::arg("allow_external_files") = false,
         "Loads a built-in scene by name (see scenes()) or a .gltf/.glb file. ValueError for an unknown name or a bad "
         "file, with the command line's one-line message; what the loader ignored or dropped comes as UserWarning. "
         "allow_external_files lets a glTF file's buffers name files outside its folder.");
@@ -194,7 +238,8 @@ PYBIND11_MODULE(tripath, m) {
           py::arg("seconds") = py::none(), py::arg("width") = 512, py::arg("height") = 512, py::arg("seed") = 1,
           py::arg("max_depth") = 16, py::arg("mis") = "power", py::arg("threads") = 0, py::arg("depth_images") = false,
           py::arg("strategy_images") = 0, py::arg("progress") = py::none(),
-          "Renders scene with one integrator (pt, lt, bdpt, vcm, bpm, ppm) for spp passes or seconds of wall-clock time "
+          "Renders scene (a Scene from load(), or a built-in name or glTF path, loaded as load() does) with one "
+          "integrator (pt, lt, bdpt, vcm, bpm, ppm) for spp passes or seconds of wall-clock time "
           "(16 passes when neither is given). Returns a dict: image (float32 array, height x width x 3, linear "
           "radiance, no copy), depth (with depth_images: one image per path length k = 1..max_depth), strategies (with "
           "strategy_images = K: {(s, t, 'connect' | 'merge'): {'weighted', 'unweighted'}} for k <= K), spp, seconds, "
@@ -206,6 +251,14 @@ PYBIND11_MODULE(tripath, m) {
 
     m.def("read_exr", &readExrFile, py::arg("path"),
           "Reads an EXR as (float32 array height x width x 3, {'tripath:...': value} metadata)");
+    m.def("write_exr", &writeExrFile, py::arg("path"), py::arg("image"), py::arg("metadata") = py::none(),
+          "Writes image (an array height x width x 3, linear radiance) as a 32-bit float EXR, as `tripath render` "
+          "writes its --out: atomically, each metadata item a string attribute (str(value)); render()'s "
+          "'metadata' are the command line's, and read_exr() reads back those named 'tripath:...'");
+    m.def("write_png", &writePngFile, py::arg("path"), py::arg("image"), py::arg("exposure") = py::none(),
+          "Writes an 8-bit sRGB PNG preview of image, as `tripath render --png`: scaled by 2^exposure stops, or, "
+          "with exposure None, exposed from the image (the 98th percentile of the luminance of its pixels above 0 "
+          "maps to white, in whole thirds of a stop). Returns the exposure used, in stops");
 
     defineEvaluation(m);
 

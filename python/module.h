@@ -62,6 +62,23 @@ private:
     std::shared_ptr<const Scene> base_, framed_;
 };
 
+// load(): the built-in scene or glTF file `nameOrPath` names, what the loader ignored or dropped
+// raised as UserWarning.
+std::unique_ptr<PyScene> loadPyScene(const std::string& nameOrPath, bool allowExternalFiles);
+
+// The scene argument of render() and compare(): a Scene from load(), or a built-in scene's name or
+// a glTF file's path (str or os.PathLike), loaded here as load() loads it. Any other type is a
+// TypeError of one line (pybind's own would list the whole signature).
+class SceneArgument {
+public:
+    explicit SceneArgument(const py::object& scene);
+    PyScene& operator*() const { return *scene_; }
+
+private:
+    std::unique_ptr<PyScene> loaded_;
+    PyScene* scene_ = nullptr;
+};
+
 // Long work runs without the GIL; between passes it takes the GIL back to run Python's signal
 // handlers and the caller's callback. Ctrl-C (KeyboardInterrupt, from the handler or inside the
 // callback) sets `interrupted` and stops the work at that pass; any other exception from the

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "geometry/gltf_checks.h"
 #include "geometry/gltf_loader.h"
 #include "geometry/gltf_model.h"
 
@@ -215,6 +216,9 @@ protected:
             EXPECT_NE(message.find(path), std::string::npos) << message;
             EXPECT_NE(message.find(fragment), std::string::npos) << message;
             EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+            // The file's path (and its folder, in a buffer file's path) and a sentence, quoting
+            // excerpts of the file at most.
+            EXPECT_LT(message.size(), 2 * path.size() + 240) << message;
         }
     }
     // A single triangle whose material is `material` (the file's only one): loading it must fail
@@ -718,14 +722,129 @@ TEST_F(GltfTest, MissingFileThrows) {
 
 TEST_F(GltfTest, TruncatedGlbThrows) {
     const std::string path = quadScene().write(file("truncated.glb"));
-    fs::resize_file(path, fs::file_size(path) / 2);
-    expectInputError(path, "glTF binary");
+    const auto size = fs::file_size(path);
+    fs::resize_file(path, size / 2);
+    expectInputError(path, ": truncated binary glTF: its header gives " + std::to_string(size) +
+                               " bytes, the file has " + std::to_string(size / 2));
+}
+
+// Library wording ("Invalid magic.", "[json.exception.parse_error.101]") is not the message: it
+// says which file and what is wrong with it.
+TEST_F(GltfTest, GlbWithoutTheMagicIsNamedNotBinaryGltf) {
+    expectInputError(writeText(file("text.glb"), "not a GLB at all"),
+                     "text.glb: not a binary glTF file (bad magic: it does not start with \"glTF\")");
+    const std::string json = quadScene().write(file("json.gltf"));
+    fs::copy_file(json, file("json.glb"));
+    expectInputError(file("json.glb").string(), "json.glb: not a binary glTF file (bad magic: it does not start with "
+                                                "\"glTF\"); it looks like JSON: name it .gltf");
 }
 
 TEST_F(GltfTest, BrokenJsonThrows) {
     const std::string path =
-        writeText(file("broken.gltf"), R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[)");
-    expectInputError(path, "parse error");
+        writeText(file("broken.gltf"), "{\"asset\":{\"version\":\"2.0\"},\n\"meshes\":[{\"primitives\":[");
+    expectInputError(path, "broken.gltf: not valid JSON at line 2, column 26 (syntax error while parsing value - "
+                           "unexpected end of input;");
+    // nlohmann quotes the token it choked on ("last read: '...'"), here a 5000-byte string.
+    const std::string longToken = writeText(file("token.gltf"), "{\"asset\": \"" + std::string(5000, 'x') + "\n\"}");
+    expectInputError(longToken, "token.gltf: not valid JSON at line 1, column 5012 (syntax error while parsing value - "
+                                "invalid string: control character U+000A (LF) must be escaped");
+}
+
+TEST_F(GltfTest, EmptyFilesAndFilesWithoutAssetSaySo) {
+    expectInputError(writeText(file("empty.gltf"), ""), "empty.gltf: the file is empty");
+    expectInputError(writeText(file("object.gltf"), "{}"), "object.gltf: not a glTF file: it has no \"asset\" object");
+    expectInputError(writeText(file("array.gltf"), "[1, 2]"),
+                     "array.gltf: not a glTF file: its JSON is array, not an object");
+    expectInputError(writeText(file("noversion.gltf"), R"({"asset": {}})"), "noversion.gltf: asset.version is missing");
+}
+
+// Writes `b` with asset.version set to `version`.
+std::string writeWithVersion(const GltfBuilder& b, const fs::path& file, const std::string& version) {
+    nlohmann::json json = nlohmann::json::parse(std::ifstream(b.write(file)));
+    json["asset"]["version"] = version;
+    return writeText(file, json.dump());
+}
+
+TEST_F(GltfTest, MajorVersionOtherThanTwoIsRefused) {
+    const GltfBuilder b = quadScene();
+    expectInputError(writeWithVersion(b, file("v3.gltf"), "3.0"),
+                     "v3.gltf: glTF version \"3.0\" is not supported (only 2.x)");
+    expectInputError(writeWithVersion(b, file("v1.gltf"), "1.0"), "v1.gltf: glTF version \"1.0\" is not supported");
+    expectInputError(writeWithVersion(b, file("two.gltf"), "two"),
+                     "two.gltf: asset.version \"two\" is not of the form major.minor");
+    // Minor versions are compatible.
+    EXPECT_EQ(triangles(load(writeWithVersion(b, file("v21.gltf"), "2.1"))).size(), 2u);
+}
+
+// A vertex at 1e30 is a finite float, but the edges' squared lengths and cross product (the
+// normal and area the renderer computes in float) are not: said so, rather than "zero-area".
+TEST_F(GltfTest, TrianglesWhoseProductsOverflowFloatAreNotFinite) {
+    // A sliver reaching 1e30 (its edges' squared lengths overflow; in double it was "zero-area"),
+    // and a triangle of legs 1e10 (only its squared cross product, ~1e40, overflows).
+    const std::vector<std::vector<Vec3>> tooLarge = {{{1e30f, 1e30f, 1e30f}, {1, 0, 0}, {0, 1, 0}},
+                                                     {{0, 0, 0}, {1e10f, 0, 0}, {0, 1e10f, 0}}};
+    for (const std::vector<Vec3>& far : tooLarge) {
+        GltfBuilder b;
+        std::vector<Vec3> positions = kTriangle;
+        positions.insert(positions.end(), far.begin(), far.end());
+        b.addTriangleMesh(b.addVec3(positions));
+        b.addRoot({.mesh = 0});
+        expectInputError(b.write(file("far.gltf")), "mesh 0 primitive 0 triangle 1 is not finite in float");
+    }
+    // Legs of 1e9: the squared cross product (~3e36) still fits in a float, and the triangle loads.
+    GltfBuilder b;
+    b.addTriangleMesh(b.addVec3({{1e9f, 0, 0}, {0, 1e9f, 0}, {0, 0, 1e9f}}));
+    b.addRoot({.mesh = 0});
+    EXPECT_EQ(triangles(load(b.write(file("large.gltf")))).size(), 1u);
+}
+
+// http:, file: and any other scheme would be taken as a file's name ("http:/host/a.bin" in the
+// scene's folder): refused as a scheme. Embedded data: URIs load (every test's buffer is one).
+TEST_F(GltfTest, BufferUrisWithASchemeAreRefused) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    for (const std::string uri :
+         {"http://example.com/quad.bin", "file:///etc/passwd", "file:quad.bin", "s3://bucket/q.bin"}) {
+        const std::string scene = b.writeWithUri(folder / "quad.gltf", uri, folder / "file:quad.bin");
+        const std::string scheme = uri.substr(0, uri.find(':') + 1);
+        expectInputError(scene, "buffer 0: uri \"" + uri + "\": URI scheme \"" + scheme + "\" is not supported");
+    }
+    expectInputError(b.writeWithUri(folder / "quad.gltf", "data:text/html,hello", folder / "unused.bin"),
+                     "buffer 0: uri \"data:text/html,hello\" is a data: URI that is not base64");
+}
+
+// tinygltf's message for this quoted the whole base64 payload.
+TEST_F(GltfTest, WrongByteLengthOfAnEmbeddedBufferIsSaidInNumbers) {
+    const std::string path = quadScene().write(file("length.gltf"));
+    nlohmann::json json = nlohmann::json::parse(std::ifstream(path));
+    const auto size = json["buffers"][0]["byteLength"].get<size_t>();
+    json["buffers"][0]["byteLength"] = size + 4;
+    expectInputError(writeText(path, json.dump()), "length.gltf: buffer 0: byteLength is " + std::to_string(size + 4) +
+                                                       ", but its data: URI holds " + std::to_string(size) + " bytes");
+}
+
+// What only tinygltf checks keeps its words, in a sentence that says who refused the file.
+TEST_F(GltfTest, TinygltfsRefusalIsWrapped) {
+    const std::string path = quadScene().write(file("accessor.gltf"));
+    nlohmann::json json = nlohmann::json::parse(std::ifstream(path));
+    json["accessors"][0].erase("componentType");
+    expectInputError(writeText(path, json.dump()),
+                     "accessor.gltf: the glTF reader refused it: 'componentType' property is missing");
+}
+
+// A name from the file is quoted as an excerpt: a 10 000-byte mesh name does not make a
+// 10 000-byte message.
+TEST_F(GltfTest, LongNamesAndUrisAreQuotedAsExcerpts) {
+    GltfBuilder b;
+    b.addTriangleMesh(b.addVec3(kTriangle), b.addIndices({0, 1, 7}, kUnsignedByte));
+    b.model.meshes[0].name = std::string(10000, 'm');
+    b.addRoot({.mesh = 0});
+    expectInputError(b.write(file("name.gltf")),
+                     std::string(gltf::kExcerptLength, 'm') + "... (10000 bytes) primitive 0 index 7");
+    const fs::path folder = sceneFolder(testDir());
+    const std::string longUri = std::string(10000, 'u') + ".bin";
+    expectInputError(quadScene().writeWithUri(folder / "quad.gltf", longUri, folder / "unused.bin"),
+                     "buffer 0: uri \"" + std::string(gltf::kExcerptLength, 'u') + "... (10004 bytes)\" names");
 }
 
 TEST_F(GltfTest, AccessorReadingPastTheBufferThrows) {

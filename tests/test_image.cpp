@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "image/image.h"
 #include "image/error_map.h"
+#include "image/exposure.h"
 #include "image/metrics.h"
 #include "image/text.h"
 
@@ -190,6 +191,67 @@ TEST_F(ImageIoTest, PngExposureScalesByPowersOfTwo) {
     EXPECT_EQ(std::lround(b.at(0, 0)[0] * 255), 188);
     EXPECT_EQ(std::lround(b.at(0, 0)[1] * 255), 137);
     EXPECT_EQ(std::lround(b.at(0, 0)[2] * 255), 255);
+}
+
+// Grey pixels of luminance 1, 2, ..., 100 in shuffled order, with black and non-finite pixels
+// that the percentile leaves out.
+Image greyRamp() {
+    Image img(13, 10);
+    for (int i = 0; i < 100; ++i) {
+        const int at = (i * 37) % 100;  // 37 is prime to 100: a permutation
+        std::fill_n(img.at(at % 13, at / 13), 3, float(i + 1));
+    }
+    std::fill_n(img.at(9, 9), 3, std::numeric_limits<float>::quiet_NaN());
+    std::fill_n(img.at(10, 9), 3, std::numeric_limits<float>::infinity());
+    return img;  // the remaining 28 pixels stay black
+}
+
+TEST(Exposure, PercentileIsOverThePixelsAboveZero) {
+    const Image ramp = greyRamp();
+    // Of the 100 positive finite values 1..100 the one at rank round(p × 99) from 0; a grey v has
+    // luminance v (the Rec. 709 weights add up to 1) within float rounding.
+    EXPECT_NEAR(luminancePercentile(ramp, 0.99f), 99.0f, 1e-4f);  // rank 98.01
+    EXPECT_NEAR(luminancePercentile(ramp, 0.5f), 51.0f, 1e-4f);   // rank 49.5
+    EXPECT_NEAR(luminancePercentile(ramp, 1.0f), 100.0f, 1e-4f);
+    EXPECT_NEAR(luminancePercentile(ramp, 0.001f), 1.0f, 1e-4f);
+    EXPECT_EQ(luminancePercentile(Image(4, 4), 0.99f), 0.0f);
+}
+
+TEST(Exposure, AutomaticExposureMapsThe98thPercentileToWhiteInThirdsOfAStop) {
+    Image ramp = greyRamp();
+    EXPECT_EQ(kAutoExposurePercentile, 0.98f);
+    EXPECT_NEAR(luminancePercentile(ramp, 0.98f), 98.0f, 1e-4f);  // rank round(0.98 × 99) = 97
+    for (float& v : ramp.rgb) v *= 8.0f / 98.0f;  // the 98th percentile becomes 8: -3 stops exactly
+    EXPECT_NEAR(autoExposureStops(ramp), -3.0f, 1e-6f);
+    for (float& v : ramp.rgb) v *= 5.0f / 8.0f;  // 5: -log2(5) = -2.32, the nearest third -7/3
+    EXPECT_NEAR(autoExposureStops(ramp), -7.0f / 3.0f, 1e-6f);
+    for (float& v : ramp.rgb) v *= 1.05f;  // 5 % brighter (another sample count): the same exposure
+    EXPECT_NEAR(autoExposureStops(ramp), -7.0f / 3.0f, 1e-6f);
+    for (float& v : ramp.rgb) v /= 5.25f * 64.0f;  // 1/64: +6 stops
+    EXPECT_NEAR(autoExposureStops(ramp), 6.0f, 1e-5f);
+    EXPECT_EQ(autoExposureStops(Image(4, 4)), 0.0f);  // black stays black
+}
+
+// A model lit by a point light next to it reads 100 and more: at exposure 0 its preview was a
+// white silhouette. Without an exposure the 98th percentile is about white and the rest keeps its
+// shades; a given exposure is kept.
+TEST_F(ImageIoTest, PreviewWithoutExposureIsExposedFromTheImage) {
+    const Image ramp = greyRamp();
+    EXPECT_NEAR(writePreviewPng(path("auto.png"), ramp, std::nullopt), -20.0f / 3.0f, 1e-6f);
+    EXPECT_EQ(writePreviewPng(path("given.png"), ramp, 0.0f), 0.0f);
+    const Image automatic = readImage(path("auto.png")), given = readImage(path("given.png"));
+    const float scale = std::exp2(-20.0f / 3.0f);  // -log2(98) = -6.61, rounded to -20/3
+    int distinct = 0;
+    for (int y = 0; y < ramp.height; ++y)
+        for (int x = 0; x < ramp.width; ++x) {
+            const float v = ramp.at(x, y)[0];
+            if (!std::isfinite(v) || !(v > 0)) continue;
+            EXPECT_EQ(given.at(x, y)[0], 1.0f);  // the silhouette
+            const float expected = std::min(1.0f, v * scale);
+            EXPECT_NEAR(srgbDecode(automatic.at(x, y)[0]), expected, 0.01f + 0.02f * expected) << v;
+            distinct += automatic.at(x, y)[0] < 1.0f;
+        }
+    EXPECT_EQ(distinct, 100);  // 99 × 2^(-20/3) = 0.97 and 100 × 2^(-20/3) = 0.98: none is white
 }
 
 TEST_F(ImageIoTest, WritesLeaveNoTemporaryFilesAndReplaceTargets) {

@@ -1,6 +1,8 @@
 // The policy for files named by glTF buffer URIs (see external_files.h for the rules and why).
 #include "geometry/external_files.h"
 
+#include <algorithm>
+#include <cctype>
 #include <system_error>
 
 namespace tripath {
@@ -26,6 +28,17 @@ const char* const kOnlyInside =
     "only files in the scene's folder and its subfolders are read; --allow-external-files lifts this";
 
 }  // namespace
+
+std::string uriScheme(const std::string& uri) {
+    // A letter, then letters, digits, '+', '-' or '.', then ':'.
+    const auto isSchemeChar = [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.';
+    };
+    if (uri.empty() || !std::isalpha(static_cast<unsigned char>(uri[0]))) return "";
+    const size_t colon = uri.find(':');
+    if (colon == std::string::npos || !std::all_of(uri.begin(), uri.begin() + long(colon), isSchemeChar)) return "";
+    return uri.substr(0, colon);
+}
 
 std::string decodeUriPath(const std::string& uri) {
     std::string out;

@@ -8,6 +8,10 @@
 
 namespace tripath {
 
+// The scheme of a URI, as RFC 3986 spells it: "http" of "http://host/a.bin", "file" of
+// "file:///a.bin"; empty when the URI has none (a relative reference such as "a.bin" or "a/b:c.bin").
+std::string uriScheme(const std::string& uri);
+
 // Decodes a URI's %XX escapes and turns '+' into a space, as tinygltf does before it looks a file
 // up. A '%' not followed by two hex digits stays as it is.
 std::string decodeUriPath(const std::string& uri);

@@ -21,6 +21,32 @@ std::string formatNumber(double value) {
     return out.str();
 }
 
+std::string excerpt(const std::string& text, size_t maxBytes) {
+    if (text.size() <= maxBytes) return text;
+    size_t cut = maxBytes;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // a UTF-8 continuation byte
+    return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
+std::string quoted(const std::string& text, size_t maxBytes) {
+    std::string out = "\"";
+    for (const char c : excerpt(text, maxBytes)) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (byte < 0x20 || byte == 0x7f) {
+            static const char* const kHex = "0123456789abcdef";
+            out += "\\x";
+            out += kHex[byte >> 4];
+            out += kHex[byte & 15];
+        } else {
+            out += c;
+        }
+    }
+    return out + "\"";
+}
+
 bool allFinite(const std::vector<double>& values) {
     for (double x : values)
         if (!std::isfinite(float(x))) return false;

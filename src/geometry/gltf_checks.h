@@ -35,6 +35,15 @@ private:
 // Shortest readable form of a number for messages ("4", "0.25", "1e+39").
 std::string formatNumber(double value);
 
+// Text from the file, as a message quotes it: at most maxBytes of it (cut at a character
+// boundary), the rest replaced by "... (N bytes)", so that a name or URI of any length (a
+// buffer's whole base64 payload) leaves the message one readable line.
+constexpr size_t kExcerptLength = 60;
+std::string excerpt(const std::string& text, size_t maxBytes = kExcerptLength);
+
+// excerpt(text, maxBytes) in double quotes, its quotes, backslashes and control characters escaped.
+std::string quoted(const std::string& text, size_t maxBytes = kExcerptLength);
+
 // True when every value stays finite as a float, the precision the scene keeps.
 bool allFinite(const std::vector<double>& values);
 

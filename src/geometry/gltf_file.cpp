@@ -15,53 +15,31 @@
 #include <string_view>
 
 #include "geometry/external_files.h"
+#include "geometry/gltf_document.h"
 
 namespace tripath::gltf {
 
 namespace {
 
-// Collapses tinygltf's multi-line messages into one line.
-std::string oneLine(const std::string& text) {
+// tinygltf's text as one line, each word of it at most an excerpt and the whole at most
+// kLibraryTextLength bytes: its messages quote the file (a buffer's uri with its whole base64
+// payload, for one).
+constexpr size_t kLibraryTextLength = 160;
+std::string libraryText(const std::string& text) {
     std::string out;
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);) {
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-        if (line.empty()) continue;
-        if (!out.empty()) out += "; ";
-        out += line;
-    }
-    return out;
-}
-
-// Quoted for a one-line message: quotes, backslashes and control characters are escaped.
-std::string quoted(const std::string& text) {
-    std::string out = "\"";
-    for (const char c : text) {
-        const auto byte = static_cast<unsigned char>(c);
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (byte < 0x20 || byte == 0x7f) {
-            static const char* const kHex = "0123456789abcdef";
-            out += "\\x";
-            out += kHex[byte >> 4];
-            out += kHex[byte & 15];
-        } else {
-            out += c;
+        std::istringstream words(line);
+        std::string shortened;
+        for (std::string word; words >> word;) {
+            if (!shortened.empty()) shortened += ' ';
+            shortened += excerpt(word);
         }
+        if (shortened.empty()) continue;
+        if (!out.empty()) out += "; ";
+        out += shortened;
     }
-    return out + "\"";
-}
-
-// The JSON chunk of a GLB file; empty when the header is malformed (tinygltf then says how).
-std::string_view glbJsonChunk(const std::vector<char>& bytes) {
-    constexpr uint32_t kJsonChunk = 0x4E4F534A;  // "JSON", little-endian
-    if (bytes.size() < 20) return {};
-    uint32_t length = 0, type = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);
-    std::memcpy(&type, bytes.data() + 16, 4);
-    if (type != kJsonChunk || length > bytes.size() - 20) return {};
-    return {bytes.data() + 20, length};
+    return excerpt(out, kLibraryTextLength);
 }
 
 // The files tinygltf may open: the resolved paths of the buffer files approveBufferFiles let
@@ -114,31 +92,65 @@ std::vector<char> readSceneFile(const Report& report) {
     if (!std::filesystem::exists(path, ec)) report.fail("file not found");
     if (!std::filesystem::is_regular_file(path, ec)) report.fail("not a regular file");
     const uintmax_t size = std::filesystem::file_size(path, ec);
-    if (!ec && size > UINT_MAX) report.fail("file is larger than 4 GiB (not supported)");
-    std::vector<char> bytes(ec ? 0 : size_t(size));
+    if (ec) report.fail("cannot read the file (" + ec.message() + ")");
+    if (size > UINT_MAX) report.fail("file is larger than 4 GiB (not supported)");
+    if (size == 0) report.fail("the file is empty");
+    std::vector<char> bytes(static_cast<size_t>(size));
     std::ifstream in(path, std::ios::binary);
-    if (bytes.size() < 4 || !in || !in.read(bytes.data(), std::streamsize(bytes.size())))
-        report.fail("cannot read file (empty or unreadable)");
+    if (!in || !in.read(bytes.data(), std::streamsize(bytes.size()))) report.fail("cannot read the file");
     return bytes;
 }
 
-// Checks every external buffer URI before tinygltf opens any file, so that a refusal names the
-// buffer; approves the files that pass. JSON that does not parse is left for tinygltf to report.
-void approveBufferFiles(std::string_view json, ApprovedFiles& approved, const Report& report) {
-    const auto doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
-    if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return;
+// "buffer 3" or "buffer 3 \"name\"", as the messages about a buffer begin.
+std::string bufferName(const nlohmann::json& buffer, size_t index) {
+    std::string name = "buffer " + std::to_string(index);
+    if (buffer.contains("name") && buffer["name"].is_string()) name += ' ' + quoted(buffer["name"].get<std::string>());
+    return name;
+}
+
+// tinygltf refuses an embedded buffer whose byteLength is not its size by quoting the whole
+// base64 payload; this says so in numbers. The payload is decoded as tinygltf decodes it.
+void checkDataUri(const nlohmann::json& buffer, const std::string& uri, const std::string& name, const Report& report) {
+    std::vector<unsigned char> data;
+    std::string mimeType;
+    if (!tinygltf::DecodeDataURI(&data, mimeType, uri, 0, false))
+        report.fail(name + ": its data: URI holds no base64 data");
+    if (!buffer.contains("byteLength") || !buffer["byteLength"].is_number()) return;  // tinygltf says so
+    const double byteLength = buffer["byteLength"].get<double>();
+    if (byteLength != double(data.size()))
+        report.fail(name + ": byteLength is " + formatNumber(byteLength) + ", but its data: URI holds " +
+                    std::to_string(data.size()) + " bytes");
+}
+
+// Checks every buffer URI before tinygltf opens any file, so that a refusal names the buffer:
+// data: URIs hold their byteLength, nothing else has a URI scheme (http:, file:, ... would be
+// taken as a file's name), and the files named pass resolveExternalFile; approves those files.
+void approveBufferFiles(const nlohmann::json& doc, ApprovedFiles& approved, const Report& report) {
+    if (!doc.contains("buffers") || !doc["buffers"].is_array()) return;
     const auto& buffers = doc["buffers"];
     for (size_t i = 0; i < buffers.size(); ++i) {
         const auto& buffer = buffers[i];
         if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
         const std::string& uri = buffer["uri"].get_ref<const std::string&>();
-        if (uri.empty() || tinygltf::IsDataURI(uri)) continue;
+        if (uri.empty()) continue;
+        const std::string name = bufferName(buffer, i);
+        if (tinygltf::IsDataURI(uri)) {
+            checkDataUri(buffer, uri, name, report);
+            continue;
+        }
+        const std::string scheme = uriScheme(uri);
+        if (scheme == "data")
+            report.fail(name + ": uri " + quoted(uri) + " is a data: URI that is not base64 " +
+                        "application/octet-stream or application/gltf-buffer (not supported)");
+        if (!scheme.empty())
+            report.fail(name + ": uri " + quoted(uri) + ": URI scheme " + quoted(scheme + ":") +
+                        " is not supported (only data: URIs and file paths relative to the scene)");
         const ExternalFile file = resolveExternalFile(approved.folder, decodeUriPath(uri), approved.allowOutside);
         if (!file.problem.empty()) {
-            std::string name = "buffer " + std::to_string(i);
-            if (buffer.contains("name") && buffer["name"].is_string())
-                name += " " + quoted(buffer["name"].get_ref<const std::string&>());
-            report.fail(name + ": uri " + quoted(uri) + " names " + quoted(file.path.string()) + ", " + file.problem);
+            // The path is the scene's folder, which the user gave, and at most an excerpt of the uri.
+            const size_t pathLength = approved.folder.string().size() + kExcerptLength;
+            report.fail(name + ": uri " + quoted(uri) + " names " + quoted(file.path.string(), pathLength) + ", " +
+                        file.problem);
         }
         approved.files.insert(file.path);
     }
@@ -149,11 +161,11 @@ void approveBufferFiles(std::string_view json, ApprovedFiles& approved, const Re
 void forwardLibraryWarnings(const std::string& text, Report& report) {
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);) {
-        line = oneLine(line);
         const bool aboutImages = line.find("image") != std::string::npos ||
                                  line.find("Image") != std::string::npos ||
                                  line.rfind("File not found", 0) == 0;
-        if (!line.empty() && !aboutImages) report.warnOnce(line);
+        line = libraryText(line);
+        if (!line.empty() && !aboutImages) report.warnOnce("glTF reader: " + line);
     }
 }
 
@@ -162,15 +174,16 @@ void forwardLibraryWarnings(const std::string& text, Report& report) {
 tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
     const std::string& path = report.path();
     const std::vector<char> bytes = readSceneFile(report);
-    const bool binary = std::memcmp(bytes.data(), "glTF", 4) == 0 ||
+    const bool binary = (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0) ||
                         std::filesystem::path(path).extension() == ".glb";
+    const nlohmann::json doc = parseJson(jsonText(bytes, binary, report), report);
+    checkAsset(doc, report);
     ApprovedFiles approved;
     approved.allowOutside = allowExternalFiles;
     std::error_code ec;
     approved.folder = std::filesystem::canonical(std::filesystem::absolute(path).parent_path(), ec);
     if (ec) report.fail("cannot resolve the scene's folder (" + ec.message() + ")");
-    approveBufferFiles(binary ? glbJsonChunk(bytes) : std::string_view(bytes.data(), bytes.size()), approved,
-                       report);
+    approveBufferFiles(doc, approved, report);
 
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(&skipImageDecoding, nullptr);
@@ -184,10 +197,10 @@ tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
                                                   reinterpret_cast<const unsigned char*>(bytes.data()), size, "")
                     : parser.LoadASCIIFromString(&model, &err, &warnings, bytes.data(), size, "");
     } catch (const std::exception& e) {
-        report.fail(std::string("cannot parse glTF: ") + e.what());
+        report.fail(std::string("the glTF reader failed: ") + libraryText(e.what()));
     }
     forwardLibraryWarnings(warnings, report);
-    if (!ok) report.fail(err.empty() ? std::string("cannot parse glTF") : oneLine(err));
+    if (!ok) report.fail("the glTF reader refused it: " + (err.empty() ? "no reason given" : libraryText(err)));
     return model;
 }
 

@@ -1,8 +1,9 @@
 // Reading a glTF file into tinygltf's model, within the rules for the files it may open: the
-// scene file is .glb or .gltf by its magic bytes (or the .glb extension); every external buffer
-// URI is checked (external_files.h) before tinygltf opens any file, so that a refusal names the
-// buffer, and tinygltf's file-system callbacks then open only the approved buffer files; image
-// files are never opened or decoded. A header of the geometry library's own (the loader's
+// scene file is .glb or .gltf by its magic bytes (or the .glb extension); its container, JSON and
+// version are checked first (gltf_document.h); every buffer URI is checked before tinygltf opens
+// any file, so that a refusal names the buffer (a data: URI's size, a URI scheme, the file it
+// names: external_files.h), and tinygltf's file-system callbacks then open only the approved
+// buffer files; image files are never opened or decoded. A header of the geometry library's own (the loader's
 // interface is gltf_loader.h).
 #pragma once
 #include <tiny_gltf.h>
@@ -11,8 +12,9 @@
 
 namespace tripath::gltf {
 
-// The model in the file report.path() names; fails with tinygltf's message, made one line, when it
-// does not parse. Passes tinygltf's warnings on, minus those about images (textures are ignored).
+// The model in the file report.path() names; fails with one line saying what is wrong, quoting at
+// most excerpts of the file (tinygltf's own message, shortened, for what only tinygltf checks).
+// Passes tinygltf's warnings on, shortened, minus those about images (textures are ignored).
 // allowExternalFiles: GltfOptions::allowExternalFiles.
 tinygltf::Model readModel(bool allowExternalFiles, Report& report);
 

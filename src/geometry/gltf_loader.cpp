@@ -44,6 +44,15 @@ const std::set<std::string> kIgnorableExtensions = {
     "KHR_materials_dispersion", "KHR_materials_variants",  "KHR_texture_transform",
     "KHR_texture_basisu",       "EXT_texture_webp",        "EXT_texture_avif"};
 
+// True when the float arithmetic the renderer does on a triangle stays finite: its edges, their
+// squared lengths, their cross product (the normal, twice the area) and its squared length. A
+// vertex at 1e30 passes for finite, but its triangles' areas are not.
+bool hasFiniteProducts(Vec3 a, Vec3 b, Vec3 c) {
+    const Vec3 e1 = b - a, e2 = c - a, n = cross(e1, e2);
+    return isFinite(e1) && isFinite(e2) && isFinite(n) && std::isfinite(lengthSquared(e1)) &&
+           std::isfinite(lengthSquared(e2)) && std::isfinite(lengthSquared(n));
+}
+
 bool isDegenerate(Vec3 a, Vec3 b, Vec3 c) {
     const double e1[3] = {double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z};
     const double e2[3] = {double(c.x) - a.x, double(c.y) - a.y, double(c.z) - a.z};
@@ -87,7 +96,7 @@ private:
     std::vector<Vec3> worldNormals(const tinygltf::Primitive& prim, size_t vertexCount,
                                    const glm::dmat4& world, const std::string& what);
     MeshDesc keepGoodTriangles(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
-                               const std::vector<uint32_t>& indices, bool flipWinding);
+                               const std::vector<uint32_t>& indices, bool flipWinding, const std::string& what);
 
     void addCamera(int cameraIndex, const glm::dmat4& world, int nodeIndex);
     void addLight(const tinygltf::Node& node, const glm::dmat4& world, int nodeIndex);
@@ -120,11 +129,11 @@ SceneDesc Loader::load() {
 void Loader::checkExtensions() {
     for (const std::string& name : model_.extensionsRequired) {
         if (!isHandledExtension(name) && !kIgnorableExtensions.count(name))
-            report_.fail("required extension " + name + " is not supported");
+            report_.fail("required extension " + excerpt(name) + " is not supported");
     }
     for (const auto* list : {&model_.extensionsRequired, &model_.extensionsUsed})
         for (const std::string& name : *list)
-            if (!isHandledExtension(name)) report_.warnOnce("extension " + name + " is ignored");
+            if (!isHandledExtension(name)) report_.warnOnce("extension " + excerpt(name) + " is ignored");
 }
 
 void Loader::warnIgnoredModelFeatures() {
@@ -222,7 +231,7 @@ void Loader::addMesh(int meshIndex, const glm::dmat4& world, int nodeIndex) {
         report_.fail(node + " transform collapses mesh " + std::to_string(meshIndex) + " (zero scale or singular matrix)");
     const tinygltf::Mesh& mesh = model_.meshes[size_t(meshIndex)];
     for (size_t k = 0; k < mesh.primitives.size(); ++k) {
-        const std::string name = (mesh.name.empty() ? "mesh " + std::to_string(meshIndex) : mesh.name) +
+        const std::string name = (mesh.name.empty() ? "mesh " + std::to_string(meshIndex) : excerpt(mesh.name)) +
                                  " primitive " + std::to_string(k);
         addPrimitive(mesh.primitives[k], name, world);
     }
@@ -257,7 +266,7 @@ void Loader::addPrimitive(const tinygltf::Primitive& prim, const std::string& na
             report_.fail(name + " index " + std::to_string(i) + " is out of range (" +
                          std::to_string(positions.size()) + " vertices)");
 
-    MeshDesc mesh = keepGoodTriangles(positions, normals, indices, mirrors(world));
+    MeshDesc mesh = keepGoodTriangles(positions, normals, indices, mirrors(world), name);
     if (mesh.indices.empty()) return;
     mesh.name = name;
     mesh.material = materialIndex(prim.material, name);
@@ -284,17 +293,23 @@ std::vector<Vec3> Loader::worldNormals(const tinygltf::Primitive& prim, size_t v
     return normals;
 }
 
-// Copies the non-degenerate triangles and the vertices they use; counts the dropped ones.
+// Copies the non-degenerate triangles and the vertices they use; counts the dropped ones. Fails
+// on a triangle too large for float.
 MeshDesc Loader::keepGoodTriangles(const std::vector<Vec3>& positions,
                                    const std::vector<Vec3>& normals,
-                                   const std::vector<uint32_t>& indices, bool flipWinding) {
+                                   const std::vector<uint32_t>& indices, bool flipWinding, const std::string& what) {
     constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
     std::vector<uint32_t> remap(positions.size(), kUnused);
     MeshDesc mesh;
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {
         uint32_t tri[3] = {indices[t], indices[t + 1], indices[t + 2]};
         if (flipWinding) std::swap(tri[1], tri[2]);
-        if (isDegenerate(positions[tri[0]], positions[tri[1]], positions[tri[2]])) {
+        const Vec3 a = positions[tri[0]], b = positions[tri[1]], c = positions[tri[2]];
+        if (!hasFiniteProducts(a, b, c))
+            report_.fail(what + " triangle " + std::to_string(t / 3) + " is not finite in float: its edges' " +
+                         "lengths or cross product overflow (largest coordinate " +
+                         formatNumber(maxComponent(max(abs(a), max(abs(b), abs(c))))) + ")");
+        if (isDegenerate(a, b, c)) {
             ++droppedTriangles_;
             continue;
         }
@@ -319,7 +334,7 @@ void Loader::addCamera(int cameraIndex, const glm::dmat4& world, int nodeIndex) 
         report_.fail(node + " references camera " + std::to_string(cameraIndex) + ", which does not exist");
     const tinygltf::Camera& camera = model_.cameras[size_t(cameraIndex)];
     if (camera.type != "perspective") {
-        report_.warnOnce(camera.type + " cameras are ignored (only perspective cameras are supported)");
+        report_.warnOnce(excerpt(camera.type) + " cameras are ignored (only perspective cameras are supported)");
         return;
     }
     if (scene_.camera.present) return;  // the first perspective camera wins
@@ -353,7 +368,7 @@ void Loader::addLight(const tinygltf::Node& node, const glm::dmat4& world, int n
         report_.fail(nodeName + " references light " + std::to_string(index) + ", which does not exist");
     const tinygltf::Light& light = model_.lights[size_t(index)];
     if (light.type != "point") {
-        report_.warnOnce(light.type + " lights are ignored (only point lights are supported)");
+        report_.warnOnce(excerpt(light.type) + " lights are ignored (only point lights are supported)");
         return;
     }
     const std::string what = "light " + std::to_string(index);

@@ -55,7 +55,7 @@ private:
 Material MaterialConverter::convertMaterial(const tinygltf::Material& g, int index) {
     Material m;
     m.name = g.name.empty() ? "material " + std::to_string(index) : g.name;
-    const std::string context = "material '" + m.name + "': ";
+    const std::string context = "material '" + excerpt(m.name) + "': ";
     const auto& pbr = g.pbrMetallicRoughness;
     m.albedo = finiteVec3(pbr.baseColorFactor, Vec3(1.0f), context + "baseColorFactor", report_);
     const float metallic = unitFactor(pbr.metallicFactor, context + "metallicFactor");
@@ -77,13 +77,14 @@ Material MaterialConverter::convertMaterial(const tinygltf::Material& g, int ind
 void MaterialConverter::warnIgnoredMaterialFeatures(const tinygltf::Material& g, float metallic,
                                                     float roughness, float transmission) {
     if (hasTexture(g)) report_.warnOnce("textures are ignored (material factors are used)");
-    if (g.alphaMode != "OPAQUE") report_.warnOnce("alphaMode " + g.alphaMode + " is ignored (surfaces are opaque)");
+    if (g.alphaMode != "OPAQUE")
+        report_.warnOnce("alphaMode " + excerpt(g.alphaMode) + " is ignored (surfaces are opaque)");
     if (metallic > 0 && metallic < 1)
         report_.warnOnce("metallicFactor between 0 and 1 is rounded to dielectric or metal at 0.5");
     if (transmission > 0 && transmission < 1) report_.warnOnce("transmissionFactor below 1 is treated as 1");
     if (transmission > 0 && roughness > 0) report_.warnOnce("rough transmission is rendered as smooth glass");
     for (const auto& [name, value] : g.extensions)
-        if (!isHandledExtension(name)) report_.warnOnce("extension " + name + " is ignored");
+        if (!isHandledExtension(name)) report_.warnOnce("extension " + excerpt(name) + " is ignored");
 }
 
 Spectrum MaterialConverter::emission(const tinygltf::Material& g, const std::string& context) const {
