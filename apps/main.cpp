@@ -6,6 +6,19 @@
 #include "commands.h"
 #include "processes.h"
 #include "core/error.h"
+#include "integrators/interrupt.h"
+
+namespace {
+
+// A command that SIGINT or SIGTERM cut short ends with 128 + the signal's number, as a shell reports
+// a process the signal ended, even when it wrote what it had: a batch job killed at its time limit
+// must not pass for finished.
+int exitCode(int code) {
+    const int signal = tripath::interruptSignal();
+    return signal ? 128 + signal : code;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     tripath::app::Processes processes(argc, argv);  // under mpirun: one of N ranks (processes.h)
@@ -28,11 +41,11 @@ int main(int argc, char** argv) {
         return 1;
     } catch (const tripath::InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
-        return 1;
+        return exitCode(1);
     } catch (const std::exception& e) {
         processes.fail(tripath::oneLine(e.what()), 2);  // a rank's own failure ends the job (others may wait for it)
         std::cerr << "error: " << tripath::oneLine(e.what()) << "\n";
         return 2;
     }
-    return 0;
+    return exitCode(0);
 }

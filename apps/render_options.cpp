@@ -137,10 +137,10 @@ std::function<void(int, double)> progressReporter(const RenderSettings& s, int w
 void printSummary(const std::string& label, const RenderResult& r, const RenderRequest& o) {
     const int width = o.width, height = o.height;
     if (isatty(STDERR_FILENO)) std::cerr << "\n";
-    std::cerr << fmt::format("{}: {} spp in {:.2f} s ({:.2f} Msamples/s), {} NaN/Inf samples dropped, "
-                             "{} MIS weights guarded to 0\n",
-                             label, r.passes, r.seconds, r.passes * double(width) * height / r.seconds / 1e6,
-                             r.droppedSamples, r.guardedWeights);
+    const std::string done = r.interrupted ? "interrupted " + interruptionText(r)
+                                           : fmt::format("{} spp in {:.2f} s", r.passes, r.seconds);
+    std::cerr << fmt::format("{}: {} ({:.2f} Msamples/s), {} NaN/Inf samples dropped, {} MIS weights guarded to 0\n", label,
+                             done, r.passes * double(width) * height / r.seconds / 1e6, r.droppedSamples, r.guardedWeights);
     if (!r.droppedLog.empty()) {
         std::string where;
         for (const DroppedSample& d : r.droppedLog) where += fmt::format(" {},{}", d.pass, d.pixel);

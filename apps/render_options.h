@@ -41,7 +41,8 @@ void validateRenderOptions(const RenderOptions& o);
 // A progress line on stderr when it is a terminal (percent, samples/s, time left), updated
 // after each pass; nothing otherwise. Returns the callback for RenderSettings::progress.
 std::function<void(int, double)> progressReporter(const RenderSettings& s, int width, int height, const std::string& label);
-// The one-line summary printed when a render ends, and with --stats the report of stats_report.h.
+// The one-line summary printed when a render ends ("interrupted after 5 of 16 passes, …" when a
+// signal cut it short), and with --stats the report of stats_report.h.
 void printSummary(const std::string& label, const RenderResult& r, const RenderRequest& o);
 // What a comparison or benchmark tells the terminal (rank 0): its lines, each render's progress
 // line and summary, as above.

@@ -1,18 +1,25 @@
 // The command line under bad input (DESIGN.md §5): every mistake ends with a non-zero exit code and
 // one line on stderr saying what is wrong, before any rendering starts, and no output file.
 // Each test runs the real binary (TRIPATH_BINARY) through the shell.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "scenes/builtin_scenes.h"
 #include "geometry/gltf_writer.h"
+#include "image/image.h"
 
 namespace tripath {
 namespace {
@@ -30,6 +37,56 @@ struct Outcome {
         return lines;
     }
 };
+
+// Whether `done` came true within `seconds`, asking every 20 ms.
+bool waitFor(const std::function<bool()>& done, int seconds) {
+    const auto start = std::chrono::steady_clock::now();
+    while (!done() && std::chrono::steady_clock::now() - start < std::chrono::seconds(seconds))
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    return done();
+}
+
+// `tripath <args>` running on its own, stdout discarded and stderr into `errFile`, to be sent a
+// real signal as a batch system or a terminal would. Killed if the test ends before it does.
+class Background {
+public:
+    Background(const std::vector<std::string>& args, const std::string& errFile) {
+        std::vector<std::string> all{TRIPATH_BINARY};
+        all.insert(all.end(), args.begin(), args.end());
+        std::vector<char*> argv;
+        for (std::string& a : all) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        posix_spawn_file_actions_t files;
+        posix_spawn_file_actions_init(&files);
+        posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+        posix_spawn_file_actions_addopen(&files, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (posix_spawn(&pid_, TRIPATH_BINARY, &files, nullptr, argv.data(), environ) != 0) pid_ = -1;
+        posix_spawn_file_actions_destroy(&files);
+    }
+    ~Background() {
+        if (pid_ <= 0) return;
+        ::kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+    }
+    void signal(int number) const { ::kill(pid_, number); }
+    // Its exit code once it ends within `seconds`; -1 if a signal ended it or it did not end.
+    int exitCode(int seconds) {
+        int status = 0;
+        bool ended = false;
+        if (!waitFor([&] { return ended = ended || waitpid(pid_, &status, WNOHANG) == pid_; }, seconds)) return -1;
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+
+private:
+    pid_t pid_ = -1;
+};
+
+std::string metaValue(const Metadata& meta, const std::string& key) {
+    for (const auto& [k, v] : meta)
+        if (k == key) return v;
+    return "";
+}
 
 // A fresh folder per test, removed afterwards.
 class Cli : public testing::Test {
@@ -88,7 +145,52 @@ TEST_F(Cli, ARenderThatIsFineSucceeds) {
     // The reference point for the rest: the same command lines with one thing wrong fail.
     const Outcome o = run(render("--width 8 --height 8 --spp 1 " + out()));
     EXPECT_EQ(o.exitCode, 0) << o.err;
-    EXPECT_TRUE(fs::exists(path("out.exr")));
+    EXPECT_EQ(o.err.find("interrupted"), std::string::npos) << o.err;
+    Metadata meta;
+    readExr(path("out.exr"), &meta);
+    EXPECT_EQ(metaValue(meta, "tripath:interrupted"), "") << "a render that ran to its end";
+}
+
+// SIGTERM (a batch system's time limit) or SIGINT (Ctrl-C) mid-render: the image so far is
+// written, but the command must not pass for finished: it exits with 128 + the signal's number, as
+// a shell reports a process the signal ended, its summary line says how far it got, and the EXR
+// records tripath:interrupted. The render checkpoints every 10 ms only to show it is under way
+// (the file appears after its first passes, its signal handler long installed). Catches an
+// interrupted render that exits 0 and says nothing (as it did), and a line or key whose pass
+// count is not the file's.
+TEST_F(Cli, AnInterruptedRenderSaysSoAndFails) {
+    Background job({"render", "--scene", "cornell", "--width", "32", "--height", "32", "--spp", "1000000",
+                    "--checkpoint", "0.01", "--out", path("out.exr")},
+                   path("err.txt"));
+    ASSERT_TRUE(waitFor([&] { return fs::exists(path("out.exr.checkpoint")); }, 120)) << slurp(path("err.txt"));
+    job.signal(SIGTERM);
+    EXPECT_EQ(job.exitCode(120), 128 + SIGTERM) << slurp(path("err.txt"));
+    Metadata meta;
+    readExr(path("out.exr"), &meta);
+    const std::string spp = metaValue(meta, "tripath:spp"), progress = "after " + spp + " of 1000000 passes, ";
+    EXPECT_EQ(metaValue(meta, "tripath:interrupted").rfind(progress, 0), 0u) << metaValue(meta, "tripath:interrupted");
+    EXPECT_NE(slurp(path("err.txt")).find("bdpt cornell: interrupted " + progress), std::string::npos)
+        << slurp(path("err.txt"));
+}
+
+// The same for `reference` with a time budget, which keeps the passes it has: the line and the key
+// say the passes and the seconds out of the budget.
+TEST_F(Cli, AnInterruptedReferenceSaysSoAndFails) {
+    Background job({"reference", "--scene", "cornell", "--width", "32", "--height", "32", "--time", "1000",
+                    "--checkpoint", "0.01", "--out", path("ref.exr")},
+                   path("err.txt"));
+    ASSERT_TRUE(waitFor([&] { return fs::exists(path("ref.exr.checkpoint")); }, 120)) << slurp(path("err.txt"));
+    job.signal(SIGINT);
+    EXPECT_EQ(job.exitCode(120), 128 + SIGINT) << slurp(path("err.txt"));
+    Metadata meta;
+    readExr(path("ref.exr"), &meta);
+    const std::string spp = metaValue(meta, "tripath:spp"), progress = "after " + spp + " passes, ";
+    EXPECT_GE(std::stoi(spp), 1);
+    const std::string recorded = metaValue(meta, "tripath:interrupted");
+    EXPECT_EQ(recorded.rfind(progress, 0), 0u) << recorded;
+    EXPECT_NE(recorded.find(" s of 1000 s"), std::string::npos) << recorded;
+    EXPECT_NE(slurp(path("err.txt")).find("reference bdpt cornell: interrupted " + progress), std::string::npos)
+        << slurp(path("err.txt"));
 }
 
 TEST_F(Cli, StatsReportWhatTheRenderDidAndWhereTheTimeWent) {

@@ -466,10 +466,10 @@ TEST(CompareCommand, RefusesAReferenceThatSharesARunsSeed) {
 
 // Ctrl-C during a comparison: the reference being rendered stops at its next pass and is written
 // with what it has; the runs do not get their budgets, so there is no report, and the command
-// says so in one line and fails. Catches a compare that ignores the interrupt (it would render
-// its 60 s reference and two 6 s runs, and the wait below gives up), one that dies of the signal
-// with nothing written (no reference.exr, no exit status of its own), and one that writes a
-// report of runs cut short (error.csv).
+// says so in one line and fails with 130 (128 + SIGINT), as every interrupted command does.
+// Catches a compare that ignores the interrupt (it would render its 60 s reference and two 6 s
+// runs, and the wait below gives up), one that dies of the signal with nothing written (no
+// reference.exr), and one that writes a report of runs cut short (error.csv).
 TEST(CompareCommand, CtrlCKeepsTheReferenceAndWritesNoReport) {
     TempDir dir;
     const std::string out = dir / "out", err = dir / "stderr.txt", status = dir / "status";
@@ -490,7 +490,7 @@ TEST(CompareCommand, CtrlCKeepsTheReferenceAndWritesNoReport) {
     const bool ended = waitFor([&] { return fs::exists(status) && readFile(status).find('\n') != std::string::npos; }, 30);
     if (!ended) std::system(("pkill -KILL -f " + pattern).c_str());  // leave nothing running
     ASSERT_TRUE(ended) << "compare went on after Ctrl-C";
-    EXPECT_EQ(std::stoi(readFile(status)), 1);
+    EXPECT_EQ(std::stoi(readFile(status)), 130);
     const std::string text = readFile(err);
     const std::string last = text.substr(text.rfind('\n', text.size() - 2) + 1);
     EXPECT_EQ(last.rfind("error: compare interrupted: no report", 0), 0u) << text;

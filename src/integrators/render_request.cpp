@@ -127,6 +127,7 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:ranks", std::to_string(ranks)}};
     const Metadata light = lightPhaseMetadata(r, scene, integrator);
     m.insert(m.end(), light.begin(), light.end());
+    if (result.interrupted) m.push_back({"tripath:interrupted", interruptionText(result)});
     return m;
 }
 

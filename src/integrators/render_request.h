@@ -70,7 +70,8 @@ const char* streamsName(StreamDomain d);
 // max-depth, rr-depth and mis. Every check that a file may be added to or measured against
 // (references, checkpoints, the benchmark's reference cache) starts from these.
 Metadata convergenceSettings(const RenderRequest& r, const std::string& integrator);
-// The EXR metadata describing a finished render by `ranks` processes.
+// The EXR metadata describing a finished render by `ranks` processes; tripath:interrupted too
+// (interruptionText, render.h) when a stop request ended it.
 Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator, const RenderResult& result,
                         int ranks = 1);
 // The part of it that describes the light phase: light paths per pass, and for the merging
