@@ -326,6 +326,20 @@ TEST_F(Cli, ValidationComesBeforeLoading) {
     expectRefused("render --scene '" + path("nothing.gltf") + "' --width 0 " + out(), "--width");
 }
 
+// A first word that is no command is named, with the commands and the nearest one to it; no word
+// at all lists them. Catches CLI11's "A subcommand is required", which names none.
+TEST_F(Cli, AMistypedCommandGetsTheNearestOne) {
+    expectRefused("rendr --scene cornell", "unknown command 'rendr' (did you mean 'render'?)");
+    expectRefused("benchmrak", "did you mean 'benchmark'?");
+    expectRefused("comapre", "did you mean 'compare'?");
+    const Outcome far = run("frobnicate");
+    EXPECT_EQ(far.exitCode, 1);
+    EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << "nothing is near: " << far.err;
+    EXPECT_NE(far.err.find("render, scenes, reference, compare, benchmark, export, montage"), std::string::npos)
+        << far.err;
+    expectRefused("", "a command is required: render, scenes, reference, compare, benchmark, export, montage");
+}
+
 // CLI11's own parse errors (a number that is not one, an unknown flag) are one line too.
 TEST_F(Cli, ParseErrorsAreOneLine) {
     expectRefused(render("--width abc " + out()), "--width");
