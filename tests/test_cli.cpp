@@ -326,6 +326,27 @@ TEST_F(Cli, ValidationComesBeforeLoading) {
     expectRefused("render --scene '" + path("nothing.gltf") + "' --width 0 " + out(), "--width");
 }
 
+// A number too large for its flag's type is out of range like any other, and gets the range, not
+// CLI11's "could not convert". Catches a flag whose text reaches CLI11's conversion unchecked.
+TEST_F(Cli, IntegersBeyondTheirTypeGiveTheRange) {
+    const std::string tiny = "--width 8 --height 8 --spp 1 ";
+    expectRefused(render("--spp 99999999999 " + out()), "--spp must be between 1 and 1000000 (got 99999999999)");
+    expectRefused(render("--width 99999999999 " + out()), "--width must be between 1 and 16384");
+    expectRefused(render("--height 99999999999 " + out()), "--height must be between 1 and 16384");
+    expectRefused(render(tiny + "--max-depth 99999999999 " + out()), "--max-depth must be between 1 and 1024");
+    expectRefused(render(tiny + "--rr-depth 99999999999 " + out()), "--rr-depth must be between 0 and 1024");
+    expectRefused(render(tiny + "--threads 99999999999 " + out()), "--threads must be between 0 and 4096");
+    expectRefused(render(tiny + "--integrator vcm --light-paths 99999999999999999999 " + out()),
+                  "--light-paths must be between 1 and 67108864");
+    expectRefused(render(tiny + "--strategy-images 99999999999 " + out()), "--strategy-images must be between 0 and 16");
+    expectRefused(render(tiny + "--seed -1 " + out()), "--seed must be between 0 and 18446744073709551615 (got -1)");
+    expectRefused(render(tiny + "--seed 99999999999999999999 " + out()), "--seed must be between 0 and");
+    expectRefused("compare --scene cornell --time 1 --runs 99999999999 --out '" + path("c") + "'",
+                  "--runs must be between 1 and 100");
+    expectRefused("benchmark --scenes cornell --time 1 --runs 99999999999 --out '" + path("b") + "'",
+                  "--runs must be between 2 and 100");
+}
+
 // A first word that is no command is named, with the commands and the nearest one to it; no word
 // at all lists them. Catches CLI11's "A subcommand is required", which names none.
 TEST_F(Cli, AMistypedCommandGetsTheNearestOne) {
@@ -338,6 +359,45 @@ TEST_F(Cli, AMistypedCommandGetsTheNearestOne) {
     EXPECT_NE(far.err.find("render, scenes, reference, compare, benchmark, export, montage"), std::string::npos)
         << far.err;
     expectRefused("", "a command is required: render, scenes, reference, compare, benchmark, export, montage");
+}
+
+// A flag the integrator does not use would be silently ignored, and the user would believe it set:
+// each is refused in one line naming the integrators that do use it. In compare, a flag is used if
+// any integrator rendering uses it: a method, or the reference's integrator when it renders one.
+// Catches each flag accepted with an integrator it does nothing for, and a compare that checks the
+// flags against its request's unused default integrator instead of its methods.
+TEST_F(Cli, FlagsThatChangeNothingAreRefused) {
+    const std::string tiny = "--width 8 --height 8 --spp 1 ";
+    expectRefused(render(tiny + "--integrator bdpt --radius 0.1 " + out()), "--radius needs an integrator that merges");
+    expectRefused(render(tiny + "--integrator pt --radius-factor 0.1 " + out()), "--radius-factor needs");
+    expectRefused(render(tiny + "--integrator lt --radius-pixels 2 " + out()), "--radius-pixels needs");
+    expectRefused(render(tiny + "--integrator bdpt --alpha 0.5 " + out()), "--alpha needs an integrator that merges");
+    expectRefused(render(tiny + "--integrator pt --light-paths 10 " + out()),
+                  "--light-paths needs an integrator that traces light paths (lt, bdpt, vcm, bpm or ppm): pt does not");
+    expectRefused(render(tiny + "--exposure 2 " + out()), "--exposure requires --png");
+    expectRefused(render(tiny + "--exposure nan " + out() + " --png '" + path("out.png") + "'"), "--exposure");
+    expectRefused(render(tiny + "--exposure inf " + out() + " --png '" + path("out.png") + "'"), "--exposure");
+    EXPECT_FALSE(fs::exists(path("out.png")));
+    for (const std::string flags : {"--radius-pixels 2", "--alpha 0.5", "--light-paths 10"}) {
+        const Outcome used = run(render(tiny + "--integrator vcm " + flags + " " + out()));
+        EXPECT_EQ(used.exitCode, 0) << flags << ": " << used.err;
+    }
+    EXPECT_EQ(run(render(tiny + "--integrator lt --light-paths 10 " + out())).exitCode, 0);
+    const Outcome exposed = run(render(tiny + "--exposure -2 " + out() + " --png '" + path("out.png") + "'"));
+    EXPECT_EQ(exposed.exitCode, 0) << exposed.err;
+    fs::remove(path("out.exr"));  // expectRefused checks that none is written
+
+    ASSERT_EQ(run("reference --scene cornell " + tiny + "--out '" + path("ref.exr") + "'").exitCode, 0);
+    const std::string compare = "compare --scene cornell --width 8 --height 8 --time 0.05 --out '" + path("c") + "' ";
+    const std::string given = "--reference '" + path("ref.exr") + "' ";
+    expectRefused(compare + given + "--integrators pt,lt --radius 0.1", "--radius needs an integrator that merges "
+                                                                        "(vcm, bpm or ppm): pt, lt do not");
+    expectRefused(compare + given + "--integrators pt --light-paths 4", "--light-paths needs");
+    const Outcome merging = run(compare + given + "--integrators pt,vcm --radius 0.1");
+    EXPECT_EQ(merging.exitCode, 0) << merging.err;
+    // Without --reference, the reference is rendered by vcm (the default): the radius is its.
+    const Outcome reference = run(compare + "--integrators pt --radius 0.1");
+    EXPECT_EQ(reference.exitCode, 0) << reference.err;
 }
 
 // CLI11's own parse errors (a number that is not one, an unknown flag) are one line too.

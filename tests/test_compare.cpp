@@ -502,6 +502,49 @@ TEST(CompareCommand, CtrlCKeepsTheReferenceAndWritesNoReport) {
     EXPECT_FALSE(fs::exists(out + "/error.csv"));
 }
 
+// Input found bad on the way (a scene file that does not load, a reference of another size, read
+// once the request's values passed) leaves no output folder behind: it is made only when the
+// first file is written into it. Catches a compare that creates --out while it validates (as it
+// did), which left an empty folder after every such mistake.
+TEST(CompareCommand, AFailedCompareLeavesNoOutputFolder) {
+    TempDir dir;
+    const std::string ref = dir / "ref.exr", out = dir / "out/nested";
+    ASSERT_EQ(tripathCli(dir, "reference --scene cornell --width 16 --height 16 --spp 1 --out " + ref).exitCode, 0);
+    expectOneLineError(tripathCli(dir, "compare --scene " + (dir / "missing.gltf") +
+                                           " --width 32 --height 32 --integrators pt --time 0.1 --out " + out),
+                       "missing.gltf");
+    expectOneLineError(tripathCli(dir, "compare " + kSmall + " --integrators pt --time 0.1 --reference " + ref +
+                                           " --out " + out),
+                       "32x32");
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    // Where the folder cannot be made, that is said before anything renders.
+    std::ofstream(dir / "file") << "not a folder";
+    expectOneLineError(tripathCli(dir, "compare " + kSmall + " --integrators pt --time 100 --out " + (dir / "file/out")),
+                       "is not a directory");
+}
+
+// compare and benchmark render a missing reference with the same integrator, vcm, the method that
+// samples every path a scene has (bdpt misses caustics seen through glass under a point light),
+// and both --help texts say so. Catches compare's old default (bdpt) and a help that drifts.
+TEST(CompareCommand, TheDefaultReferenceIsRenderedByVcm) {
+    TempDir dir;
+    const std::string out = dir / "out";
+    const Outcome o = tripathCli(dir, "compare " + kSmall + " --integrators pt --time 0.02 --out " + out);
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    Metadata meta;
+    readExr(out + "/reference.exr", &meta);
+    EXPECT_EQ(metaValue(meta, "tripath:integrator"), "vcm");
+    for (const char* command : {"compare", "benchmark"}) {
+        const std::string help = dir / "help.txt";
+        std::system((std::string("'") + TRIPATH_BINARY + "' " + command + " --help > '" + help + "'").c_str());
+        const std::string text = readFile(help);
+        const size_t flag = text.find("--reference-integrator");
+        ASSERT_NE(flag, std::string::npos) << command;
+        EXPECT_NE(text.find("vcm by default, the method that samples every path a scene has", flag), std::string::npos)
+            << command << ":\n" << text;
+    }
+}
+
 // The full report from one comparison: every file, a CSV that parses, and errors that fall with
 // time for every method (all three are unbiased on this diffuse scene). Two runs, compared
 // through their means, keep the check far from noise: from the first checkpoint (a pass or so)
