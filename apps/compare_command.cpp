@@ -46,7 +46,7 @@ std::optional<Region> parseCrop(const std::string& text) {
 // Every check that can fail before the first sample is rendered.
 void validate(CompareCommand& c) {
     evaluation::CompareRequest& o = c.options;
-    validateRenderOptions(c.render);
+    validateRenderOptions(c.render, false);
     o.render = c.render;
     o.methods = splitCommas(c.integrators);
     o.crop = parseCrop(c.crop);
@@ -98,23 +98,26 @@ void addCompareCommand(CLI::App& app) {
     cmd->get_option("--time")->required()->description("Wall-clock budget in seconds for each run of each integrator");
     cmd->add_option("--integrators", c->integrators, "Comma-separated integrators to compare (pt, lt, bdpt, vcm, bpm, ppm)")
         ->capture_default_str();
-    cmd->add_option("--reference", c->options.referencePath,
+    auto* reference = cmd->add_option("--reference", c->options.referencePath,
                     "Reference EXR of the same scene and size (see `tripath reference`, whose random streams are "
                     "independent of every run's, whatever the seeds); without it, --reference-integrator renders one "
                     "for 10x --time into <out>/reference.exr. An image from `tripath render` whose seed one of the "
                     "runs would reuse is refused: it would share their samples");
     cmd->add_option("--reference-integrator", c->options.referenceIntegrator,
-                    "The integrator that renders the reference when --reference is not given: one that can sample "
-                    "every path of the scene (vcm where bdpt cannot, e.g. caustics seen through glass under a point "
-                    "light)")
-        ->capture_default_str();
-    cmd->add_option("--runs", c->options.runs,
-                    "Independent runs per integrator (seeds seed, seed+1, ...); the chart shows their mean and "
-                    "min-max band")
-        ->capture_default_str();
+                    "The integrator that renders the reference when --reference is not given: vcm by default, the "
+                    "method that samples every path a scene has (bdpt misses caustics seen through glass under a "
+                    "point light)")
+        ->capture_default_str()
+        ->excludes(reference);
+    inRange(cmd->add_option("--runs", c->options.runs,
+                            "Independent runs per integrator (seeds seed, seed+1, ...); the chart shows their mean and "
+                            "min-max band")
+                ->capture_default_str(),
+            evaluation::kRunsRange);
     cmd->add_option("--crop", c->crop,
                     "x,y,w,h: region magnified in side-by-side.png (default: where the methods' errors differ most)");
-    cmd->add_option("--out", c->options.outDir, "Output directory (created if missing)")->required();
+    cmd->add_option("--out", c->options.outDir, "Output directory (created, if missing, when the first file is written)")
+        ->required();
     cmd->callback([c] { run(*c); });
 }
 

@@ -1,11 +1,44 @@
 // tripath: light transport on one three-point path core. See `tripath --help`.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "commands.h"
+#include "input_words.h"
 #include "processes.h"
 #include "core/error.h"
+#include "integrators/interrupt.h"
+
+namespace {
+
+// The first argument must name a command (unless it is a flag: --help, --version, or one CLI11
+// refuses): otherwise one line naming the commands, and the nearest one to a typo.
+void requireCommand(const CLI::App& app, int argc, char** argv) {
+    if (argc > 1 && argv[1][0] == '-') return;
+    std::vector<std::string> names;
+    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; }))
+        names.push_back(command->get_name());
+    const std::string list = fmt::format("{}", fmt::join(names, ", "));
+    if (argc < 2) throw tripath::InputError("a command is required: " + list + " (`tripath --help` says what each does)");
+    if (std::find(names.begin(), names.end(), argv[1]) != names.end()) return;
+    const auto nearest = tripath::app::nearestName(argv[1], names);
+    throw tripath::InputError(fmt::format("unknown command '{}'{}; the commands are {}", tripath::app::clipped(argv[1]),
+                                          nearest ? " (did you mean '" + *nearest + "'?)" : "", list));
+}
+
+// A command that SIGINT or SIGTERM cut short ends with 128 + the signal's number, as a shell reports
+// a process the signal ended, even when it wrote what it had: a batch job killed at its time limit
+// must not pass for finished.
+int exitCode(int code) {
+    const int signal = tripath::interruptSignal();
+    return signal ? 128 + signal : code;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     tripath::app::Processes processes(argc, argv);  // under mpirun: one of N ranks (processes.h)
@@ -21,6 +54,7 @@ int main(int argc, char** argv) {
     tripath::app::addExportCommand(app);
     tripath::app::addMontageCommand(app);
     try {
+        requireCommand(app, argc, argv);
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
@@ -28,11 +62,11 @@ int main(int argc, char** argv) {
         return 1;
     } catch (const tripath::InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
-        return 1;
+        return exitCode(1);
     } catch (const std::exception& e) {
         processes.fail(tripath::oneLine(e.what()), 2);  // a rank's own failure ends the job (others may wait for it)
         std::cerr << "error: " << tripath::oneLine(e.what()) << "\n";
         return 2;
     }
-    return 0;
+    return exitCode(0);
 }

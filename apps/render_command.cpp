@@ -1,8 +1,9 @@
 // `tripath render`: one image of a scene with one integrator, to EXR (and a PNG preview).
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <charconv>
+#include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 
@@ -24,6 +25,9 @@ struct RenderCommand {
     std::optional<float> exposure;  // none: exposed from the image (image/exposure.h)
 };
 
+// The PNG's exposure in stops goes up to 2^±64, past any radiance a scene gives (and NaN is refused).
+constexpr float kMaxExposure = 64;
+
 // "<dir>/<stem><suffix>.exr" beside the main output.
 std::string sibling(const std::string& out, const std::string& suffix) {
     const std::filesystem::path p(out);
@@ -36,6 +40,9 @@ void validate(const RenderCommand& c) {
     if (std::filesystem::path(c.out).extension() != ".exr") throw InputError("--out must name an .exr file: " + c.out);
     if (!c.png.empty() && std::filesystem::path(c.png).extension() != ".png")
         throw InputError("--png must name a .png file: " + c.png);
+    if (c.exposure && !(std::abs(*c.exposure) <= kMaxExposure))
+        throw InputError(fmt::format("--exposure must be a number of stops between -{0} and {0} (got {1})", kMaxExposure,
+                                     *c.exposure));
     if (!isRankZero()) return;  // only rank 0 writes
     checkWritable(c.out);
     if (!c.png.empty()) checkWritable(c.png);
@@ -139,17 +146,21 @@ void addRenderCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("render", "Render a scene with one integrator to a linear EXR (and a PNG preview)");
     addRenderOptions(*cmd, c->options);
     cmd->add_option("--out", c->out, "Output EXR: linear radiance, 32-bit float, with the settings as metadata")->required();
-    cmd->add_option("--png", c->png, "Also write an sRGB PNG preview here");
+    auto* png = cmd->add_option("--png", c->png, "Also write an sRGB PNG preview here");
     cmd->add_option("--exposure", c->exposure,
-                    "PNG exposure in stops (the EXR is never scaled); without it the PNG is exposed from the image: "
-                    "the 98th luminance percentile of its pixels above 0 maps to white, in whole thirds of a stop");
+                    "PNG exposure in stops, with --png (the EXR is never scaled); without it the PNG is exposed from "
+                    "the image: the 98th luminance percentile of its pixels above 0 maps to white, in whole thirds "
+                    "of a stop")
+        ->needs(png);
     cmd->add_flag("--depth-images", c->options.depthImages,
                   "Also write <out>-k<K>.exr for each path length K = 1..max-depth: the Neumann-series terms, which "
                   "add up to the full image");
-    cmd->add_option("--strategy-images", c->options.strategyImages,
-                    "pt, bdpt, vcm, bpm, ppm: also write <out>-s<S>-t<T>-weighted.exr and -unweighted.exr for every "
-                    "connection (s,t) the integrator has, of path length k <= this value (k = s+t-1; pt has (0,k+1) "
-                    "and (1,k)), and <out>-s<S>-t<T>-merge-*.exr for every merge (k = s+t-2)");
+    inRange(cmd->add_option("--strategy-images", c->options.strategyImages,
+                            "pt, bdpt, vcm, bpm, ppm: also write <out>-s<S>-t<T>-weighted.exr and -unweighted.exr "
+                            "for every connection (s,t) the integrator has, of path length k <= this value "
+                            "(k = s+t-1; pt has (0,k+1) and (1,k)), and <out>-s<S>-t<T>-merge-*.exr for every merge "
+                            "(k = s+t-2)"),
+            kStrategyImagesRange);
     cmd->add_option("--replay", c->replay,
                     "PASS,PIXEL: render that one sample again (PIXEL = y * width + x; for lt that pixel's light paths PIXEL, PIXEL + width * height, ...) with "
                     "the other flags as given, and print each of its contributions (strategy, f/p, MIS weight), NaN or "

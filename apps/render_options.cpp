@@ -4,11 +4,13 @@
 #include <fmt/ranges.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <iostream>
 #include <sstream>
 
 #include "core/error.h"
 #include "geometry/embree_isa.h"
+#include "input_words.h"
 #include "processes.h"
 #include "stats_report.h"
 
@@ -19,6 +21,27 @@ void addSceneOptions(CLI::App& cmd, std::string& scene, GltfOptions& gltf) {
     cmd.add_flag("--allow-external-files", gltf.allowExternalFiles,
                  "Let a glTF file's buffer URIs name files outside its folder (absolute paths, '..', symlinks "
                  "leading out); by default only regular files in the folder and its subfolders are read");
+}
+
+CLI::Option* inRange(CLI::Option* option, const IntRange& range) {
+    auto check = [option, range](std::string& text) {
+        const char *begin = text.data(), *end = begin + text.size();
+        bool ok = false;
+        if (text.starts_with('-')) {
+            int64_t v = 0;
+            const auto [stop, ec] = std::from_chars(begin, end, v);
+            ok = ec == std::errc{} && stop == end && v >= range.min;
+        } else {
+            uint64_t v = 0;
+            const auto [stop, ec] = std::from_chars(begin, end, v);
+            ok = ec == std::errc{} && stop == end && v <= range.max && (range.min <= 0 || v >= uint64_t(range.min));
+        }
+        // Thrown rather than returned: CLI11 would put "--flag: " before the message, which then
+        // reads unlike validate()'s for a value that converts.
+        if (!ok) throw InputError(outOfRange(option->get_name(), range, clipped(text)));
+        return std::string();
+    };
+    return option->check(CLI::Validator(check, fmt::format("INT in [{}, {}]", range.min, range.max)));
 }
 
 std::vector<std::string> splitCommas(const std::string& text) {
@@ -46,18 +69,21 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     auto* spp = cmd.add_option_function<int>(
         "--spp", [&o](int v) { o.spp = v, o.sppGiven = true; },
         "Samples per pixel, one per pass (default 16 when --time is not given)");
+    inRange(spp, kSppRange);
     auto* time = cmd.add_option_function<double>(
         "--time", [&o](double v) { o.seconds = v, o.timeGiven = true; },
         "Wall-clock budget in seconds: render whole passes until it is spent (at least one)");
     spp->excludes(time);
-    cmd.add_option("--width", o.width, "Image width in pixels")->capture_default_str();
-    cmd.add_option("--height", o.height, "Image height in pixels")->capture_default_str();
-    cmd.add_option("--max-depth", o.maxDepth,
-                   "Longest path kept, in segments k: 1 = emitters seen directly, 2 = direct lighting, ...")
-        ->capture_default_str();
-    cmd.add_option("--rr-depth", o.rrDepth,
-                   "Russian roulette starts once a subpath has this many vertices (default, measured at equal time: 3 "
-                   "for pt, 2 for the methods with light subpaths; 0 also means the default)");
+    inRange(cmd.add_option("--width", o.width, "Image width in pixels")->capture_default_str(), kSizeRange);
+    inRange(cmd.add_option("--height", o.height, "Image height in pixels")->capture_default_str(), kSizeRange);
+    inRange(cmd.add_option("--max-depth", o.maxDepth,
+                           "Longest path kept, in segments k: 1 = emitters seen directly, 2 = direct lighting, ...")
+                ->capture_default_str(),
+            kMaxDepthRange);
+    inRange(cmd.add_option("--rr-depth", o.rrDepth,
+                           "Russian roulette starts once a subpath has this many vertices (default, measured at equal "
+                           "time: 3 for pt, 2 for the methods with light subpaths; 0 also means the default)"),
+            kRrDepthRange);
     cmd.add_option("--mis", o.mis, "MIS heuristic: balance, power (beta = 2) or none (uniform weights)")
         ->capture_default_str();
     auto* radius = cmd.add_option_function<float>(
@@ -66,27 +92,33 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     auto* factor = cmd.add_option_function<float>(
         "--radius-factor", [&o](float v) { o.merge.radiusFactor = v, o.radiusFactorGiven = true; },
         "vcm, bpm, ppm: merge radius of the first pass as a fraction of the scene's bounding-sphere radius");
-    cmd.add_option("--radius-pixels", o.merge.radiusPixels,
-                   "vcm, bpm, ppm: merge radius of the first pass in pixel widths on the surfaces the camera sees "
-                   "(the median over a grid of pixels); the default when neither --radius nor --radius-factor is given")
-        ->capture_default_str()
+    cmd.add_option_function<float>(
+           "--radius-pixels", [&o](float v) { o.merge.radiusPixels = v, o.radiusPixelsGiven = true; },
+           "vcm, bpm, ppm: merge radius of the first pass in pixel widths on the surfaces the camera sees (the median "
+           "over a grid of pixels); the default when neither --radius nor --radius-factor is given")
+        ->default_str(fmt::format("{}", o.merge.radiusPixels))
         ->excludes(radius)
         ->excludes(factor);
     radius->excludes(factor);
-    cmd.add_option("--alpha", o.merge.alpha,
-                   "vcm, bpm, ppm: the radius of pass i is r_1 * i^((alpha-1)/2); 1 keeps it fixed (biased), "
-                   "below 1 shrinks it (consistent)")
-        ->capture_default_str();
-    cmd.add_option_function<int64_t>(
-        "--light-paths", [&o](int64_t v) { o.lightPaths = v, o.lightPathsGiven = true; },
-        "lt, bdpt, vcm, bpm, ppm: light paths traced per pass, N_L (default: one per pixel). Pixel i's camera sample "
-        "connects with light path i mod N_L; each light path is joined to the sensor once per pass; splats, MIS "
-        "weights and the merges' 1/(pi r^2 N_L) count N_L. Converges to the same image, with other noise and cost; "
-        "no effect on pt");
-    cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
-        ->capture_default_str();
-    cmd.add_option("--threads", o.threads, "Worker threads per process (0: all cores; under mpirun give each rank its share)")
-        ->capture_default_str();
+    cmd.add_option_function<float>(
+           "--alpha", [&o](float v) { o.merge.alpha = v, o.alphaGiven = true; },
+           "vcm, bpm, ppm: the radius of pass i is r_1 * i^((alpha-1)/2); 1 keeps it fixed (biased), below 1 shrinks "
+           "it (consistent)")
+        ->default_str(fmt::format("{}", o.merge.alpha));
+    inRange(cmd.add_option_function<int64_t>(
+                "--light-paths", [&o](int64_t v) { o.lightPaths = v, o.lightPathsGiven = true; },
+                "lt, bdpt, vcm, bpm, ppm: light paths traced per pass, N_L (default: one per pixel). Pixel i's camera "
+                "sample connects with light path i mod N_L; each light path is joined to the sensor once per pass; "
+                "splats, MIS weights and the merges' 1/(pi r^2 N_L) count N_L. Converges to the same image, with other "
+                "noise and cost"),
+            kLightPathsRange);
+    inRange(cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
+                ->capture_default_str(),
+            kSeedRange);
+    inRange(cmd.add_option("--threads", o.threads,
+                           "Worker threads per process (0: all cores; under mpirun give each rank its share)")
+                ->capture_default_str(),
+            kThreadsRange);
     cmd.add_option("--embree-isa", o.embreeIsa,
                    "Embree's instruction set for the ray queries: sse2, sse4.2, avx, avx2 or avx512. Each builds "
                    "its own BVH, so the same seed gives another (statistically equal) image, and the EXR records "
@@ -105,8 +137,11 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                  "so they run only with this flag");
 }
 
-void validateRenderOptions(const RenderOptions& o) {
-    validate(o, Spelling::CommandLine);
+void validateRenderOptions(const RenderOptions& o, bool withIntegrator) {
+    if (withIntegrator)
+        validate(o, Spelling::CommandLine);
+    else
+        validateValues(o, Spelling::CommandLine);
     if (!(o.checkpointSeconds >= 0 && o.checkpointSeconds <= 1e7))
         throw InputError(fmt::format("--checkpoint must be a number of seconds, at least 0 and at most 1e7 (got {})",
                                      o.checkpointSeconds));
@@ -137,10 +172,10 @@ std::function<void(int, double)> progressReporter(const RenderSettings& s, int w
 void printSummary(const std::string& label, const RenderResult& r, const RenderRequest& o) {
     const int width = o.width, height = o.height;
     if (isatty(STDERR_FILENO)) std::cerr << "\n";
-    std::cerr << fmt::format("{}: {} spp in {:.2f} s ({:.2f} Msamples/s), {} NaN/Inf samples dropped, "
-                             "{} MIS weights guarded to 0\n",
-                             label, r.passes, r.seconds, r.passes * double(width) * height / r.seconds / 1e6,
-                             r.droppedSamples, r.guardedWeights);
+    const std::string done = r.interrupted ? "interrupted " + interruptionText(r)
+                                           : fmt::format("{} spp in {:.2f} s", r.passes, r.seconds);
+    std::cerr << fmt::format("{}: {} ({:.2f} Msamples/s), {} NaN/Inf samples dropped, {} MIS weights guarded to 0\n", label,
+                             done, r.passes * double(width) * height / r.seconds / 1e6, r.droppedSamples, r.guardedWeights);
     if (!r.droppedLog.empty()) {
         std::string where;
         for (const DroppedSample& d : r.droppedLog) where += fmt::format(" {},{}", d.pass, d.pixel);

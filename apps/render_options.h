@@ -29,19 +29,26 @@ struct RenderOptions : RenderRequest {
 // empty item (",," or a trailing comma) is kept so that the command can refuse it.
 std::vector<std::string> splitCommas(const std::string& text);
 
+// Refuses an integer flag's value outside `range` (render_request.h) with validate()'s one line,
+// checked on the text before CLI11 converts it, so that a number too large for the flag's type
+// gets the range too (CLI11 alone says only that it cannot convert it). Returns the option.
+CLI::Option* inRange(CLI::Option* option, const IntRange& range);
+
 // Registers --scene and --allow-external-files, for every command that loads a scene.
 void addSceneOptions(CLI::App& cmd, std::string& scene, GltfOptions& gltf);
 // Registers the flags on a subcommand (the scene flags included), with help text that states defaults and meanings.
 void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator = true);
 // Throws InputError for values out of range, before any work is done: the request's checks
 // (render_request.h), --checkpoint's and --embree-isa's. Then pins --embree-isa, if given, for
-// every scene built from now on.
-void validateRenderOptions(const RenderOptions& o);
+// every scene built from now on. Without --integrator (compare, benchmark: their integrators are
+// a list), the values alone: the command checks what its integrators use.
+void validateRenderOptions(const RenderOptions& o, bool withIntegrator = true);
 
 // A progress line on stderr when it is a terminal (percent, samples/s, time left), updated
 // after each pass; nothing otherwise. Returns the callback for RenderSettings::progress.
 std::function<void(int, double)> progressReporter(const RenderSettings& s, int width, int height, const std::string& label);
-// The one-line summary printed when a render ends, and with --stats the report of stats_report.h.
+// The one-line summary printed when a render ends ("interrupted after 5 of 16 passes, …" when a
+// signal cut it short), and with --stats the report of stats_report.h.
 void printSummary(const std::string& label, const RenderResult& r, const RenderRequest& o);
 // What a comparison or benchmark tells the terminal (rank 0): its lines, each render's progress
 // line and summary, as above.

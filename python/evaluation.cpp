@@ -212,7 +212,7 @@ py::list benchmarkScenes(const std::vector<std::string>& scenes, double seconds,
 void defineEvaluation(py::module_& m) {
     const std::vector<std::string> compared{"pt", "lt", "bdpt"}, benchmarked{"pt", "lt", "bdpt", "vcm"};
     m.def("compare", &compareScene, py::arg("scene"), py::arg("seconds"), py::arg("integrators") = compared,
-          py::arg("runs") = 1, py::arg("reference") = py::none(), py::arg("reference_integrator") = "bdpt",
+          py::arg("runs") = 1, py::arg("reference") = py::none(), py::arg("reference_integrator") = evaluation::kDefaultReferenceIntegrator,
           py::arg("reference_seconds") = py::none(), py::arg("out") = "", py::arg("width") = 512,
           py::arg("height") = 512, py::arg("seed") = 1, py::arg("max_depth") = 16, py::arg("mis") = "power",
           py::arg("threads") = 0, py::arg("crop") = py::none(), py::arg("progress") = py::none(),

@@ -70,8 +70,8 @@ void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
         if (k == "rr_depth") r.rrDepth = value.cast<int>();
         else if (k == "radius") r.merge.radius = value.cast<float>(), r.radiusGiven = true;
         else if (k == "radius_factor") r.merge.radiusFactor = value.cast<float>(), r.radiusFactorGiven = true;
-        else if (k == "radius_pixels") r.merge.radiusPixels = value.cast<float>();
-        else if (k == "alpha") r.merge.alpha = value.cast<float>();
+        else if (k == "radius_pixels") r.merge.radiusPixels = value.cast<float>(), r.radiusPixelsGiven = true;
+        else if (k == "alpha") r.merge.alpha = value.cast<float>(), r.alphaGiven = true;
         else if (k == "light_paths") r.lightPaths = value.cast<int64_t>(), r.lightPathsGiven = true;
         else
             throw InputError("unknown option '" + k +

@@ -94,18 +94,65 @@ TEST_F(Benchmark, TablesEveryMethodOnEverySceneAndFlagsBias) {
     EXPECT_EQ(again.err.find("rendering one"), std::string::npos) << again.err;
 }
 
+// Every mistake is refused in one line before the first render, and leaves no output folder. A
+// scene late in the list that does not load is found before the first scene renders: catches a
+// benchmark that resolves each scene only when it reaches it (cornell would render first, its
+// lines printed, and the mistake cost the run), and one that creates --out while it validates.
 TEST_F(Benchmark, BadListsAreRefusedInOneLine) {
+    std::ofstream(path("broken.gltf")) << "{ \"asset\": {";
     const std::string out = " --time 0.1 --out " + (dir_ / "b").string();
-    for (const std::string args : {"--scenes cornell,,sds", "--scenes cornell --integrators pt,pt",
+    for (const std::string& args : std::vector<std::string>{"--scenes cornell,,sds", "--scenes cornell --integrators pt,pt",
                                    "--scenes cornell --integrators pt,magic", "--scenes cornell --runs 1",
                                    "--scenes cornell --integrators pt --baseline lt", "--scenes cornell --bias-level 0",
-                                   "--scenes cornell --bias-level 1", "--scenes cornell --bias-level nan"}) {
+                                   "--scenes cornell --bias-level 1", "--scenes cornell --bias-level nan",
+                                   "--scenes cornell,sds,no-such-scene --integrators pt",
+                                   "--scenes cornell," + path("broken.gltf") + " --integrators pt",
+                                   "--scenes cornell --integrators pt,lt --bias-reference pt --reference-integrator "
+                                   "bdpt --alpha 0.5"}) {
         const Outcome o = tripath("benchmark " + args + out);
         EXPECT_EQ(o.exitCode, 1) << args;
         EXPECT_EQ(o.err.rfind("error: ", 0), 0u) << args << ": " << o.err;
         EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << args << ": " << o.err;
     }
-    EXPECT_FALSE(fs::exists(dir_ / "b" / "results.csv"));
+    EXPECT_FALSE(fs::exists(dir_ / "b"));
+}
+
+// --reference names a folder of references made with `tripath reference`, <scene>.exr each: the
+// benchmark measures against them and renders none. Each is checked before the first render: a
+// missing one, or one of another size, is refused in one line naming it. Catches a benchmark
+// that ignores the folder (it would render references: "rendering one"), and one that finds a
+// bad reference only when it reaches its scene.
+TEST_F(Benchmark, MeasuresAgainstTheReferencesOfAFolder) {
+    const std::string refs = path("refs"), out = path("b");
+    fs::create_directories(refs);
+    const std::string size = " --width 16 --height 16";
+    ASSERT_EQ(tripath("reference --scene cornell --spp 16" + size + " --out " + refs + "/cornell.exr").exitCode, 0);
+    const std::string args = "benchmark --integrators pt --bias-reference pt --runs 2 --time 0.05 --threads 2 --out " +
+                             out + " --reference " + refs + size;
+    for (const auto& [scenes, problem] : {std::pair<std::string, std::string>{"cornell,sds", refs + "/sds.exr is missing"},
+                                          {"sds,cornell", refs + "/sds.exr is missing"}}) {
+        const Outcome o = tripath(args + " --scenes " + scenes);
+        EXPECT_EQ(o.exitCode, 1) << scenes;
+        EXPECT_EQ(o.err.rfind("error: ", 0), 0u) << o.err;
+        EXPECT_NE(o.err.find(problem), std::string::npos) << o.err;
+        EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    }
+    ASSERT_EQ(tripath("reference --scene sds --spp 1 --width 8 --height 8 --out " + refs + "/sds.exr").exitCode, 0);
+    const Outcome small = tripath(args + " --scenes cornell,sds");
+    EXPECT_EQ(small.exitCode, 1);
+    EXPECT_NE(small.err.find("16x16"), std::string::npos) << small.err;
+    EXPECT_EQ(std::count(small.err.begin(), small.err.end(), '\n'), 1) << small.err;
+    EXPECT_FALSE(fs::exists(out));
+
+    const Outcome o = tripath(args + " --scenes cornell");
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    EXPECT_EQ(o.err.find("rendering one"), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(fs::path(out) / "references"));
+    EXPECT_EQ(readResults(fs::path(out) / "results.csv").size(), 1u);
+    std::ifstream summary(fs::path(out) / "cornell" / "summary.md");
+    std::stringstream text;
+    text << summary.rdbuf();
+    EXPECT_NE(text.str().find(refs + "/cornell.exr"), std::string::npos) << text.str();
 }
 
 }  // namespace

@@ -1,18 +1,25 @@
 // The command line under bad input (DESIGN.md §5): every mistake ends with a non-zero exit code and
 // one line on stderr saying what is wrong, before any rendering starts, and no output file.
 // Each test runs the real binary (TRIPATH_BINARY) through the shell.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "scenes/builtin_scenes.h"
 #include "geometry/gltf_writer.h"
+#include "image/image.h"
 
 namespace tripath {
 namespace {
@@ -30,6 +37,56 @@ struct Outcome {
         return lines;
     }
 };
+
+// Whether `done` came true within `seconds`, asking every 20 ms.
+bool waitFor(const std::function<bool()>& done, int seconds) {
+    const auto start = std::chrono::steady_clock::now();
+    while (!done() && std::chrono::steady_clock::now() - start < std::chrono::seconds(seconds))
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    return done();
+}
+
+// `tripath <args>` running on its own, stdout discarded and stderr into `errFile`, to be sent a
+// real signal as a batch system or a terminal would. Killed if the test ends before it does.
+class Background {
+public:
+    Background(const std::vector<std::string>& args, const std::string& errFile) {
+        std::vector<std::string> all{TRIPATH_BINARY};
+        all.insert(all.end(), args.begin(), args.end());
+        std::vector<char*> argv;
+        for (std::string& a : all) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        posix_spawn_file_actions_t files;
+        posix_spawn_file_actions_init(&files);
+        posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+        posix_spawn_file_actions_addopen(&files, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (posix_spawn(&pid_, TRIPATH_BINARY, &files, nullptr, argv.data(), environ) != 0) pid_ = -1;
+        posix_spawn_file_actions_destroy(&files);
+    }
+    ~Background() {
+        if (pid_ <= 0) return;
+        ::kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+    }
+    void signal(int number) const { ::kill(pid_, number); }
+    // Its exit code once it ends within `seconds`; -1 if a signal ended it or it did not end.
+    int exitCode(int seconds) {
+        int status = 0;
+        bool ended = false;
+        if (!waitFor([&] { return ended = ended || waitpid(pid_, &status, WNOHANG) == pid_; }, seconds)) return -1;
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+
+private:
+    pid_t pid_ = -1;
+};
+
+std::string metaValue(const Metadata& meta, const std::string& key) {
+    for (const auto& [k, v] : meta)
+        if (k == key) return v;
+    return "";
+}
 
 // A fresh folder per test, removed afterwards.
 class Cli : public testing::Test {
@@ -88,7 +145,52 @@ TEST_F(Cli, ARenderThatIsFineSucceeds) {
     // The reference point for the rest: the same command lines with one thing wrong fail.
     const Outcome o = run(render("--width 8 --height 8 --spp 1 " + out()));
     EXPECT_EQ(o.exitCode, 0) << o.err;
-    EXPECT_TRUE(fs::exists(path("out.exr")));
+    EXPECT_EQ(o.err.find("interrupted"), std::string::npos) << o.err;
+    Metadata meta;
+    readExr(path("out.exr"), &meta);
+    EXPECT_EQ(metaValue(meta, "tripath:interrupted"), "") << "a render that ran to its end";
+}
+
+// SIGTERM (a batch system's time limit) or SIGINT (Ctrl-C) mid-render: the image so far is
+// written, but the command must not pass for finished: it exits with 128 + the signal's number, as
+// a shell reports a process the signal ended, its summary line says how far it got, and the EXR
+// records tripath:interrupted. The render checkpoints every 10 ms only to show it is under way
+// (the file appears after its first passes, its signal handler long installed). Catches an
+// interrupted render that exits 0 and says nothing (as it did), and a line or key whose pass
+// count is not the file's.
+TEST_F(Cli, AnInterruptedRenderSaysSoAndFails) {
+    Background job({"render", "--scene", "cornell", "--width", "32", "--height", "32", "--spp", "1000000",
+                    "--checkpoint", "0.01", "--out", path("out.exr")},
+                   path("err.txt"));
+    ASSERT_TRUE(waitFor([&] { return fs::exists(path("out.exr.checkpoint")); }, 120)) << slurp(path("err.txt"));
+    job.signal(SIGTERM);
+    EXPECT_EQ(job.exitCode(120), 128 + SIGTERM) << slurp(path("err.txt"));
+    Metadata meta;
+    readExr(path("out.exr"), &meta);
+    const std::string spp = metaValue(meta, "tripath:spp"), progress = "after " + spp + " of 1000000 passes, ";
+    EXPECT_EQ(metaValue(meta, "tripath:interrupted").rfind(progress, 0), 0u) << metaValue(meta, "tripath:interrupted");
+    EXPECT_NE(slurp(path("err.txt")).find("bdpt cornell: interrupted " + progress), std::string::npos)
+        << slurp(path("err.txt"));
+}
+
+// The same for `reference` with a time budget, which keeps the passes it has: the line and the key
+// say the passes and the seconds out of the budget.
+TEST_F(Cli, AnInterruptedReferenceSaysSoAndFails) {
+    Background job({"reference", "--scene", "cornell", "--width", "32", "--height", "32", "--time", "1000",
+                    "--checkpoint", "0.01", "--out", path("ref.exr")},
+                   path("err.txt"));
+    ASSERT_TRUE(waitFor([&] { return fs::exists(path("ref.exr.checkpoint")); }, 120)) << slurp(path("err.txt"));
+    job.signal(SIGINT);
+    EXPECT_EQ(job.exitCode(120), 128 + SIGINT) << slurp(path("err.txt"));
+    Metadata meta;
+    readExr(path("ref.exr"), &meta);
+    const std::string spp = metaValue(meta, "tripath:spp"), progress = "after " + spp + " passes, ";
+    EXPECT_GE(std::stoi(spp), 1);
+    const std::string recorded = metaValue(meta, "tripath:interrupted");
+    EXPECT_EQ(recorded.rfind(progress, 0), 0u) << recorded;
+    EXPECT_NE(recorded.find(" s of 1000 s"), std::string::npos) << recorded;
+    EXPECT_NE(slurp(path("err.txt")).find("reference bdpt cornell: interrupted " + progress), std::string::npos)
+        << slurp(path("err.txt"));
 }
 
 TEST_F(Cli, StatsReportWhatTheRenderDidAndWhereTheTimeWent) {
@@ -222,6 +324,80 @@ TEST_F(Cli, SceneWithoutEmitterIsRefused) {
 TEST_F(Cli, ValidationComesBeforeLoading) {
     // Both the size and the scene are wrong: the cheap check speaks first.
     expectRefused("render --scene '" + path("nothing.gltf") + "' --width 0 " + out(), "--width");
+}
+
+// A number too large for its flag's type is out of range like any other, and gets the range, not
+// CLI11's "could not convert". Catches a flag whose text reaches CLI11's conversion unchecked.
+TEST_F(Cli, IntegersBeyondTheirTypeGiveTheRange) {
+    const std::string tiny = "--width 8 --height 8 --spp 1 ";
+    expectRefused(render("--spp 99999999999 " + out()), "--spp must be between 1 and 1000000 (got 99999999999)");
+    expectRefused(render("--width 99999999999 " + out()), "--width must be between 1 and 16384");
+    expectRefused(render("--height 99999999999 " + out()), "--height must be between 1 and 16384");
+    expectRefused(render(tiny + "--max-depth 99999999999 " + out()), "--max-depth must be between 1 and 1024");
+    expectRefused(render(tiny + "--rr-depth 99999999999 " + out()), "--rr-depth must be between 0 and 1024");
+    expectRefused(render(tiny + "--threads 99999999999 " + out()), "--threads must be between 0 and 4096");
+    expectRefused(render(tiny + "--integrator vcm --light-paths 99999999999999999999 " + out()),
+                  "--light-paths must be between 1 and 67108864");
+    expectRefused(render(tiny + "--strategy-images 99999999999 " + out()), "--strategy-images must be between 0 and 16");
+    expectRefused(render(tiny + "--seed -1 " + out()), "--seed must be between 0 and 18446744073709551615 (got -1)");
+    expectRefused(render(tiny + "--seed 99999999999999999999 " + out()), "--seed must be between 0 and");
+    expectRefused("compare --scene cornell --time 1 --runs 99999999999 --out '" + path("c") + "'",
+                  "--runs must be between 1 and 100");
+    expectRefused("benchmark --scenes cornell --time 1 --runs 99999999999 --out '" + path("b") + "'",
+                  "--runs must be between 2 and 100");
+}
+
+// A first word that is no command is named, with the commands and the nearest one to it; no word
+// at all lists them. Catches CLI11's "A subcommand is required", which names none.
+TEST_F(Cli, AMistypedCommandGetsTheNearestOne) {
+    expectRefused("rendr --scene cornell", "unknown command 'rendr' (did you mean 'render'?)");
+    expectRefused("benchmrak", "did you mean 'benchmark'?");
+    expectRefused("comapre", "did you mean 'compare'?");
+    const Outcome far = run("frobnicate");
+    EXPECT_EQ(far.exitCode, 1);
+    EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << "nothing is near: " << far.err;
+    EXPECT_NE(far.err.find("render, scenes, reference, compare, benchmark, export, montage"), std::string::npos)
+        << far.err;
+    expectRefused("", "a command is required: render, scenes, reference, compare, benchmark, export, montage");
+}
+
+// A flag the integrator does not use would be silently ignored, and the user would believe it set:
+// each is refused in one line naming the integrators that do use it. In compare, a flag is used if
+// any integrator rendering uses it: a method, or the reference's integrator when it renders one.
+// Catches each flag accepted with an integrator it does nothing for, and a compare that checks the
+// flags against its request's unused default integrator instead of its methods.
+TEST_F(Cli, FlagsThatChangeNothingAreRefused) {
+    const std::string tiny = "--width 8 --height 8 --spp 1 ";
+    expectRefused(render(tiny + "--integrator bdpt --radius 0.1 " + out()), "--radius needs an integrator that merges");
+    expectRefused(render(tiny + "--integrator pt --radius-factor 0.1 " + out()), "--radius-factor needs");
+    expectRefused(render(tiny + "--integrator lt --radius-pixels 2 " + out()), "--radius-pixels needs");
+    expectRefused(render(tiny + "--integrator bdpt --alpha 0.5 " + out()), "--alpha needs an integrator that merges");
+    expectRefused(render(tiny + "--integrator pt --light-paths 10 " + out()),
+                  "--light-paths needs an integrator that traces light paths (lt, bdpt, vcm, bpm or ppm): pt does not");
+    expectRefused(render(tiny + "--exposure 2 " + out()), "--exposure requires --png");
+    expectRefused(render(tiny + "--exposure nan " + out() + " --png '" + path("out.png") + "'"), "--exposure");
+    expectRefused(render(tiny + "--exposure inf " + out() + " --png '" + path("out.png") + "'"), "--exposure");
+    EXPECT_FALSE(fs::exists(path("out.png")));
+    for (const std::string flags : {"--radius-pixels 2", "--alpha 0.5", "--light-paths 10"}) {
+        const Outcome used = run(render(tiny + "--integrator vcm " + flags + " " + out()));
+        EXPECT_EQ(used.exitCode, 0) << flags << ": " << used.err;
+    }
+    EXPECT_EQ(run(render(tiny + "--integrator lt --light-paths 10 " + out())).exitCode, 0);
+    const Outcome exposed = run(render(tiny + "--exposure -2 " + out() + " --png '" + path("out.png") + "'"));
+    EXPECT_EQ(exposed.exitCode, 0) << exposed.err;
+    fs::remove(path("out.exr"));  // expectRefused checks that none is written
+
+    ASSERT_EQ(run("reference --scene cornell " + tiny + "--out '" + path("ref.exr") + "'").exitCode, 0);
+    const std::string compare = "compare --scene cornell --width 8 --height 8 --time 0.05 --out '" + path("c") + "' ";
+    const std::string given = "--reference '" + path("ref.exr") + "' ";
+    expectRefused(compare + given + "--integrators pt,lt --radius 0.1", "--radius needs an integrator that merges "
+                                                                        "(vcm, bpm or ppm): pt, lt do not");
+    expectRefused(compare + given + "--integrators pt --light-paths 4", "--light-paths needs");
+    const Outcome merging = run(compare + given + "--integrators pt,vcm --radius 0.1");
+    EXPECT_EQ(merging.exitCode, 0) << merging.err;
+    // Without --reference, the reference is rendered by vcm (the default): the radius is its.
+    const Outcome reference = run(compare + "--integrators pt --radius 0.1");
+    EXPECT_EQ(reference.exitCode, 0) << reference.err;
 }
 
 // CLI11's own parse errors (a number that is not one, an unknown flag) are one line too.

@@ -466,10 +466,10 @@ TEST(CompareCommand, RefusesAReferenceThatSharesARunsSeed) {
 
 // Ctrl-C during a comparison: the reference being rendered stops at its next pass and is written
 // with what it has; the runs do not get their budgets, so there is no report, and the command
-// says so in one line and fails. Catches a compare that ignores the interrupt (it would render
-// its 60 s reference and two 6 s runs, and the wait below gives up), one that dies of the signal
-// with nothing written (no reference.exr, no exit status of its own), and one that writes a
-// report of runs cut short (error.csv).
+// says so in one line and fails with 130 (128 + SIGINT), as every interrupted command does.
+// Catches a compare that ignores the interrupt (it would render its 60 s reference and two 6 s
+// runs, and the wait below gives up), one that dies of the signal with nothing written (no
+// reference.exr), and one that writes a report of runs cut short (error.csv).
 TEST(CompareCommand, CtrlCKeepsTheReferenceAndWritesNoReport) {
     TempDir dir;
     const std::string out = dir / "out", err = dir / "stderr.txt", status = dir / "status";
@@ -490,7 +490,7 @@ TEST(CompareCommand, CtrlCKeepsTheReferenceAndWritesNoReport) {
     const bool ended = waitFor([&] { return fs::exists(status) && readFile(status).find('\n') != std::string::npos; }, 30);
     if (!ended) std::system(("pkill -KILL -f " + pattern).c_str());  // leave nothing running
     ASSERT_TRUE(ended) << "compare went on after Ctrl-C";
-    EXPECT_EQ(std::stoi(readFile(status)), 1);
+    EXPECT_EQ(std::stoi(readFile(status)), 130);
     const std::string text = readFile(err);
     const std::string last = text.substr(text.rfind('\n', text.size() - 2) + 1);
     EXPECT_EQ(last.rfind("error: compare interrupted: no report", 0), 0u) << text;
@@ -500,6 +500,49 @@ TEST(CompareCommand, CtrlCKeepsTheReferenceAndWritesNoReport) {
     EXPECT_EQ(reference.width, 32);
     EXPECT_GE(std::stoi(metaValue(meta, "tripath:spp")), 1);
     EXPECT_FALSE(fs::exists(out + "/error.csv"));
+}
+
+// Input found bad on the way (a scene file that does not load, a reference of another size, read
+// once the request's values passed) leaves no output folder behind: it is made only when the
+// first file is written into it. Catches a compare that creates --out while it validates (as it
+// did), which left an empty folder after every such mistake.
+TEST(CompareCommand, AFailedCompareLeavesNoOutputFolder) {
+    TempDir dir;
+    const std::string ref = dir / "ref.exr", out = dir / "out/nested";
+    ASSERT_EQ(tripathCli(dir, "reference --scene cornell --width 16 --height 16 --spp 1 --out " + ref).exitCode, 0);
+    expectOneLineError(tripathCli(dir, "compare --scene " + (dir / "missing.gltf") +
+                                           " --width 32 --height 32 --integrators pt --time 0.1 --out " + out),
+                       "missing.gltf");
+    expectOneLineError(tripathCli(dir, "compare " + kSmall + " --integrators pt --time 0.1 --reference " + ref +
+                                           " --out " + out),
+                       "32x32");
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    // Where the folder cannot be made, that is said before anything renders.
+    std::ofstream(dir / "file") << "not a folder";
+    expectOneLineError(tripathCli(dir, "compare " + kSmall + " --integrators pt --time 100 --out " + (dir / "file/out")),
+                       "is not a directory");
+}
+
+// compare and benchmark render a missing reference with the same integrator, vcm, the method that
+// samples every path a scene has (bdpt misses caustics seen through glass under a point light),
+// and both --help texts say so. Catches compare's old default (bdpt) and a help that drifts.
+TEST(CompareCommand, TheDefaultReferenceIsRenderedByVcm) {
+    TempDir dir;
+    const std::string out = dir / "out";
+    const Outcome o = tripathCli(dir, "compare " + kSmall + " --integrators pt --time 0.02 --out " + out);
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    Metadata meta;
+    readExr(out + "/reference.exr", &meta);
+    EXPECT_EQ(metaValue(meta, "tripath:integrator"), "vcm");
+    for (const char* command : {"compare", "benchmark"}) {
+        const std::string help = dir / "help.txt";
+        std::system((std::string("'") + TRIPATH_BINARY + "' " + command + " --help > '" + help + "'").c_str());
+        const std::string text = readFile(help);
+        const size_t flag = text.find("--reference-integrator");
+        ASSERT_NE(flag, std::string::npos) << command;
+        EXPECT_NE(text.find("vcm by default, the method that samples every path a scene has", flag), std::string::npos)
+            << command << ":\n" << text;
+    }
 }
 
 // The full report from one comparison: every file, a CSV that parses, and errors that fall with

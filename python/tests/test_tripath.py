@@ -66,7 +66,7 @@ def test_bad_input_is_a_value_error_with_the_command_lines_message(tmp_path, cor
         tripath.render(cornell, "vcm", radious=0.1)
     with pytest.raises(ValueError, match="exclude each other"):
         tripath.render(cornell, "pt", spp=1, seconds=1)
-    with pytest.raises(ValueError, match="^strategy_images has nothing to separate for lt"):
+    with pytest.raises(ValueError, match="^strategy_images needs an integrator with more than one strategy per path length"):
         tripath.render(cornell, "lt", strategy_images=2)
     with pytest.raises(ValueError, match="^light_paths must be between 1 and"):
         tripath.render(cornell, "vcm", light_paths=0)

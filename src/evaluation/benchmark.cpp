@@ -2,10 +2,11 @@
 // against a cached reference per scene, with a bias test per method, in one report.
 //
 // Each scene is one comparison (its page, CSVs and chart in <out>/<scene>/), run with the methods
-// plus the bias reference. References are rendered when missing, by a consistent method (vcm by
-// default: it also samples the specular–diffuse–specular paths that bdpt lacks) for a multiple
-// of the time, in the reference streams, and cached in <out>/references/ under a name that
-// carries the settings; a cached one is reused when its metadata matches. From the R runs of each
+// plus the bias reference. References are given (a folder of <scene>.exr), or rendered when
+// missing, by a consistent method (vcm by default: it also samples the specular–diffuse–specular
+// paths that bdpt lacks) for a multiple of the time, in the reference streams, and cached in
+// <out>/references/ under a name that carries the settings; a cached one is reused when its
+// metadata matches. Every scene and given reference is checked before the first render. From the R runs of each
 // method and of the bias reference, Welch's t-test per block (image/bias.h) says where a
 // difference is bias rather than noise. <out>/index.html has the scenes × methods table,
 // <out>/results.csv the same numbers. Ctrl-C finishes nothing new: the scenes done so far are
@@ -89,10 +90,36 @@ CompareRequest sceneRequest(const BenchmarkRequest& b, const std::string& scene)
     co.referenceOut = (fs::path(b.outDir) / "references" /
                        fmt::format("{}-{}x{}-{}-depth{}-rr{}-{}.exr", slug(scene), r.width, r.height,
                                    b.referenceIntegrator, r.maxDepth, rouletteDepth(r, b.referenceIntegrator), r.mis)).string();
+    if (!b.referenceDir.empty()) co.referencePath = referenceFile(b, scene);
     co.stop = b.stop;
     co.team = b.team;
     co.narrator = b.narrator;
     return co;
+}
+
+// What renders: the methods, the bias reference, and the references' integrator unless they are given.
+std::vector<std::string> renderingIntegrators(const BenchmarkRequest& r) {
+    std::vector<std::string> all = r.methods;
+    all.push_back(r.biasReference);
+    if (r.referenceDir.empty()) all.push_back(r.referenceIntegrator);
+    return all;
+}
+
+// Every scene loads, and every given reference fits its scene, before the first one renders: a
+// mistake in the last scene of a long list costs nothing. Scenes on every rank (each loads them),
+// references on rank 0 (which alone reads them).
+void resolveScenes(const BenchmarkRequest& r, Spelling spelling) {
+    for (const std::string& scene : r.scenes) {
+        RenderRequest request = r.render;
+        request.scene = scene;
+        loadScene(request, [](const std::string&) {});  // its warnings are told when its turn comes
+        if (r.referenceDir.empty() || r.team->rank() != 0) continue;
+        const CompareRequest co = sceneRequest(r, scene);
+        if (!fs::is_regular_file(co.referencePath))
+            throw InputError(fmt::format("{} '{}' has no reference for the scene '{}': {} is missing",
+                                         parameterName("reference", spelling), r.referenceDir, scene, co.referencePath));
+        readGivenReference(co);
+    }
 }
 
 // A cached reference is reused if it was rendered for these settings (else it is rendered again).
@@ -118,10 +145,7 @@ std::vector<Cell> benchmarkScene(const BenchmarkRequest& b, const std::string& s
     bool reuse = false;
     together(*b.team, [&] {
         loaded = loadScene(co.render);
-        if (rank0) {
-            fs::create_directories(co.outDir);
-            reuse = cachedReferenceFits(co);
-        }
+        if (rank0 && co.referencePath.empty()) reuse = cachedReferenceFits(co);
     });
     std::array<uint64_t, 1> shared{reuse};
     b.team->max(shared);
@@ -241,9 +265,10 @@ void writeResults(const BenchmarkRequest& c, const std::vector<Cell>& cells) {
                        "table{border-collapse:collapse}th,td{border:1px solid #bbb;padding:.3em .7em;text-align:right}"
                        "th:first-child,td:first-child{text-align:left}td.best{background:#ffe98a;font-weight:bold}"
                        "td small{color:#555}.maps img{width:160px;image-rendering:pixelated;margin:.2em}</style></head><body>\n";
-    html += fmt::format("<h1>tripath benchmark</h1>\n<p>{} s per run, {} runs per method, {}×{} pixels; references by {}; "
+    const std::string references = c.referenceDir.empty() ? "by " + c.referenceIntegrator : "from " + c.referenceDir;
+    html += fmt::format("<h1>tripath benchmark</h1>\n<p>{} s per run, {} runs per method, {}×{} pixels; references {}; "
                         "bias tested against {} at family-wise level {}; speed-up against {}.</p>\n",
-                        c.render.seconds, c.runs, c.render.width, c.render.height, escapeMarkup(c.referenceIntegrator),
+                        c.render.seconds, c.runs, c.render.width, c.render.height, escapeMarkup(references),
                         escapeMarkup(c.biasReference), c.biasLevel, escapeMarkup(baselineOf(c)));
     html += "<table><tr><th>scene</th>";
     for (const std::string& m : methods) html += "<th>" + escapeMarkup(m) + "</th>";
@@ -282,12 +307,16 @@ void writeResults(const BenchmarkRequest& c, const std::vector<Cell>& cells) {
 
 }  // namespace
 
+std::string referenceFile(const BenchmarkRequest& r, const std::string& scene) {
+    return (fs::path(r.referenceDir) / (slug(scene) + ".exr")).string();
+}
+
 void validate(const BenchmarkRequest& r, Spelling spelling) {
     auto name = [spelling](const char* flag) { return parameterName(flag, spelling); };
-    validate(r.render, spelling);
+    validateValues(r.render, spelling);
     if (!(r.render.seconds > 0)) throw InputError(name("time") + " must be more than 0 seconds");
-    if (r.runs < 2 || r.runs > 100)
-        throw InputError(fmt::format("{} must be between 2 and 100 (the bias test needs two runs; got {})", name("runs"), r.runs));
+    if (r.runs < kBenchmarkRunsRange.min || uint64_t(r.runs) > kBenchmarkRunsRange.max)
+        throw InputError(outOfRange(name("runs"), kBenchmarkRunsRange, std::to_string(r.runs)));
     if (r.referenceSeconds < 0)
         throw InputError(fmt::format("{} must be above 0 (got {})", name("reference-time"), r.referenceSeconds));
     checkList(r.scenes, "scenes", spelling);
@@ -299,13 +328,13 @@ void validate(const BenchmarkRequest& r, Spelling spelling) {
         throw InputError(fmt::format("{} must be between 0 and 1, exclusive (got {})", name("bias-level"), r.biasLevel));
     if (std::find(r.methods.begin(), r.methods.end(), baselineOf(r)) == r.methods.end())
         throw InputError(fmt::format("{} '{}' is not one of {}", name("baseline"), r.baseline, name("integrators")));
+    requireUsed(r.render, renderingIntegrators(r), spelling);
     if (r.outDir.empty()) throw InputError(fmt::format("{} is needed: the report and the reference cache go there", name("out")));
-    if (r.team->rank() != 0) return;
-    requireFont();
-    std::error_code ec;
-    fs::create_directories(fs::path(r.outDir) / "references", ec);
-    if (ec) throw InputError(fmt::format("cannot create {} directory '{}': {}", name("out"), r.outDir, ec.message()));
-    checkWritable((fs::path(r.outDir) / "results.csv").string());
+    if (r.team->rank() == 0) {
+        requireFont();
+        checkOutDir(r.outDir, "results.csv", spelling);
+    }
+    resolveScenes(r, spelling);
 }
 
 std::vector<Cell> benchmark(const BenchmarkRequest& r) {

@@ -15,7 +15,10 @@ struct BenchmarkRequest {
     RenderRequest render;  // size, depth, MIS, seed, threads; render.seconds: each run's budget
     std::vector<std::string> scenes;  // built-in names or glTF files
     std::vector<std::string> methods{"pt", "lt", "bdpt", "vcm"};
-    std::string referenceIntegrator = "vcm";  // renders a scene's reference when the cache has none
+    // A folder holding each scene's reference as <scene>.exr (referenceFile); empty: references are
+    // rendered by referenceIntegrator and cached in <outDir>/references/.
+    std::string referenceDir;
+    std::string referenceIntegrator = kDefaultReferenceIntegrator;  // renders a reference the cache lacks
     double referenceSeconds = 0;              // its budget; 0: kReferenceBudget x render.seconds
     std::string biasReference = "bdpt";       // the unbiased method every method's runs are tested against
     double biasLevel = 0.01;                  // the bias test's family-wise level: the chance that an unbiased method gets any block flagged
@@ -38,9 +41,18 @@ struct Cell {
     std::array<double, kEventCount> events{};  // every counter of core/stats.h, mean per run
 };
 
+// The runs of each method: at least two, for the bias test.
+inline constexpr IntRange kBenchmarkRunsRange{2, 100, ", as the bias test needs two runs"};
+
 // Throws InputError (one line, parameters spelled as `spelling` writes them) for anything that can
-// be refused before the first sample; creates the output directory on rank 0.
+// be refused before the first sample: the values, the lists, every scene (each is loaded), every
+// given reference (read and checked against its scene), an output directory that cannot be
+// written or created. Creates nothing: each folder is made when something is written into it.
 void validate(const BenchmarkRequest& r, Spelling spelling);
+
+// The reference of `scene` in r.referenceDir: <referenceDir>/<name>.exr, the name being a
+// built-in's or a glTF file's without its extension (the name of the scene's report folder too).
+std::string referenceFile(const BenchmarkRequest& r, const std::string& scene);
 
 // Runs the benchmark on every rank of the request's team; on rank 0 it writes <out>/results.csv,
 // results.md and index.html and returns the cells, scene-major (nothing on the other ranks).

@@ -28,14 +28,11 @@ void checkMethods(const std::vector<std::string>& methods, Spelling spelling) {
     }
 }
 
-void prepareOutDir(const std::string& dir, Spelling spelling) {
-    const std::string name = parameterName("out", spelling);
-    std::error_code ec;
-    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-        throw InputError(fmt::format("{} '{}' exists and is not a directory", name, dir));
-    fs::create_directories(dir, ec);
-    if (ec) throw InputError(fmt::format("cannot create {} directory '{}': {}", name, dir, ec.message()));
-    checkWritable((fs::path(dir) / "error.csv").string());
+// The rendered methods and, when the comparison renders its reference, its integrator.
+std::vector<std::string> renderingIntegrators(const CompareRequest& r) {
+    std::vector<std::string> all = r.methods;
+    if (r.referencePath.empty() && r.referenceImage.rgb.empty()) all.push_back(r.referenceIntegrator);
+    return all;
 }
 
 // Run 0's images (also written as <dir>/<method>.exr and .png when there is a directory), and
@@ -57,15 +54,43 @@ void keepRuns(std::vector<RunOutput>& outputs, const std::string& dir, Compariso
 
 }  // namespace
 
+void checkOutDir(const std::string& dir, const std::string& file, Spelling spelling) {
+    const std::string name = parameterName("out", spelling);
+    std::error_code ec;
+    if (fs::exists(dir, ec)) {
+        if (!fs::is_directory(dir, ec)) throw InputError(fmt::format("{} '{}' exists and is not a directory", name, dir));
+        checkWritable((fs::path(dir) / file).string());
+        return;
+    }
+    // The nearest folder that exists must let the missing ones be made in it.
+    fs::path missing = fs::absolute(dir, ec).lexically_normal();
+    while (!missing.parent_path().empty() && missing.parent_path() != missing && !fs::exists(missing.parent_path(), ec))
+        missing = missing.parent_path();
+    if (!fs::is_directory(missing.parent_path(), ec))
+        throw InputError(fmt::format("cannot create {} directory '{}': '{}' is not a directory", name, dir,
+                                     missing.parent_path().string()));
+    checkWritable(missing.string());
+}
+
+void createDirectory(const std::string& dir) {
+    if (dir.empty()) return;  // the current folder
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw InputError(fmt::format("cannot create directory '{}': {}", dir, ec.message()));
+}
+
+
 void validate(const CompareRequest& r, Spelling spelling) {
     auto name = [spelling](const char* flag) { return parameterName(flag, spelling); };
-    validate(r.render, spelling);
+    validateValues(r.render, spelling);
     if (!(r.render.seconds > 0)) throw InputError(name("time") + " must be more than 0 seconds");
-    if (r.runs < 1 || r.runs > 100) throw InputError(fmt::format("{} must be between 1 and 100 (got {})", name("runs"), r.runs));
+    if (r.runs < kRunsRange.min || uint64_t(r.runs) > kRunsRange.max)
+        throw InputError(outOfRange(name("runs"), kRunsRange, std::to_string(r.runs)));
     if (r.referenceSeconds < 0)
         throw InputError(fmt::format("{} must be above 0 (got {})", name("reference-time"), r.referenceSeconds));
     checkMethods(r.methods, spelling);
     makeIntegrator(r.referenceIntegrator, {});  // an unknown name is refused before anything renders
+    requireUsed(r.render, renderingIntegrators(r), spelling);
     if (const auto& c = r.crop;
         c && (c->w <= 0 || c->h <= 0 || c->x < 0 || c->y < 0 || c->x > r.render.width - c->w || c->y > r.render.height - c->h))
         throw InputError(fmt::format("{} {},{},{},{} is not inside the {}x{} image", name("crop"), c->x, c->y, c->w, c->h,
@@ -79,7 +104,7 @@ void validate(const CompareRequest& r, Spelling spelling) {
         throw InputError(fmt::format("cannot read reference '{}': file does not exist", r.referencePath));
     if (r.outDir.empty()) return;
     requireFont();
-    prepareOutDir(r.outDir, spelling);
+    checkOutDir(r.outDir, "error.csv", spelling);
 }
 
 Comparison compare(const CompareRequest& r, const Scene& scene, bool everyImage) {
@@ -88,7 +113,10 @@ Comparison compare(const CompareRequest& r, const Scene& scene, bool everyImage)
     std::vector<RunOutput> outputs = runEverywhere(r, scene, c.reference.image, everyImage);
     c.interrupted = r.stop && r.stop->load();
     if (r.team->rank() != 0 || c.interrupted) return c;
-    if (!r.outDir.empty()) writePng((fs::path(r.outDir) / "reference.png").string(), c.reference.image);
+    if (!r.outDir.empty()) {
+        createDirectory(r.outDir);
+        writePng((fs::path(r.outDir) / "reference.png").string(), c.reference.image);
+    }
     keepRuns(outputs, r.outDir, c);
     for (const std::string& m : r.methods) c.curves.push_back(curveOf(c.runs, m));
     c.summaries = summarize(c.runs, c.curves);

@@ -38,12 +38,20 @@ struct Narrator {
     }
 };
 
+// The integrator that renders a reference when none is given, in `compare` and `benchmark` alike:
+// vcm, which samples every path a scene has (bdpt misses specular–diffuse–specular paths lit by a
+// point light and seen through a pinhole, such as a caustic seen through glass).
+inline constexpr const char* kDefaultReferenceIntegrator = "vcm";
+
+// A comparison's runs are independent: at least one, and few enough to finish.
+inline constexpr IntRange kRunsRange{1, 100};
+
 struct CompareRequest {
     RenderRequest render;              // scene, size, depth, MIS, seed, threads; render.seconds: each run's budget
     std::vector<std::string> methods;  // integrator names, in the order given
     std::string referencePath;         // a reference EXR; empty: referenceImage, or one is rendered
     Image referenceImage;              // a reference in memory (Python), when referencePath is empty
-    std::string referenceIntegrator = "bdpt";  // the integrator that renders one when none is given
+    std::string referenceIntegrator = kDefaultReferenceIntegrator;  // renders one when none is given
     double referenceSeconds = 0;       // its budget; 0: kReferenceBudget x render.seconds
     std::string referenceOut;          // where a rendered one goes; empty: <outDir>/reference.exr (none without outDir)
     const std::atomic<bool>* stop = nullptr;  // set (Ctrl-C): the run under way ends at its next pass, no more start
@@ -60,9 +68,19 @@ constexpr double kReferenceBudget = 10;
 
 // Throws InputError (one line, with the parameters spelled as `spelling` writes them) for anything
 // that can be refused before the first sample: the render's values, the budget, the runs, the
-// methods (unknown or listed twice), the crop, a missing reference file, an output directory that
-// cannot be written (created if missing). Only rank 0 checks files.
+// methods (unknown or listed twice), a parameter that none of the integrators rendering uses (the
+// methods, and the reference's when it renders one), the crop, a missing reference file, an
+// output directory that cannot be written or created. Nothing is created: the output directory
+// is made once the inputs are known good (createDirectory). Only rank 0 checks files.
 void validate(const CompareRequest& r, Spelling spelling);
+
+// Throws InputError unless `dir` is a directory in which `file` can be written, or one that can
+// be made: the nearest of its ancestors that exists is a directory that takes new entries.
+// Creates nothing.
+void checkOutDir(const std::string& dir, const std::string& file, Spelling spelling);
+// Creates `dir` and its parents if they are missing: called on rank 0 just before the first file
+// is written into it, so that input refused on the way leaves no empty folder behind.
+void createDirectory(const std::string& dir);
 
 // Error measurement k of a run: after the first pass that ended at or after target time
 // t_k = T * 10^((k - kTargets) / kPerDecade), k = 0..kTargets; the last one (k = kTargets, t = T)
@@ -131,6 +149,9 @@ Comparison compare(const CompareRequest& r, const Scene& scene, bool everyImage 
 
 // compare_run.cpp
 Reference obtainReference(const CompareRequest& o, const Scene& scene);
+// The reference at o.referencePath, checked against the request: its size, scene and depth limit
+// (when it records them), and that it shares no samples with a run. InputError otherwise.
+Reference readGivenReference(const CompareRequest& o);
 struct RunOutput {
     Run run;
     Image image;    // the finished render

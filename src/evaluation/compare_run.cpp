@@ -21,6 +21,8 @@ int targetReached(double seconds, double budget) {
     return static_cast<int>(std::min<double>(kTargets, std::max(-1.0, k)));
 }
 
+}  // namespace
+
 Reference readGivenReference(const CompareRequest& o) {
     const RenderRequest& r = o.render;
     ReferenceFile file = readReference(o.referencePath);
@@ -43,6 +45,8 @@ Reference readGivenReference(const CompareRequest& o) {
     return {std::move(file.image), file.description(), o.referencePath};
 }
 
+namespace {
+
 // The callbacks of a render on this rank: progress and the summary at its end come from rank 0 alone.
 void narrate(const CompareRequest& o, RenderSettings& rs, const std::string& label) {
     if (o.narrator.progress && o.team->rank() == 0) rs.progress = o.narrator.progress(label, rs, o.render.width, o.render.height);
@@ -62,7 +66,7 @@ Reference renderReference(const CompareRequest& o, const Scene& scene) {
     o.narrator.tell(*o.team,
                     fmt::format("no reference given: rendering one with {} for {:g} x {} = {} (seed {}, reference "
                                 "streams){}; its own noise adds about 1/{:g} of {}'s error to each measurement. For a "
-                                "cleaner one, see `tripath reference`.",
+                                "cleaner one, make it with `tripath reference` and pass it as the reference.",
                                 r.integrator, kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds),
                                 r.seed, file.empty() ? "" : " into " + file, kReferenceBudget, r.integrator));
     const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
@@ -73,8 +77,10 @@ Reference renderReference(const CompareRequest& o, const Scene& scene) {
     narrate(o, rs, label);
     const RenderResult result = render(scene, *integrator, rs);  // by every rank together
     finished(o, label, result, r);
-    if (o.team->rank() == 0 && !file.empty())
+    if (o.team->rank() == 0 && !file.empty()) {
+        createDirectory(std::filesystem::path(file).parent_path().string());
         writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result, o.team->size()));
+    }
     return {result.image(), fmt::format("{}, {} spp, {:.0f} s", r.integrator, result.passes, result.seconds), file};
 }
 

@@ -7,8 +7,13 @@ namespace tripath {
 
 namespace {
 std::atomic<bool> gStop{false};
-void onInterrupt(int) {
-    if (gStop.exchange(true)) std::_Exit(130);  // second Ctrl-C: give up at once
+std::atomic<int> gSignal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
+
+void onInterrupt(int signal) {
+    int none = 0;
+    gSignal.compare_exchange_strong(none, signal);  // the first one is the one reported
+    if (gStop.exchange(true)) std::_Exit(128 + gSignal.load());  // the second one: give up at once
 }
 }  // namespace
 
@@ -17,5 +22,7 @@ const std::atomic<bool>* installInterruptHandler() {
     std::signal(SIGTERM, onInterrupt);
     return &gStop;
 }
+
+int interruptSignal() { return gSignal.load(); }
 
 }  // namespace tripath

@@ -1,5 +1,6 @@
 #include "integrators/render.h"
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -166,17 +167,19 @@ private:
     std::vector<TileOutput> outputs_;
 };
 
-// What the team's ranks add up at the end (and at checkpoints): every rank's own counts.
-void addUpOverTeam(Team& team, RenderResult& r, int localPasses, uint64_t localNext) {
+// What the team's ranks add up at the end (and at checkpoints): every rank's own counts, and
+// whether any was asked to stop.
+void addUpOverTeam(Team& team, RenderResult& r, int localPasses, uint64_t localNext, bool stopped) {
     std::array<uint64_t, 3> sums{uint64_t(localPasses), r.droppedSamples, r.guardedWeights};
     team.sum(sums);
-    std::array<uint64_t, 2> maxima{localNext, static_cast<uint64_t>(r.seconds * 1e6)};
+    std::array<uint64_t, 3> maxima{localNext, static_cast<uint64_t>(r.seconds * 1e6), stopped};
     team.max(maxima);
     r.passes = static_cast<int>(sums[0]);
     r.droppedSamples = sums[1];
     r.guardedWeights = sums[2];
     r.nextPass = maxima[0];
     r.seconds = maxima[1] / 1e6;
+    r.interrupted = maxima[2] != 0;
 }
 
 // The order one process logs dropped samples in: by pass, then tile (PassRenderer::run collects
@@ -221,6 +224,8 @@ RenderResult& addResumed(RenderResult& r, const RenderResult* resume) {
     r.film.add(resume->film);
     r.passes += resume->passes;
     r.seconds += resume->seconds;
+    if (r.budgetPasses > 0) r.budgetPasses += resume->passes;
+    if (r.budgetSeconds > 0) r.budgetSeconds += resume->seconds;
     r.droppedSamples += resume->droppedSamples;
     r.guardedWeights += resume->guardedWeights;
     return r;
@@ -233,7 +238,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     Team& team = settings.team ? *settings.team : solo();
     FilmLayers layers = settings.layers;
     layers.strategies = integrator.strategies();
-    RenderResult result{.film = Film(cam.width(), cam.height(), layers)};
+    RenderResult result{.film = Film(cam.width(), cam.height(), layers),
+                        .budgetPasses = settings.spp,
+                        .budgetSeconds = settings.seconds};
     const RenderResult* resume = settings.resume;
     const uint64_t firstPass = resume ? resume->nextPass : settings.firstPass;
     PassRenderer passes(scene, integrator, settings);
@@ -287,7 +294,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                                .seconds = result.seconds,
                                .droppedSamples = result.droppedSamples,
                                .guardedWeights = result.guardedWeights};
-            addUpOverTeam(team, sofar, local, localNext);  // every block up to here is done: nextPass ends a round
+            addUpOverTeam(team, sofar, local, localNext, false);  // every block up to here is done: nextPass ends a round
             team.reduce(team.rank() == 0 ? sofar.film : result.film);
             if (team.rank() == 0 && settings.onCheckpoint) settings.onCheckpoint(addResumed(sofar, resume));
             callbackSeconds += since(t0);
@@ -295,7 +302,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         }
     }
     result.seconds = elapsed();
-    addUpOverTeam(team, result, local, localNext);
+    addUpOverTeam(team, result, local, localNext, settings.stop && settings.stop->load());
     gatherDroppedLog(team, cam, result.droppedLog);
     const auto reduceStart = std::chrono::steady_clock::now();
     team.reduce(result.film);
@@ -306,6 +313,11 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     team.sum(result.stats.phaseSamples);
     setTiming(false);
     return result;
+}
+
+std::string interruptionText(const RenderResult& r) {
+    if (r.budgetSeconds > 0) return fmt::format("after {} passes, {:.2f} s of {:g} s", r.passes, r.seconds, r.budgetSeconds);
+    return fmt::format("after {} of {} passes, {:.2f} s", r.passes, r.budgetPasses, r.seconds);
 }
 
 void replaySample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, uint64_t pass, int pixel,

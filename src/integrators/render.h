@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "core/rng.h"
@@ -81,8 +82,17 @@ struct RenderResult {
     // What the render did (core/stats.h): its events, and with timing on its cycles per phase.
     // Taken as the difference of two process-wide snapshots, so renders must not overlap.
     StatsSnapshot stats{};
+    // The budget it was given, the resumed render's part included (0: no bound of that kind), and
+    // whether a stop request (RenderSettings::stop, on any rank) ended it.
+    int budgetPasses = 0;
+    double budgetSeconds = 0;
+    bool interrupted = false;
     Image image() const { return film.image(passes); }
 };
+
+// How far an interrupted render got against its budget: "after 5 of 16 passes, 0.52 s" or, for a
+// time budget, "after 5 passes, 0.52 s of 10 s". The summary line and tripath:interrupted say it.
+std::string interruptionText(const RenderResult& r);
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
 

@@ -1,6 +1,7 @@
 #include "integrators/render_request.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "geometry/embree_isa.h"
 #include "core/error.h"
@@ -10,6 +11,8 @@
 namespace tripath {
 
 namespace {
+
+bool merges(const Integrator& i) { return i.strategies().merges(); }
 
 // The front ends' names of the heuristics; the path core knows only the enum.
 MisHeuristic parseMisHeuristic(const std::string& name) {
@@ -30,42 +33,78 @@ std::string parameterName(const char* flag, Spelling spelling) {
     return name;
 }
 
-void validate(const RenderRequest& r, Spelling spelling) {
+std::string outOfRange(const std::string& name, const IntRange& range, const std::string& got) {
+    return fmt::format("{} must be between {} and {}{} (got {})", name, range.min, range.max, range.note, got);
+}
+
+void validateValues(const RenderRequest& r, Spelling spelling) {
     auto name = [spelling](const char* flag) { return parameterName(flag, spelling); };
     auto fail = [](const std::string& m) { throw InputError(m); };
+    auto check = [&](bool given, const char* flag, int64_t value, const IntRange& range) {
+        if (given && (value < range.min || uint64_t(value) > range.max)) fail(outOfRange(name(flag), range, std::to_string(value)));
+    };
+    check(true, "width", r.width, kSizeRange);
+    check(true, "height", r.height, kSizeRange);
     // The film keeps 96 bytes a pixel (the block's double RGB and the exact 192-bit totals) plus the
     // output image: 8192² is ~6.7 GiB.
-    if (r.width < 1 || r.height < 1 || r.width > 16384 || r.height > 16384 || double(r.width) * r.height > 8192.0 * 8192.0)
-        fail(fmt::format("{}/{} must be at least 1 and at most 16384, with at most 8192x8192 pixels (got {}x{})",
-                         name("width"), name("height"), r.width, r.height));
-    if (r.sppGiven && (r.spp < 1 || r.spp > 1000000))
-        fail(fmt::format("{} must be between 1 and 1000000 (got {})", name("spp"), r.spp));
+    if (double(r.width) * r.height > 8192.0 * 8192.0)
+        fail(fmt::format("{}/{} may make at most 8192x8192 pixels (got {}x{})", name("width"), name("height"), r.width,
+                         r.height));
+    check(r.sppGiven, "spp", r.spp, kSppRange);
     if (r.timeGiven && !(r.seconds > 0 && r.seconds <= 1e7))
         fail(fmt::format("{} must be a number of seconds above 0 and at most 1e7 (got {})",
                          name("time"), r.seconds));
-    if (r.maxDepth < 1 || r.maxDepth > 1024)
-        fail(fmt::format("{} must be between 1 and 1024 (got {})", name("max-depth"), r.maxDepth));
-    if (r.rrDepth < 0)
-        fail(fmt::format("{} must be at least 1, or 0 for the integrator's default (got {})", name("rr-depth"), r.rrDepth));
-    if (r.threads < 0 || r.threads > 4096) fail(fmt::format("{} must be between 0 and 4096 (got {})", name("threads"), r.threads));
+    check(true, "max-depth", r.maxDepth, kMaxDepthRange);
+    check(true, "rr-depth", r.rrDepth, kRrDepthRange);
+    check(true, "threads", r.threads, kThreadsRange);
     if (r.radiusGiven && !(r.merge.radius > 0 && r.merge.radius < 1e30f))
         fail(fmt::format("{} must be a length in world units above 0 (got {})", name("radius"), r.merge.radius));
     if (r.radiusFactorGiven && !(r.merge.radiusFactor > 0 && r.merge.radiusFactor <= 1))
         fail(fmt::format("{} must be above 0 and at most 1 (got {})", name("radius-factor"), r.merge.radiusFactor));
     if (!(r.merge.radiusPixels > 0 && r.merge.radiusPixels <= 1000))
         fail(fmt::format("{} must be above 0 and at most 1000 (got {})", name("radius-pixels"), r.merge.radiusPixels));
-    if (r.lightPathsGiven && (r.lightPaths < 1 || r.lightPaths > kMaxLightPaths))
-        fail(fmt::format("{} must be between 1 and {} (got {})", name("light-paths"), kMaxLightPaths, r.lightPaths));
+    check(r.lightPathsGiven, "light-paths", r.lightPaths, kLightPathsRange);
     if (!(r.merge.alpha > 0 && r.merge.alpha <= 1))
         fail(fmt::format("{} must be above 0 and at most 1 (got {})", name("alpha"), r.merge.alpha));
-    if (r.strategyImages < 0 || r.strategyImages > 16)
-        fail(fmt::format("{} must be between 0 (none) and 16 (got {})", name("strategy-images"), r.strategyImages));
-    if (r.strategyImages > 0 && r.integrator == "lt")
-        fail(fmt::format("{} has nothing to separate for lt: its one strategy per path length, (k, 1), is its "
-                         "depth image (--depth-images)",
-                         name("strategy-images")));
+    check(true, "strategy-images", r.strategyImages, kStrategyImagesRange);
     parseMisHeuristic(r.mis);
+}
+
+void requireUsed(const RenderRequest& r, const std::vector<std::string>& integrators, Spelling spelling) {
+    // A parameter that only some integrators use: what they are, and whether one of `integrators` is.
+    struct Use {
+        bool given;
+        const char* flag;
+        const char* users;
+        bool (*uses)(const Integrator&);
+    };
+    const Use uses[] = {
+        {r.radiusGiven, "radius", "an integrator that merges (vcm, bpm or ppm)", merges},
+        {r.radiusFactorGiven, "radius-factor", "an integrator that merges (vcm, bpm or ppm)", merges},
+        {r.radiusPixelsGiven, "radius-pixels", "an integrator that merges (vcm, bpm or ppm)", merges},
+        {r.alphaGiven, "alpha", "an integrator that merges (vcm, bpm or ppm)", merges},
+        {r.lightPathsGiven, "light-paths", "an integrator that traces light paths (lt, bdpt, vcm, bpm or ppm)",
+         [](const Integrator& i) { return i.hasLightPhase(); }},
+        {r.strategyImages > 0, "strategy-images",
+         "an integrator with more than one strategy per path length (pt, bdpt, vcm, bpm or ppm; lt's one, (k, 1), is "
+         "its depth image)",
+         [](const Integrator& i) { return i.name() != "lt"; }},
+    };
+    for (const Use& use : uses) {
+        if (!use.given) continue;
+        std::vector<std::string> without;
+        for (const std::string& name : integrators)
+            if (!use.uses(*makeIntegrator(name, {}))) without.push_back(name);
+        if (without.size() == integrators.size())
+            throw InputError(fmt::format("{} needs {}: {} {}", parameterName(use.flag, spelling), use.users,
+                                         fmt::join(without, ", "), without.size() == 1 ? "does not" : "do not"));
+    }
+}
+
+void validate(const RenderRequest& r, Spelling spelling) {
+    validateValues(r, spelling);
     makeIntegrator(r.integrator, {});
+    requireUsed(r, {r.integrator}, spelling);
 }
 
 int rouletteDepth(const RenderRequest& r, const std::string& integrator) {
@@ -128,6 +167,7 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:ranks", std::to_string(ranks)}};
     const Metadata light = lightPhaseMetadata(r, scene, integrator);
     m.insert(m.end(), light.begin(), light.end());
+    if (result.interrupted) m.push_back({"tripath:interrupted", interruptionText(result)});
     return m;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/gltf_loader.h"
 #include "geometry/scene.h"
@@ -31,6 +32,7 @@ struct RenderRequest {
     int rrDepth = 0;                      // Russian roulette from this many subpath vertices on; 0: the integrator's default
     std::string mis = "power";            // balance, power or none
     MergeSettings merge;                  // vcm, bpm, ppm: the radius schedule
+    bool radiusPixelsGiven = false, alphaGiven = false;
     int64_t lightPaths = 0;               // light paths per pass, N_L, when lightPathsGiven (else one per pixel); nothing for pt
     bool lightPathsGiven = false;
     uint64_t seed = 1;
@@ -43,6 +45,20 @@ struct RenderRequest {
     StreamDomain domain = StreamDomain::CameraSample;
 };
 
+// The values an integer parameter may take. validate() refuses others, and the command line checks
+// a flag's text against the same range before converting it, so that a number too large for its
+// type gets the same message as any other out of range.
+struct IntRange {
+    int64_t min;
+    uint64_t max;
+    const char* note = "";  // said after the range: ", 0 for none"
+};
+inline constexpr IntRange kSizeRange{1, 16384}, kSppRange{1, 1000000}, kMaxDepthRange{1, 1024},
+    kRrDepthRange{0, 1024, ", 0 for the integrator's default"}, kThreadsRange{0, 4096, ", 0 for all cores"},
+    kLightPathsRange{1, kMaxLightPaths}, kStrategyImagesRange{0, 16, ", 0 for none"}, kSeedRange{0, UINT64_MAX};
+// "--spp must be between 1 and 1000000 (got 0)".
+std::string outOfRange(const std::string& name, const IntRange& range, const std::string& got);
+
 // How a front end spells the request's parameters in its messages: "--max-depth" on the command
 // line, "max_depth" in Python.
 enum class Spelling { CommandLine, Python };
@@ -50,9 +66,17 @@ enum class Spelling { CommandLine, Python };
 // "--max-depth", "--time"; "max_depth", "seconds" (Python names every time budget `…seconds`).
 std::string parameterName(const char* flag, Spelling spelling);
 
-// Throws InputError, one line naming the parameter as `spelling` writes it, for a value out of
-// range, before any work is done.
+// Throws InputError, one line naming the parameter as `spelling` writes it, before any work is
+// done: for a value out of range (validateValues), an unknown integrator, or a parameter given that
+// the integrator does not use (requireUsed).
 void validate(const RenderRequest& r, Spelling spelling);
+// The values alone, whoever renders them.
+void validateValues(const RenderRequest& r, Spelling spelling);
+// A parameter given is used by at least one of `integrators` (known names), which render the
+// request: a radius or alpha needs one that merges, a light path count one that traces light
+// paths, strategy images one with several strategies. A parameter that changes nothing is refused
+// rather than ignored, so that nobody believes it set.
+void requireUsed(const RenderRequest& r, const std::vector<std::string>& integrators, Spelling spelling);
 
 // The roulette start depth the request renders `integrator` with: rrDepth when given, else that
 // integrator's default (defaultRouletteDepth, integrator.h).
@@ -70,7 +94,8 @@ const char* streamsName(StreamDomain d);
 // max-depth, rr-depth and mis. Every check that a file may be added to or measured against
 // (references, checkpoints, the benchmark's reference cache) starts from these.
 Metadata convergenceSettings(const RenderRequest& r, const std::string& integrator);
-// The EXR metadata describing a finished render by `ranks` processes.
+// The EXR metadata describing a finished render by `ranks` processes; tripath:interrupted too
+// (interruptionText, render.h) when a stop request ended it.
 Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator, const RenderResult& result,
                         int ranks = 1);
 // The part of it that describes the light phase: light paths per pass, and for the merging
