@@ -30,7 +30,9 @@ void addCornellWalls(SceneDesc& s) {
     addQuad(s, "back", white, {-1, 0, -1}, {1, 0, -1}, {1, 2, -1}, {-1, 2, -1});
     addQuad(s, "left", red, {-1, 0, 1}, {-1, 0, -1}, {-1, 2, -1}, {-1, 2, 1});
     addQuad(s, "right", green, {1, 0, -1}, {1, 0, 1}, {1, 2, 1}, {1, 2, -1});
-    s.camera = CameraDesc{true, {0, 1, 3.9f}, {0, 0, -1}, {0, 1, 0}, 0.6911f};
+    // 39.6° of vertical field (a 35 mm lens), from where the opening just fills it: 2.77 m in
+    // front of it, tan(19.8°) · 2.77 = 0.999, so the walls reach every edge of a square image.
+    s.camera = CameraDesc{true, {0, 1, 3.77f}, {0, 0, -1}, {0, 1, 0}, 0.6911f};
 }
 
 void addCeilingLight(SceneDesc& s, float half, Spectrum radiance) {
@@ -94,7 +96,8 @@ SceneDesc cornellPoint() {
 
 SceneDesc veachMis() {
     SceneDesc s;
-    s.camera = lookAt({0, 2.5f, 10.0f}, Vec3(0, 2.5f, 10.0f) + Vec3(0, -0.36f, -1), 0.6f);
+    // A field of 42°: the row of lights, 9.3 m wide with the largest, 13 m away, fits in a square image.
+    s.camera = lookAt({0, 2.5f, 10.0f}, Vec3(0, 2.5f, 10.0f) + Vec3(0, -0.36f, -1), 0.74f);
     const int backdrop = addMaterial(s, lambertian("backdrop", Spectrum(0.2f)));
     addQuad(s, "floor", backdrop, {-10, -3, 6}, {10, -3, 6}, {10, -3, -8}, {-10, -3, -8});
     addQuad(s, "wall", backdrop, {-10, -3, -8}, {10, -3, -8}, {10, 8, -8}, {-10, 8, -8});
