@@ -59,7 +59,7 @@ def test_compare_with_a_directory_writes_the_command_lines_report(cornell, tmp_p
     assert r["report"] == str(out / "index.html")
     for name in ["index.html", "summary.md", "error-vs-time.svg", "reference.exr", "pt.exr", "lt.png", "counters.csv"]:
         assert (out / name).is_file(), name
-    assert r["reference_description"].startswith("bdpt, ")
+    assert r["reference_description"].startswith("vcm, ")
     # The rendered reference is the one on disk, and every row of error.csv is a checkpoint returned.
     assert np.array_equal(tripath.read_exr(str(out / "reference.exr"))[0], r["reference"])
     rows = read_rows(out / "error.csv")
