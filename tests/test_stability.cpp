@@ -524,7 +524,7 @@ TEST(Contact, FireflyRatioIsBoundedForBdpt) {
             const Image img = r.image();
             for (int p = 0; p < kSize * kSize; ++p) {
                 const float* v = img.rgb.data() + 3 * p;
-                const double lum = 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+                const double lum = luminance(Spectrum(v[0], v[1], v[2]));
                 sum[p] += lum;
                 most[p] = std::max(most[p], lum);
             }
