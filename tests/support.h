@@ -1,6 +1,7 @@
 // Helpers shared by the physics tests: rendering at low resolution, scene variants, simple
-// statistics.
+// statistics, and independent runs measured block by block and compared with Welch's test.
 #pragma once
+#include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
@@ -10,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "core/vec.h"
+#include "image/bias.h"
 #include "scenes/builtin_scenes.h"
 #include "integrators/render.h"
 #include "integrators/render_request.h"
@@ -97,5 +100,99 @@ inline MeanError meanAndError(const std::vector<double>& v) {
     m.stderr_ = std::sqrt(var / v.size());
     return m;
 }
+
+// ---- independent runs, measured by block ---------------------------------------------------
+
+// A rectangle of pixels; with a mask (one entry per pixel of the image, row by row), only the
+// pixels of the rectangle that the mask keeps.
+struct Block {
+    int x = 0, y = 0, w = 0, h = 0;
+    std::vector<bool> mask = {};
+};
+
+// The nx × ny blocks that tile a width × height image, row by row.
+inline std::vector<Block> blockGrid(int width, int height, int nx, int ny) {
+    std::vector<Block> blocks;
+    const int w = width / nx, h = height / ny;
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) blocks.push_back({i * w, j * h, w, h});
+    return blocks;
+}
+
+// What a block's mean is taken of, pixel by pixel: luminance or average (core/vec.h).
+using PixelValue = float (*)(Spectrum);
+
+// Mean of `value` over the pixels of a block (0 when its mask keeps none).
+inline double blockMean(const Image& img, const Block& b, PixelValue value) {
+    double sum = 0;
+    int n = 0;
+    for (int y = b.y; y < b.y + b.h; ++y)
+        for (int x = b.x; x < b.x + b.w; ++x) {
+            if (!b.mask.empty() && !b.mask[static_cast<size_t>(y) * img.width + x]) continue;
+            const float* p = img.at(x, y);
+            sum += value(Spectrum(p[0], p[1], p[2]));
+            ++n;
+        }
+    return n > 0 ? sum / n : 0.0;
+}
+
+// `runs` independent renders of `scene` as `r` asks, with seeds firstSeed, firstSeed + 1, …; none
+// may drop a sample (a NaN or infinite contribution).
+inline std::vector<Image> renderRuns(const Scene& scene, RenderRequest r, int runs, uint64_t firstSeed) {
+    std::vector<Image> images;
+    for (int run = 0; run < runs; ++run) {
+        r.seed = firstSeed + static_cast<uint64_t>(run);
+        const RenderResult result = renderScene(scene, r);
+        EXPECT_EQ(result.droppedSamples, 0u) << scene.name() << ", " << r.integrator << ", seed " << r.seed;
+        images.push_back(result.image());
+    }
+    return images;
+}
+
+// The samples a block comparison works on: runs[block][run], a block's mean in each run.
+using BlockRuns = std::vector<std::vector<double>>;
+
+// The means of `value` over each block in each of renderRuns(scene, r, runs, firstSeed).
+inline BlockRuns blockRuns(const Scene& scene, const RenderRequest& r, int runs, uint64_t firstSeed,
+                           const std::vector<Block>& blocks, PixelValue value = luminance) {
+    BlockRuns out(blocks.size());
+    for (const Image& img : renderRuns(scene, r, runs, firstSeed))
+        for (size_t k = 0; k < blocks.size(); ++k) out[k].push_back(blockMean(img, blocks[k], value));
+    return out;
+}
+
+// Block-by-block comparisons of two renderers' runs, judged together: Welch's t-test of each
+// block's run means (image/bias.h), Holm-corrected over every comparison made, so that the chance
+// of any false alarm between unbiased renderers is at most alpha (if the run means are normal).
+class BlockAgreement {
+public:
+    // One block: `a` and `b` are its means over the runs of each renderer.
+    void compare(const std::vector<double>& a, const std::vector<double>& b, const std::string& what) {
+        comparisons_.push_back({what, meanAndError(a), meanAndError(b), welchTest(a, b)});
+    }
+    // Every block of `a` against the same block of `b`.
+    void compare(const BlockRuns& a, const BlockRuns& b, const std::string& what) {
+        for (size_t block = 0; block < a.size(); ++block)
+            compare(a[block], b.at(block), what + ", block " + std::to_string(block));
+    }
+    void expectNoBias(double alpha = 0.01) const {
+        std::vector<double> p;
+        for (const Comparison& c : comparisons_) p.push_back(c.test.p);
+        const std::vector<bool> biased = holmSignificant(p, alpha);
+        for (size_t i = 0; i < comparisons_.size(); ++i) {
+            const Comparison& c = comparisons_[i];
+            EXPECT_FALSE(biased[i]) << c.what << ": " << c.a.mean << " ± " << c.a.stderr_ << " against " << c.b.mean
+                                    << " ± " << c.b.stderr_ << " (t = " << c.test.t << ", p = " << c.test.p << ")";
+        }
+    }
+
+private:
+    struct Comparison {
+        std::string what;
+        MeanError a, b;
+        WelchTest test;
+    };
+    std::vector<Comparison> comparisons_;
+};
 
 }  // namespace tripath::test

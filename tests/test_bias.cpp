@@ -69,18 +69,14 @@ TEST(Bias, AMapFindsTheOffsetBlockAndNothingElse) {
     EXPECT_EQ(offset.blocksX, 4);
 }
 
+// `runs` independent 32×32 renders (seeds 40, 41, …).
 std::vector<Image> renders(const std::string& scene, const std::string& integrator, int runs, int spp) {
-    std::vector<Image> out;
-    for (int r = 0; r < runs; ++r) {
-        RenderRequest q = test::smallRequest();
-        q.integrator = integrator;
-        q.width = q.height = 32;
-        q.spp = spp;
-        q.seed = 40 + r;
-        q.maxDepth = 8;
-        out.push_back(test::renderDesc(builtinScene(scene), q).image());
-    }
-    return out;
+    RenderRequest r = test::smallRequest();
+    r.integrator = integrator;
+    r.width = r.height = 32;
+    r.spp = spp;
+    r.maxDepth = 8;
+    return test::renderRuns(Scene(builtinScene(scene), r.width, r.height), r, runs, 40);
 }
 
 // Light tracing cannot see the caustic behind `sds`'s pane (its only path ends through the pane

@@ -23,6 +23,7 @@
 
 #include "scenes/builtin_scenes.h"
 #include "core/error.h"
+#include "core/vec.h"
 #include "geometry/embree_isa.h"
 #include "image/chart.h"
 #include "image/compose.h"
@@ -542,6 +543,78 @@ TEST(CompareCommand, TheDefaultReferenceIsRenderedByVcm) {
         ASSERT_NE(flag, std::string::npos) << command;
         EXPECT_NE(text.find("vcm by default, the method that samples every path a scene has", flag), std::string::npos)
             << command << ":\n" << text;
+    }
+}
+
+// The exposure of a comparison's previews, by the rule of image/exposure.h applied to its reference:
+// the 98th percentile (by rank, over the pixels of positive luminance) mapped to white, in whole
+// thirds of a stop. Computed here by sorting, not by the library's percentile.
+float referenceExposure(const Image& reference) {
+    std::vector<float> lum;
+    for (size_t i = 0; i < reference.pixelCount(); ++i) {
+        const float* p = reference.rgb.data() + 3 * i;
+        if (const float l = luminance(Spectrum(p[0], p[1], p[2])); l > 0) lum.push_back(l);
+    }
+    std::sort(lum.begin(), lum.end());
+    const float white = lum.at(size_t(std::lround(0.98 * double(lum.size() - 1))));
+    return float(std::round(-3 * std::log2(double(white))) / 3);
+}
+
+// The 8-bit sRGB code a preview at `stops` gives a linear value.
+int previewCode(float v, float stops) {
+    const double x = std::clamp(double(v) * std::exp2(double(stops)), 0.0, 1.0);
+    return int(std::lround(255 * (x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055)));
+}
+
+// A dim scene (the contact box with its light 256 times weaker) compared: reference.png and every
+// method's PNG are at the one exposure its reference sets, so that they are neither black nor
+// exposed one by one (a noisier image would get another exposure and look brighter or darker than
+// the reference it is compared with); the side-by-side sheet, full images and magnified crops,
+// shows each as its PNG does. Catches previews written at exposure 0, each image exposed from
+// itself, and a sheet left unexposed.
+TEST(CompareCommand, PreviewsShareTheReferencesAutomaticExposure) {
+    TempDir dir;
+    std::string gltf = readFile(std::string(TRIPATH_SOURCE_DIR) + "/scenes/contact.gltf");
+    const std::string bright = "\"emissiveStrength\": 32.0";
+    const size_t light = gltf.find(bright);
+    ASSERT_NE(light, std::string::npos);
+    ASSERT_EQ(gltf.find("emissiveStrength", light + bright.size()), std::string::npos) << "one light";
+    std::ofstream(dir / "dim.gltf") << gltf.replace(light, bright.size(), "\"emissiveStrength\": 0.125");
+    const std::string scene = "--scene " + (dir / "dim.gltf") + " --width 32 --height 32", ref = dir / "ref.exr";
+    ASSERT_EQ(tripathCli(dir, "reference " + scene + " --spp 64 --out " + ref).exitCode, 0);
+    // Runs of a pass or two: noisier than the reference, their own exposures would differ from it.
+    const std::string out = dir / "out";
+    const Outcome o = tripathCli(dir, "compare " + scene + " --integrators pt,bdpt --time 0.001 --reference " + ref +
+                                          " --crop 8,8,8,8 --out " + out);
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+
+    const float stops = referenceExposure(readExr(ref));
+    EXPECT_GE(stops, 4.0f) << "the scene is not dim: exposure 0 would pass";
+    // The sheet (compose.h): panels 8 apart under 44 rows of labels, each pixel of an image shown as
+    // 8x8 (32 pixels make the 256-pixel minimum); under each, the crop's pixels at 32x32.
+    const Image sheet = readImage(out + "/side-by-side.png");
+    const std::vector<std::string> names = {"reference", "pt", "bdpt"};
+    for (size_t i = 0; i < names.size(); ++i) {
+        const Image linear = readExr(i == 0 ? ref : out + "/" + names[i] + ".exr");
+        const Image png = readImage(out + "/" + names[i] + ".png");
+        ASSERT_EQ(png.width, 32);
+        const int left = 8 + int(i) * (256 + 8);
+        int exposedOtherwise = 0, lit = 0, sheetDiffers = 0, cropDiffers = 0;
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) {
+                const std::array<int, 3> code = bytesAt(png, x, y);
+                for (int c = 0; c < 3; ++c) {
+                    exposedOtherwise += std::abs(code[c] - previewCode(linear.at(x, y)[c], stops)) > 1;
+                    lit += code[c] >= 64;
+                }
+                sheetDiffers += bytesAt(sheet, left + 8 * x + 4, 44 + 8 * y + 4) != code;
+                if (x >= 8 && x < 16 && y >= 8 && y < 16)
+                    cropDiffers += bytesAt(sheet, left + 32 * (x - 8) + 16, 44 + 256 + 8 + 32 * (y - 8) + 16) != code;
+            }
+        EXPECT_EQ(exposedOtherwise, 0) << names[i] << ".png is not at the reference's exposure, " << stops << " stops";
+        EXPECT_GT(lit, 32 * 32) << names[i] << ".png is dark";
+        EXPECT_EQ(sheetDiffers, 0) << names[i] << " in side-by-side.png: pixels unlike its PNG";
+        EXPECT_EQ(cropDiffers, 0) << names[i] << "'s crop in side-by-side.png: pixels unlike its PNG";
     }
 }
 

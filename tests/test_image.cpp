@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/vec.h"
 #include "image/image.h"
 #include "image/error_map.h"
 #include "image/exposure.h"
@@ -421,9 +422,9 @@ TEST(ErrorMap, ColoursFollowTheLogScaleOfThePixelsRelativeSquaredError) {
     double previous = -1;
     for (double e = 1e-4; e <= 10; e *= 10) {
         const Rgb c = errorColour(e);
-        const double luminance = 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
-        EXPECT_GT(luminance, previous) << e;
-        previous = luminance;
+        const double y = luminance(Spectrum(c.r, c.g, c.b));
+        EXPECT_GT(y, previous) << e;
+        previous = y;
     }
     Image ref = filled(4, 2, 1, 1, 1), test = ref;
     const float d = float(std::sqrt(1e-2 * 1.01));

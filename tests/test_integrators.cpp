@@ -8,7 +8,6 @@
 
 #include "scenes/builtin_scenes.h"
 #include "core/vec.h"
-#include "image/bias.h"
 #include "support.h"
 #include "test_scenes.h"
 
@@ -23,27 +22,25 @@ const char* kAllIntegrators[] = {"pt", "lt", "bdpt", "vcm", "bpm", "ppm"};
 
 double imageMean(const Image& img) { return test::blockMean(img, 0, 0, img.width, img.height); }
 
+// The mean of the whole image over the channels, in each of `runs` independent runs (seeds 1, 2, …).
+std::vector<double> imageRuns(const Scene& scene, const RenderRequest& r, int runs) {
+    return test::blockRuns(scene, r, runs, 1, {{0, 0, r.width, r.height}}, average)[0];
+}
+
 // White furnace: a closed sphere of albedo a emitting Le has radiance Le / (1 − a) everywhere.
 // Merging is unbiased here too, at any radius: the light arriving is uniform, and the part of a
 // sphere within distance r of one of its points has area exactly π r².
 void expectFurnace(float albedo) {
-    const SceneDesc desc = furnaceScene(albedo, 1.0f);
+    const Scene scene(furnaceScene(albedo, 1.0f), 8, 8);
     const double expected = 1.0 / (1.0 - albedo);
     for (const char* integrator : kAllIntegrators) {
-        std::vector<double> runs;
-        for (uint64_t seed = 1; seed <= 8; ++seed) {
-            RenderRequest r = test::smallRequest();
-            r.integrator = integrator;
-            r.width = r.height = 8;
-            r.spp = 32;
-            r.seed = seed;
-            r.maxDepth = 1000;  // a^1000 is negligible: the whole Neumann series
-            r.merge.radiusFactor = 0.1f;  // 64 light paths a pass: a radius that finds some
-            const RenderResult res = test::renderDesc(desc, r);
-            EXPECT_EQ(res.droppedSamples, 0u);
-            runs.push_back(imageMean(res.image()));
-        }
-        const auto m = meanAndError(runs);
+        RenderRequest r = test::smallRequest();
+        r.integrator = integrator;
+        r.width = r.height = 8;
+        r.spp = 32;
+        r.maxDepth = 1000;  // a^1000 is negligible: the whole Neumann series
+        r.merge.radiusFactor = 0.1f;  // 64 light paths a pass: a radius that finds some
+        const auto m = meanAndError(imageRuns(scene, r, 8));
         EXPECT_NEAR(m.mean, expected, 4 * m.stderr_) << integrator << " a=" << albedo;
         EXPECT_LT(m.stderr_, 0.02 * expected) << integrator << ": too noisy for the test to mean anything";
     }
@@ -56,23 +53,18 @@ void expectFurnace(float albedo) {
 // weigh their strategies with weights that do not sum to 1), and light paths that are traced but
 // never splatted.
 TEST(Furnace, AnyNumberOfLightPaths) {
-    const SceneDesc desc = furnaceScene(0.5f, 1.0f);
+    const Scene scene(furnaceScene(0.5f, 1.0f), 8, 8);
     for (const int lightPaths : {21, 160})
         for (const char* integrator : {"lt", "bdpt", "vcm", "bpm", "ppm"}) {
-            std::vector<double> runs;
-            for (uint64_t seed = 1; seed <= 8; ++seed) {
-                RenderRequest r = test::smallRequest();
-                r.integrator = integrator;
-                r.width = r.height = 8;
-                r.spp = 128;  // 21 light paths a pass make lt and ppm noisy
-                r.seed = seed;
-                r.maxDepth = 1000;
-                r.merge.radiusFactor = 0.1f;
-                r.lightPaths = lightPaths;
-                r.lightPathsGiven = true;
-                runs.push_back(imageMean(test::renderDesc(desc, r).image()));
-            }
-            const auto m = meanAndError(runs);
+            RenderRequest r = test::smallRequest();
+            r.integrator = integrator;
+            r.width = r.height = 8;
+            r.spp = 128;  // 21 light paths a pass make lt and ppm noisy
+            r.maxDepth = 1000;
+            r.merge.radiusFactor = 0.1f;
+            r.lightPaths = lightPaths;
+            r.lightPathsGiven = true;
+            const auto m = meanAndError(imageRuns(scene, r, 8));
             EXPECT_NEAR(m.mean, 2.0, 4 * m.stderr_) << integrator << " with " << lightPaths << " light paths";
             EXPECT_LT(m.stderr_, 0.04) << integrator << " with " << lightPaths << " light paths: too noisy for the test to mean anything";
         }
@@ -108,56 +100,34 @@ TEST(Roulette, TheDepthUsedIsTheDepthRecorded) {
 TEST(Furnace, AlbedoHalf) { expectFurnace(0.5f); }
 TEST(Furnace, AlbedoNineTenths) { expectFurnace(0.9f); }
 
-// Luminance of each 8×8 block, for R independent runs of one integrator.
-std::vector<std::vector<double>> blockRuns(const SceneDesc& desc, const char* integrator, int runs, int spp) {
-    std::vector<std::vector<double>> blocks;
-    for (int run = 0; run < runs; ++run) {
-        RenderRequest r = test::smallRequest();
-        r.integrator = integrator;
-        r.width = r.height = 32;
-        r.spp = spp;
-        r.seed = 100 + run;
-        r.maxDepth = 8;
-        const Image img = test::renderDesc(desc, r).image();
-        for (int b = 0; b < 16; ++b) {
-            if (run == 0) blocks.emplace_back();
-            const int bx = (b % 4) * 8, by = (b / 4) * 8;
-            blocks[b].push_back(0.2126 * test::blockMean(img, bx, by, 8, 8, 0) + 0.7152 * test::blockMean(img, bx, by, 8, 8, 1) +
-                                0.0722 * test::blockMean(img, bx, by, 8, 8, 2));
-        }
-    }
-    return blocks;
+// Luminance of each 8×8 block of a 32×32 image, in each of `runs` independent runs (seeds 100,
+// 101, …) of one integrator.
+test::BlockRuns runsOf(const SceneDesc& desc, const char* integrator, int runs, int spp) {
+    RenderRequest r = test::smallRequest();
+    r.integrator = integrator;
+    r.width = r.height = 32;
+    r.spp = spp;
+    r.maxDepth = 8;
+    return test::blockRuns(Scene(desc, r.width, r.height), r, runs, 100, test::blockGrid(32, 32, 4, 4));
 }
 
 // Every pair of integrators agrees on every block: Welch's t-test of the 16 runs' block means
-// (image/bias.h) over all 48 comparisons of a scene, Holm-corrected so that the chance of any
-// false alarm is at most 1 % (if the run means are normal). It replaced |Δ| < 5σ, which allowed
-// a larger difference: Holm's first threshold, 0.01/48, is |t| ≈ 4.2 at these degrees of freedom.
-// `ltRows` limits the light tracer to the top rows of blocks: see Agreement.VeachMis.
+// (test::BlockAgreement) over all 48 comparisons of a scene, Holm-corrected so that the chance of
+// any false alarm is at most 1 % (if the run means are normal). It replaced |Δ| < 5σ, which
+// allowed a larger difference: Holm's first threshold, 0.01/48, is |t| ≈ 4.2 at these degrees of
+// freedom. `ltRows` limits the light tracer to the top rows of blocks: see Agreement.VeachMis.
 void expectAgreement(const SceneDesc& desc, const std::string& scene, int spp, int ltRows = 4) {
-    std::vector<std::vector<std::vector<double>>> all;
-    for (const char* integrator : kIntegrators) all.push_back(blockRuns(desc, integrator, 16, spp));
-    struct Comparison {
-        int a, b, block;
-        WelchTest test;
-    };
-    std::vector<Comparison> comparisons;
-    std::vector<double> p;
+    std::vector<test::BlockRuns> all;
+    for (const char* integrator : kIntegrators) all.push_back(runsOf(desc, integrator, 16, spp));
+    test::BlockAgreement agreement;
     for (int a = 0; a < 3; ++a)
         for (int b = a + 1; b < 3; ++b)
             for (int block = 0; block < 16; ++block) {
                 if ((a == 1 || b == 1) && block / 4 >= ltRows) continue;
-                comparisons.push_back({a, b, block, welchTest(all[a][block], all[b][block])});
-                p.push_back(comparisons.back().test.p);
+                agreement.compare(all[a][block], all[b][block], scene + " block " + std::to_string(block) + ": " +
+                                                                   kIntegrators[a] + " against " + kIntegrators[b]);
             }
-    const std::vector<bool> biased = holmSignificant(p, 0.01);
-    for (size_t i = 0; i < comparisons.size(); ++i) {
-        const Comparison& c = comparisons[i];
-        const auto ma = meanAndError(all[c.a][c.block]), mb = meanAndError(all[c.b][c.block]);
-        EXPECT_FALSE(biased[i]) << scene << " block " << c.block << ": " << kIntegrators[c.a] << " " << ma.mean << " ± "
-                                << ma.stderr_ << " vs " << kIntegrators[c.b] << " " << mb.mean << " ± " << mb.stderr_
-                                << " (t = " << c.test.t << ", p = " << c.test.p << ")";
-    }
+    agreement.expectNoBias();
 }
 
 TEST(Agreement, Cornell) { expectAgreement(builtinScene("cornell"), "cornell", 8); }
@@ -179,16 +149,14 @@ TEST(Agreement, VeachMis) { expectAgreement(builtinScene("veach-mis"), "veach-mi
 // fails Furnace.* and not this.)
 TEST(Agreement, LightTracingAgreesOnAGlossyPlateGivenSamples) {
     const SceneDesc desc = builtinScene("veach-mis");
-    const auto pt = blockRuns(desc, "pt", 16, 64), lt = blockRuns(desc, "lt", 16, 1024);
-    std::vector<double> p;
-    for (int block = 8; block < 12; ++block) p.push_back(welchTest(pt[block], lt[block]).p);
-    const std::vector<bool> biased = holmSignificant(p, 0.01);
-    for (int i = 0; i < 4; ++i) {
-        const auto a = meanAndError(pt[8 + i]), b = meanAndError(lt[8 + i]);
-        EXPECT_FALSE(biased[i]) << "block " << 8 + i << ": pt " << a.mean << " ± " << a.stderr_ << " vs lt " << b.mean
-                                << " ± " << b.stderr_;
-        EXPECT_LT(b.stderr_, 0.08 * b.mean) << "block " << 8 + i << ": too noisy for the test to mean anything";
+    const auto pt = runsOf(desc, "pt", 16, 64), lt = runsOf(desc, "lt", 16, 1024);
+    test::BlockAgreement agreement;
+    for (int block = 8; block < 12; ++block) {
+        agreement.compare(pt[block], lt[block], "block " + std::to_string(block) + ": pt against lt");
+        const auto m = meanAndError(lt[block]);
+        EXPECT_LT(m.stderr_, 0.08 * m.mean) << "block " << block << ": too noisy for the test to mean anything";
     }
+    agreement.expectNoBias();
 }
 
 // Shading normals: light subpaths use the adjoint BSDF (Veach §5.3), so all three agree on a

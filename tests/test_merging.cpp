@@ -10,7 +10,6 @@
 #include "scenes/builtin_scenes.h"
 #include "geometry/point_grid.h"
 #include "core/rng.h"
-#include "image/bias.h"
 #include "integrators/integrator.h"
 #include "support.h"
 
@@ -213,26 +212,20 @@ TEST(MergeRadius, TheDefaultMeasuresThePixelBeyondMirrors) {
 
 // ---- images against bdpt ---------------------------------------------------------------------
 
-// Luminance mean of the whole image and of its 4×4 blocks over `runs` independent runs.
+// Luminance means over `runs` independent runs (seeds 300, 301, …): of the whole image, and of
+// each of its 4×4 blocks.
 struct Runs {
     std::vector<double> image;
-    std::vector<std::vector<double>> blocks = std::vector<std::vector<double>>(16);
+    test::BlockRuns blocks;
 };
 
-Runs renderRuns(const SceneDesc& desc, RenderRequest r, int runs) {
-    Runs out;
-    const Scene scene(desc, r.width, r.height);
-    for (int run = 0; run < runs; ++run) {
-        r.seed = 300 + run;
-        const Image img = test::renderScene(scene, r).image();
-        auto lum = [&](int x0, int y0, int w, int h) {
-            return 0.2126 * test::blockMean(img, x0, y0, w, h, 0) + 0.7152 * test::blockMean(img, x0, y0, w, h, 1) +
-                   0.0722 * test::blockMean(img, x0, y0, w, h, 2);
-        };
-        out.image.push_back(lum(0, 0, r.width, r.height));
-        const int bw = r.width / 4, bh = r.height / 4;
-        for (int b = 0; b < 16; ++b) out.blocks[b].push_back(lum((b % 4) * bw, (b / 4) * bh, bw, bh));
-    }
+Runs renderRuns(const SceneDesc& desc, const RenderRequest& r, int runs) {
+    std::vector<test::Block> blocks = test::blockGrid(r.width, r.height, 4, 4);
+    blocks.push_back({0, 0, r.width, r.height});
+    test::BlockRuns means = test::blockRuns(Scene(desc, r.width, r.height), r, runs, 300, blocks);
+    Runs out{means.back(), {}};
+    means.pop_back();
+    out.blocks = std::move(means);
     return out;
 }
 
@@ -247,37 +240,6 @@ RenderRequest request(const std::string& integrator, int spp, float radiusFactor
     return r;
 }
 
-// Block-by-block comparisons of pairs of renders, judged together: Welch's t-test of each block's
-// run means (image/bias.h), Holm-corrected over every comparison made, so that the chance of any
-// false alarm between unbiased renderers is at most 1 % (if the run means are normal), as in
-// Agreement.* (test_integrators.cpp). With 16 blocks Holm's first threshold, 0.01/16, is |t| ≈ 4.
-class BlockAgreement {
-public:
-    void compare(const Runs& a, const Runs& b, const std::string& what) {
-        for (int block = 0; block < 16; ++block)
-            comparisons_.push_back({what + ", block " + std::to_string(block), meanAndError(a.blocks[block]),
-                                    meanAndError(b.blocks[block]), welchTest(a.blocks[block], b.blocks[block])});
-    }
-    void expectNoBias() const {
-        std::vector<double> p;
-        for (const Comparison& c : comparisons_) p.push_back(c.test.p);
-        const std::vector<bool> biased = holmSignificant(p, 0.01);
-        for (size_t i = 0; i < comparisons_.size(); ++i) {
-            const Comparison& c = comparisons_[i];
-            EXPECT_FALSE(biased[i]) << c.what << ": " << c.a.mean << " ± " << c.a.stderr_ << " against " << c.b.mean
-                                    << " ± " << c.b.stderr_ << " (t = " << c.test.t << ", p = " << c.test.p << ")";
-        }
-    }
-
-private:
-    struct Comparison {
-        std::string what;
-        test::MeanError a, b;
-        WelchTest test;
-    };
-    std::vector<Comparison> comparisons_;
-};
-
 // vcm with a small radius agrees with bdpt on every block within statistical error: merges only
 // add strategies, and where connections sample a path well, MIS gives merges little weight (and
 // their bias with it). Catches merges whose weights do not compete with the connections' (a merge
@@ -289,8 +251,8 @@ void expectVcmAgreesWithBdpt(const std::string& name) {
     const SceneDesc desc = builtinScene(name);
     const Runs bdpt = renderRuns(desc, request("bdpt", 8, 0, 1), 16);
     const Runs vcm = renderRuns(desc, request("vcm", 8, 0.005f, 0.75f), 16);
-    BlockAgreement agreement;
-    agreement.compare(bdpt, vcm, name + ": bdpt against vcm");
+    test::BlockAgreement agreement;  // Holm's first threshold, 0.01/16, is |t| ≈ 4
+    agreement.compare(bdpt.blocks, vcm.blocks, name + ": bdpt against vcm");
     agreement.expectNoBias();
 }
 
@@ -306,7 +268,7 @@ TEST(Merging, AnyNumberOfLightPathsAgreesWithOnePerPixel) {
     const SceneDesc desc = builtinScene("cornell-spheres");
     const Runs bdpt = renderRuns(desc, request("bdpt", 8, 0, 1), 16);
     const Runs lt = renderRuns(desc, request("lt", 8, 0, 1), 16);
-    BlockAgreement agreement;
+    test::BlockAgreement agreement;
     for (const int lightPaths : {341, 2560})
         for (const std::string integrator : {"lt", "bdpt", "vcm"}) {
             RenderRequest r = request(integrator, 8, 0.005f, 0.75f);
@@ -314,7 +276,7 @@ TEST(Merging, AnyNumberOfLightPathsAgreesWithOnePerPixel) {
             r.lightPathsGiven = true;
             const Runs& reference = integrator == "lt" ? lt : bdpt;
             const std::string what = "one per pixel against " + integrator + " with " + std::to_string(lightPaths);
-            agreement.compare(reference, renderRuns(desc, r, 16), what + " light paths");
+            agreement.compare(reference.blocks, renderRuns(desc, r, 16).blocks, what + " light paths");
         }
     agreement.expectNoBias();
 }

@@ -27,6 +27,7 @@
 #include "integrators/integrator.h"
 #include "integrators/light_phase.h"
 #include "integrators/render.h"
+#include "support.h"
 
 namespace tripath {
 namespace {
@@ -53,29 +54,31 @@ struct Job {
     int maxDepth = 16;
 };
 
-RenderResult renderJob(const Scene& scene, const Job& j) {
-    IntegratorSettings is;
-    is.walk.maxDepth = j.maxDepth;
-    const auto integrator = makeIntegrator(j.integrator, is);
-    RenderSettings rs;
-    rs.spp = j.spp;
-    rs.seed = j.seed;
-    rs.firstPass = j.firstPass;
-    return render(scene, *integrator, rs);
+// The request a job makes. Russian roulette starts at the walk's own default depth (the 3rd vertex)
+// for every integrator, the depth these tests' budgets are set for, not at the front ends' depth
+// per integrator.
+RenderRequest request(const Job& j) {
+    RenderRequest r;
+    r.integrator = j.integrator;
+    r.width = r.height = j.size;
+    r.spp = j.spp;
+    r.seed = j.seed;
+    r.maxDepth = j.maxDepth;
+    r.rrDepth = WalkSettings{}.rrDepth;
+    return r;
 }
 
-struct Block {
-    int x = 0, y = 0, w = 0, h = 0;
-};
+RenderResult renderJob(const Scene& scene, const Job& j) {
+    const RenderRequest r = request(j);
+    RenderSettings rs = renderSettings(r);
+    rs.firstPass = j.firstPass;
+    return render(scene, *makeIntegrator(r.integrator, integratorSettings(r)), rs);
+}
+
+using test::Block;
 
 // Mean over a block of pixels and the three channels.
-double regionMean(const Image& img, Block r) {
-    double sum = 0;
-    for (int y = r.y; y < r.y + r.h; ++y)
-        for (int x = r.x; x < r.x + r.w; ++x)
-            for (int c = 0; c < 3; ++c) sum += img.at(x, y)[c];
-    return sum / (3.0 * r.w * r.h);
-}
+double regionMean(const Image& img, const Block& b) { return test::blockMean(img, b, average); }
 
 // The (2 half + 1)² pixels around where the camera sees world point p.
 Block around(const Scene& scene, Vec3 p, int half) {
@@ -87,34 +90,12 @@ Block around(const Scene& scene, Vec3 p, int half) {
     return {x0, y0, std::min(2 * half + 1, w - x0), std::min(2 * half + 1, h - y0)};
 }
 
-struct Estimate {
-    double mean = 0, stderr_ = 0;
-};
-
-Estimate estimate(const std::vector<double>& runs) {
-    Estimate e;
-    for (double x : runs) e.mean += x;
-    e.mean /= runs.size();
-    double var = 0;
-    for (double x : runs) var += (x - e.mean) * (x - e.mean);
-    e.stderr_ = std::sqrt(var / (runs.size() - 1) / runs.size());
-    return e;
+// Per block, its mean over the three channels in each of `runs` independent renders (seeds 1000 + i).
+test::BlockRuns regionRuns(const Scene& scene, const Job& job, int runs, const std::vector<Block>& regions) {
+    return test::blockRuns(scene, request(job), runs, 1000, regions, average);
 }
 
-// Block means of `runs` independent renders (seeds 1000 + i); also checks no sample was dropped.
-std::vector<std::vector<double>> regionRuns(const Scene& scene, Job job, int runs, const std::vector<Block>& regions) {
-    std::vector<std::vector<double>> out(regions.size());
-    for (int i = 0; i < runs; ++i) {
-        job.seed = 1000 + static_cast<uint64_t>(i);
-        const RenderResult r = renderJob(scene, job);
-        EXPECT_EQ(r.droppedSamples, 0u) << scene.name() << " " << job.integrator << ": NaN/Inf samples";
-        const Image img = r.image();
-        for (size_t k = 0; k < regions.size(); ++k) out[k].push_back(regionMean(img, regions[k]));
-    }
-    return out;
-}
-
-std::string show(const Estimate& e) { return std::to_string(e.mean) + " ± " + std::to_string(e.stderr_); }
+std::string show(const test::MeanError& e) { return std::to_string(e.mean) + " ± " + std::to_string(e.stderr_); }
 
 // ---- the scenes are registered and valid --------------------------------------------------------
 
@@ -220,19 +201,6 @@ std::vector<bool> ltVisible(const Scene& scene) {
     return mask;
 }
 
-// Mean over the pixels of a block that the mask keeps (all of them for an empty mask).
-double maskedMean(const Image& img, Block b, const std::vector<bool>& mask) {
-    double sum = 0;
-    int n = 0;
-    for (int y = b.y; y < b.y + b.h; ++y)
-        for (int x = b.x; x < b.x + b.w; ++x) {
-            if (!mask.empty() && !mask[static_cast<size_t>(y * img.width + x)]) continue;
-            for (int c = 0; c < 3; ++c) sum += img.at(x, y)[c];
-            ++n;
-        }
-    return n > 0 ? sum / (3.0 * n) : 0.0;
-}
-
 struct AgreementCase {
     std::string scene;
     std::vector<std::string> integrators;  // those that sample all of the image's light: must agree
@@ -272,34 +240,34 @@ TEST_P(Agreement, IntegratorsAgreeWithinStatisticalError) {
     for (size_t i = 0; i < visible.size(); ++i) visibleNoCaustic[i] = visible[i] && noCaustic[i];
     const int h = kSize / 2;
     const std::vector<Block> blocks = {{0, 0, kSize, kSize}, {0, 0, h, h}, {h, 0, h, h}, {0, h, h, h}, {h, h, h, h}};
-    // runs[integrator][mask][block]: one value per run; masks: none, lt-visible, and the same
-    // two without the caustic spot
+    // Each block under each mask: none, lt-visible, and the same two without the caustic spot.
     const std::vector<std::vector<bool>> masks = {{}, visible, noCaustic, visibleNoCaustic};
-    std::map<std::string, std::vector<std::vector<std::vector<double>>>> runs;
+    std::vector<Block> measured;
+    for (const std::vector<bool>& mask : masks)
+        for (Block b : blocks) {
+            b.mask = mask;
+            measured.push_back(std::move(b));
+        }
     std::vector<std::string> all = c.integrators;
     all.insert(all.end(), c.onlyMiss.begin(), c.onlyMiss.end());
+    std::map<std::string, test::BlockRuns> runs;
     for (const std::string& integrator : all) {
-        auto& r = runs[integrator];
-        r.assign(masks.size(), std::vector<std::vector<double>>(blocks.size()));
         Job job;
         job.integrator = integrator;
         job.size = kSize;
         job.spp = c.spp;
-        for (int i = 0; i < c.runs; ++i) {
-            job.seed = 1000 + static_cast<uint64_t>(i);
-            const RenderResult res = renderJob(scene, job);
-            EXPECT_EQ(res.droppedSamples, 0u) << c.scene << " " << integrator;
-            const Image img = res.image();
-            for (size_t m = 0; m < masks.size(); ++m)
-                for (size_t k = 0; k < blocks.size(); ++k) r[m][k].push_back(maskedMean(img, blocks[k], masks[m]));
-        }
+        runs[integrator] = regionRuns(scene, job, c.runs, measured);
     }
+    // An integrator's estimate of block k under a mask.
+    auto estimate = [&](const std::string& integrator, int mask, size_t k) {
+        return test::meanAndError(runs[integrator][static_cast<size_t>(mask) * blocks.size() + k]);
+    };
     for (size_t a = 0; a < c.integrators.size(); ++a)
         for (size_t b = a + 1; b < c.integrators.size(); ++b) {
             const std::string &ia = c.integrators[a], &ib = c.integrators[b];
             const int masked = (ia == "lt" || ib == "lt") ? 1 : 0;
             for (size_t k = 0; k < blocks.size(); ++k) {
-                const Estimate ea = estimate(runs[ia][masked][k]), eb = estimate(runs[ib][masked][k]);
+                const auto ea = estimate(ia, masked, k), eb = estimate(ib, masked, k);
                 const double sigma = std::hypot(ea.stderr_, eb.stderr_);
                 EXPECT_LE(std::abs(ea.mean - eb.mean), 4 * sigma + 1e-7 * std::abs(ea.mean))
                     << c.scene << " block " << k << (masked ? " (lt-visible pixels)" : "") << ": " << ia << " "
@@ -310,7 +278,7 @@ TEST_P(Agreement, IntegratorsAgreeWithinStatisticalError) {
         for (const std::string& ref : c.integrators) {
             const int masked = ((low == "lt" || ref == "lt") ? 1 : 0) + (c.skipCaustic ? 2 : 0);
             for (size_t k = 0; k < blocks.size(); ++k) {
-                const Estimate el = estimate(runs[low][masked][k]), er = estimate(runs[ref][masked][k]);
+                const auto el = estimate(low, masked, k), er = estimate(ref, masked, k);
                 const double sigma = std::hypot(el.stderr_, er.stderr_);
                 const std::string what = c.scene + " block " + std::to_string(k) + ": " + low + " " + show(el) + " vs " +
                                          ref + " " + show(er);
@@ -355,7 +323,7 @@ TEST(Caustic, PathTracingIsNoisyInTheCaustic) {
         job.integrator = integrator;
         job.size = kSize;
         job.spp = 8;
-        const Estimate e = estimate(regionRuns(scene, job, kRuns, {caustic})[0]);
+        const test::MeanError e = test::meanAndError(regionRuns(scene, job, kRuns, {caustic})[0]);
         spread[integrator] = e.stderr_ / e.mean;
         std::cout << "caustic, caustic region, " << integrator << ": " << show(e) << "\n";
     }
@@ -371,13 +339,13 @@ TEST(CausticPoint, PathTracingCannotSampleTheCaustic) {
     constexpr int kSize = 48, kRuns = 6;
     const Scene scene(builtinScene("caustic-point"), kSize, kSize, silent);
     const Block caustic = around(scene, causticCentre(), 1);
-    std::map<std::string, Estimate> e;
+    std::map<std::string, test::MeanError> e;
     for (const std::string& integrator : kIntegrators) {
         Job job;
         job.integrator = integrator;
         job.size = kSize;
         job.spp = 8;
-        e[integrator] = estimate(regionRuns(scene, job, kRuns, {caustic})[0]);
+        e[integrator] = test::meanAndError(regionRuns(scene, job, kRuns, {caustic})[0]);
         std::cout << "caustic-point, caustic region, " << integrator << ": " << show(e[integrator]) << "\n";
     }
     EXPECT_GT(e["lt"].mean, 10 * e["lt"].stderr_) << "lt sees the caustic";
@@ -446,12 +414,12 @@ TEST(SdsPoint, NoIntegratorCanSampleTheCausticThroughThePane) {
     job.integrator = "lt";
     job.size = kSize;
     job.spp = 8;
-    const Estimate truth = estimate(regionRuns(withoutPane, job, kRuns, {caustic})[0]);
+    const test::MeanError truth = test::meanAndError(regionRuns(withoutPane, job, kRuns, {caustic})[0]);
     std::cout << "caustic-point (no pane), caustic region, lt: " << show(truth) << "\n";
     EXPECT_GT(truth.mean, 10 * truth.stderr_) << "lt sees the caustic without the pane";
     for (const std::string& integrator : kIntegrators) {
         job.integrator = integrator;
-        const Estimate missed = estimate(regionRuns(withPane, job, kRuns, {caustic})[0]);
+        const test::MeanError missed = test::meanAndError(regionRuns(withPane, job, kRuns, {caustic})[0]);
         std::cout << "sds-point, caustic through the pane, " << integrator << ": " << show(missed) << "\n";
         EXPECT_LT(missed.mean, 0.1 * truth.mean) << integrator << " cannot sample an SDS path with delta ends";
     }
@@ -520,8 +488,8 @@ TEST(DegenerateFar, MatchesTheSameBoxAtUnitScale) {
     job.size = kSize;
     job.spp = 8;
     const std::vector<Block> regions = {{0, 0, kSize, kSize}};
-    const Estimate f = estimate(regionRuns(farScene, job, kRuns, regions)[0]);
-    const Estimate u = estimate(regionRuns(unitScene, job, kRuns, regions)[0]);
+    const test::MeanError f = test::meanAndError(regionRuns(farScene, job, kRuns, regions)[0]);
+    const test::MeanError u = test::meanAndError(regionRuns(unitScene, job, kRuns, regions)[0]);
     std::cout << "box at 1e6: " << show(f) << ", at unit scale: " << show(u) << "\n";
     EXPECT_LE(std::abs(f.mean - u.mean), 4 * std::hypot(f.stderr_, u.stderr_));
 }
@@ -556,7 +524,7 @@ TEST(Contact, FireflyRatioIsBoundedForBdpt) {
             const Image img = r.image();
             for (int p = 0; p < kSize * kSize; ++p) {
                 const float* v = img.rgb.data() + 3 * p;
-                const double lum = 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+                const double lum = luminance(Spectrum(v[0], v[1], v[2]));
                 sum[p] += lum;
                 most[p] = std::max(most[p], lum);
             }

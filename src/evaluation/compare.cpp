@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "image/exposure.h"
 #include "image/text.h"
 
 namespace tripath::evaluation {
@@ -35,8 +36,8 @@ std::vector<std::string> renderingIntegrators(const CompareRequest& r) {
     return all;
 }
 
-// Run 0's images (also written as <dir>/<method>.exr and .png when there is a directory), and
-// every image the outputs carry, by method in run order.
+// Run 0's images (also written as <dir>/<method>.exr and .png, at the comparison's exposure, when
+// there is a directory), and every image the outputs carry, by method in run order.
 void keepRuns(std::vector<RunOutput>& outputs, const std::string& dir, Comparison& c) {
     for (RunOutput& out : outputs) {
         const std::string& m = out.run.method;
@@ -44,7 +45,7 @@ void keepRuns(std::vector<RunOutput>& outputs, const std::string& dir, Compariso
         if (out.run.index == 0) {
             if (!dir.empty()) {
                 writeExr((fs::path(dir) / (m + ".exr")).string(), out.image, out.meta);
-                writePng((fs::path(dir) / (m + ".png")).string(), out.image);
+                writePng((fs::path(dir) / (m + ".png")).string(), out.image, c.exposureStops);
             }
             c.images[m] = std::move(out.image);
         }
@@ -113,9 +114,10 @@ Comparison compare(const CompareRequest& r, const Scene& scene, bool everyImage)
     std::vector<RunOutput> outputs = runEverywhere(r, scene, c.reference.image, everyImage);
     c.interrupted = r.stop && r.stop->load();
     if (r.team->rank() != 0 || c.interrupted) return c;
+    c.exposureStops = autoExposureStops(c.reference.image);
     if (!r.outDir.empty()) {
         createDirectory(r.outDir);
-        writePng((fs::path(r.outDir) / "reference.png").string(), c.reference.image);
+        writePng((fs::path(r.outDir) / "reference.png").string(), c.reference.image, c.exposureStops);
     }
     keepRuns(outputs, r.outDir, c);
     for (const std::string& m : r.methods) c.curves.push_back(curveOf(c.runs, m));

@@ -138,6 +138,9 @@ struct Comparison {
     std::map<std::string, std::vector<Image>> everyImage;  // every run's, by method in run order (when asked)
     std::vector<Curve> curves;                    // per method, in the request's order
     std::vector<MethodSummary> summaries;         // likewise
+    // The exposure of every preview of the comparison (reference.png, <method>.png, the side-by-side
+    // sheet): the reference's automatic one (image/exposure.h), one for all so that they compare.
+    float exposureStops = 0;
     bool interrupted = false;
 };
 
@@ -186,6 +189,7 @@ struct Report {
     const std::vector<Curve>& curves;
     const std::vector<MethodSummary>& summaries;
     Region inset;
+    float exposureStops;  // Comparison::exposureStops
 };
 // ",closest_hit_rays,shadow_rays,…": a CSV column per event counter of core/stats.h.
 std::string counterColumns();

@@ -114,11 +114,20 @@ void writeChart(const Report& r, const std::string& svgPath, const std::string& 
     writePng(pngPath, chartImage(chart));
 }
 
+// The image as a preview at `stops` shows it: scaled by 2^stops.
+Image exposed(Image img, float stops) {
+    const float scale = std::exp2(stops);
+    for (float& v : img.rgb) v *= scale;
+    return img;
+}
+
+// The reference and each method's run 0 at the comparison's exposure, as their PNGs show them; the
+// error maps, in display colours already, as they are.
 void writeSideBySide(const Report& r, const std::string& path) {
-    std::vector<Panel> panels{{r.reference.image, "reference", r.reference.description}};
+    std::vector<Panel> panels{{exposed(r.reference.image, r.exposureStops), "reference", r.reference.description}};
     for (const std::string& m : r.options.methods) {
         const Run& run0 = *std::find_if(r.runs.begin(), r.runs.end(), [&](const Run& x) { return x.method == m && x.index == 0; });
-        panels.push_back({r.images.at(m), m,
+        panels.push_back({exposed(r.images.at(m), r.exposureStops), m,
                           fmt::format("{} spp, {}, relMSE {:.3g}", run0.final().spp, formatSeconds(run0.final().seconds),
                                       run0.final().error.relMse)});
     }
@@ -179,7 +188,8 @@ Region insetRegion(const CompareRequest& o, const Reference& ref, const std::map
 
 void writeReport(const CompareRequest& o, const Comparison& c, const std::string& dir) {
     auto path = [&](const std::string& name) { return (std::filesystem::path(dir) / name).string(); };
-    const Report report{o, c.reference, c.runs, c.images, c.curves, c.summaries, insetRegion(o, c.reference, c.images)};
+    const Report report{o, c.reference, c.runs, c.images, c.curves, c.summaries, insetRegion(o, c.reference, c.images),
+                        c.exposureStops};
     writeCsv(report, path("error.csv"));
     writeCountersCsv(report, path("counters.csv"));
     writeChart(report, path("error-vs-time.svg"), path("error-vs-time.png"));
