@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/gltf_loader.h"
+#include "io/gltf_loader.h"
 #include "geometry/scene.h"
 #include "evaluation/compare.h"
 #include "image/image.h"
