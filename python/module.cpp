@@ -17,8 +17,8 @@
 
 #include "core/error.h"
 #include "image/exposure.h"
-#include "image/flip.h"
-#include "image/metrics.h"
+#include "evaluation/flip.h"
+#include "evaluation/metrics.h"
 #include "scenes/builtin_scenes.h"
 
 namespace tripath::python {

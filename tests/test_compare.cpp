@@ -24,12 +24,12 @@
 #include "scenes/builtin_scenes.h"
 #include "core/error.h"
 #include "geometry/embree_isa.h"
-#include "image/chart.h"
-#include "image/compose.h"
-#include "image/flip.h"
+#include "evaluation/chart.h"
+#include "evaluation/compose.h"
+#include "evaluation/flip.h"
 #include "image/image.h"
-#include "image/inset.h"
-#include "image/metrics.h"
+#include "evaluation/inset.h"
+#include "evaluation/metrics.h"
 #include "support.h"
 
 namespace fs = std::filesystem;

@@ -8,7 +8,7 @@
 
 #include "scenes/builtin_scenes.h"
 #include "core/vec.h"
-#include "image/bias.h"
+#include "evaluation/bias.h"
 #include "support.h"
 #include "test_scenes.h"
 
@@ -130,7 +130,7 @@ std::vector<std::vector<double>> blockRuns(const SceneDesc& desc, const char* in
 }
 
 // Every pair of integrators agrees on every block: Welch's t-test of the 16 runs' block means
-// (image/bias.h) over all 48 comparisons of a scene, Holm-corrected so that the chance of any
+// (evaluation/bias.h) over all 48 comparisons of a scene, Holm-corrected so that the chance of any
 // false alarm is at most 1 % (if the run means are normal). It replaced |Δ| < 5σ, which allowed
 // a larger difference: Holm's first threshold, 0.01/48, is |t| ≈ 4.2 at these degrees of freedom.
 // `ltRows` limits the light tracer to the top rows of blocks: see Agreement.VeachMis.

@@ -10,7 +10,7 @@
 #include "scenes/builtin_scenes.h"
 #include "geometry/point_grid.h"
 #include "core/rng.h"
-#include "image/bias.h"
+#include "evaluation/bias.h"
 #include "integrators/integrator.h"
 #include "support.h"
 
@@ -248,7 +248,7 @@ RenderRequest request(const std::string& integrator, int spp, float radiusFactor
 }
 
 // Block-by-block comparisons of pairs of renders, judged together: Welch's t-test of each block's
-// run means (image/bias.h), Holm-corrected over every comparison made, so that the chance of any
+// run means (evaluation/bias.h), Holm-corrected over every comparison made, so that the chance of any
 // false alarm between unbiased renderers is at most 1 % (if the run means are normal), as in
 // Agreement.* (test_integrators.cpp). With 16 blocks Holm's first threshold, 0.01/16, is |t| ≈ 4.
 class BlockAgreement {
