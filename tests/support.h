@@ -12,11 +12,11 @@
 
 #include "scenes/builtin_scenes.h"
 #include "integrators/render.h"
-#include "integrators/render_request.h"
+#include "requests/render_request.h"
 
 namespace tripath::test {
 
-// The library's render request (integrators/render_request.h) at the tests' usual size: pt,
+// The library's render request (requests/render_request.h) at the tests' usual size: pt,
 // 16×16 pixels, 4 passes; tests set what they need on top.
 inline RenderRequest smallRequest() {
     RenderRequest r;

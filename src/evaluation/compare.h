@@ -17,7 +17,7 @@
 #include "evaluation/reference_file.h"
 #include "image/draw.h"
 #include "evaluation/metrics.h"
-#include "integrators/render_request.h"
+#include "requests/render_request.h"
 #include "integrators/team.h"
 
 namespace tripath::evaluation {
