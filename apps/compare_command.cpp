@@ -8,7 +8,7 @@
 #include "commands.h"
 #include "core/error.h"
 #include "evaluation/compare.h"
-#include "integrators/interrupt.h"
+#include "requests/interrupt.h"
 #include "processes.h"
 #include "render_options.h"
 

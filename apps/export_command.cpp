@@ -1,5 +1,5 @@
 // `tripath export`: a scene (built-in or file) as a glTF 2.0 file with an embedded buffer, which
-// loads back to the same triangles, materials, lights and camera (see geometry/gltf_writer.h).
+// loads back to the same triangles, materials, lights and camera (see io/gltf_writer.h).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -7,8 +7,8 @@
 
 #include "commands.h"
 #include "core/error.h"
-#include "geometry/gltf_loader.h"
-#include "geometry/gltf_writer.h"
+#include "io/gltf_loader.h"
+#include "io/gltf_writer.h"
 #include "scenes/scene_source.h"
 #include "image/image.h"
 #include "render_options.h"

@@ -11,7 +11,7 @@
 #include "input_words.h"
 #include "processes.h"
 #include "core/error.h"
-#include "integrators/interrupt.h"
+#include "requests/interrupt.h"
 
 namespace {
 

@@ -7,18 +7,18 @@
 #include <string>
 #include <vector>
 
-#include "geometry/gltf_loader.h"
+#include "io/gltf_loader.h"
 #include "geometry/scene.h"
 #include "evaluation/compare.h"
 #include "image/image.h"
 #include "integrators/integrator.h"
-#include "integrators/interrupt.h"
+#include "requests/interrupt.h"
 #include "integrators/render.h"
-#include "integrators/render_request.h"
+#include "requests/render_request.h"
 
 namespace tripath::app {
 
-// The library's render request (integrators/render_request.h), which every front end fills, and
+// The library's render request (requests/render_request.h), which every front end fills, and
 // what only the command line has.
 struct RenderOptions : RenderRequest {
     double checkpointSeconds = 0;  // --checkpoint: interval; 0 writes none (checkpoint.h)

@@ -5,7 +5,7 @@
 #
 # Why a separate script: the peers write their own formats at their own resolutions, and the
 # error must be computed the same way for every image of a comparison. relMSE here is exactly
-# src/image/metrics.cpp's: the mean over pixels and all three channels of (x − r)² / (r² + ε),
+# src/evaluation/metrics.cpp's: the mean over pixels and all three channels of (x − r)² / (r² + ε),
 # ε = 0.01. An image whose size is an integer multiple of the requested size is box-filtered down
 # first (SmallVCM renders 512×512 only; the mean of 2×2 box-filtered pixels is the 256×256
 # box-filtered pixel, so nothing but the sample count changes).

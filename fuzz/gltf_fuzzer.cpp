@@ -20,7 +20,7 @@
 #include <system_error>
 
 #include "core/error.h"
-#include "geometry/gltf_loader.h"
+#include "io/gltf_loader.h"
 #include "core/rng.h"
 #include "geometry/scene.h"
 #include "integrators/integrator.h"

@@ -1,6 +1,6 @@
 // tripath's Python module: load a scene, render it, save and measure images (compare and benchmark
 // are in evaluation.cpp). `render` fills the library's
-// render request (integrators/render_request.h) from its keyword arguments, so the same settings
+// render request (requests/render_request.h) from its keyword arguments, so the same settings
 // give the same bits as `tripath render`, and bad values are refused with the same reasons (as
 // ValueError, in Python's spelling of the parameters). The image comes back as a NumPy array that
 // owns the image's pixels, without a copy. The GIL is released while rendering; between passes the
@@ -17,8 +17,8 @@
 
 #include "core/error.h"
 #include "image/exposure.h"
-#include "image/flip.h"
-#include "image/metrics.h"
+#include "evaluation/flip.h"
+#include "evaluation/metrics.h"
 #include "scenes/builtin_scenes.h"
 
 namespace tripath::python {

@@ -16,7 +16,7 @@
 #include "core/warnings.h"
 #include "geometry/scene.h"
 #include "image/image.h"
-#include "integrators/render_request.h"
+#include "requests/render_request.h"
 #include "scenes/scene_source.h"
 
 namespace tripath::python {

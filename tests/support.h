@@ -12,14 +12,14 @@
 #include <vector>
 
 #include "core/vec.h"
-#include "image/bias.h"
+#include "evaluation/bias.h"
 #include "scenes/builtin_scenes.h"
 #include "integrators/render.h"
-#include "integrators/render_request.h"
+#include "requests/render_request.h"
 
 namespace tripath::test {
 
-// The library's render request (integrators/render_request.h) at the tests' usual size: pt,
+// The library's render request (requests/render_request.h) at the tests' usual size: pt,
 // 16×16 pixels, 4 passes; tests set what they need on top.
 inline RenderRequest smallRequest() {
     RenderRequest r;
@@ -162,7 +162,7 @@ inline BlockRuns blockRuns(const Scene& scene, const RenderRequest& r, int runs,
 }
 
 // Block-by-block comparisons of two renderers' runs, judged together: Welch's t-test of each
-// block's run means (image/bias.h), Holm-corrected over every comparison made, so that the chance
+// block's run means (evaluation/bias.h), Holm-corrected over every comparison made, so that the chance
 // of any false alarm between unbiased renderers is at most alpha (if the run means are normal).
 class BlockAgreement {
 public:

@@ -1,4 +1,4 @@
-// Welch's t-test per block with Holm's correction (image/bias.h): Student's t tail against closed
+// Welch's t-test per block with Holm's correction (evaluation/bias.h): Student's t tail against closed
 // forms, the test and the correction on hand-worked numbers, a bias map that finds one offset
 // block among noise and nothing in pure noise, and on renders: light tracing flagged where it
 // cannot see (the caustic behind `sds`'s pane), unbiased integrators passed on `cornell`.
@@ -9,7 +9,7 @@
 #include <random>
 
 #include "scenes/builtin_scenes.h"
-#include "image/bias.h"
+#include "evaluation/bias.h"
 #include "support.h"
 
 namespace tripath {

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "scenes/builtin_scenes.h"
-#include "geometry/gltf_writer.h"
+#include "io/gltf_writer.h"
 #include "image/image.h"
 
 namespace tripath {

@@ -25,12 +25,12 @@
 #include "core/error.h"
 #include "core/vec.h"
 #include "geometry/embree_isa.h"
-#include "image/chart.h"
-#include "image/compose.h"
-#include "image/flip.h"
+#include "evaluation/chart.h"
+#include "evaluation/compose.h"
+#include "evaluation/flip.h"
 #include "image/image.h"
-#include "image/inset.h"
-#include "image/metrics.h"
+#include "evaluation/inset.h"
+#include "evaluation/metrics.h"
 #include "support.h"
 
 namespace fs = std::filesystem;

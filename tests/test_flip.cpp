@@ -1,4 +1,4 @@
-// LDR-FLIP and HDR-FLIP (image/flip.h). The expected values are worked out by hand from the
+// LDR-FLIP and HDR-FLIP (evaluation/flip.h). The expected values are worked out by hand from the
 // papers' formulas in the comments, or are properties the papers state (zero for identical
 // images, the normalisation's maximum, the maximum over exposures); each test names the mistake
 // in the code it is there to catch. Images are small, so the file runs in well under a second.
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "image/flip.h"
+#include "evaluation/flip.h"
 #include "image/image.h"
 
 using namespace tripath;

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/gltf_loader.h"
+#include "io/gltf_loader.h"
 #include "geometry/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);

@@ -1,5 +1,5 @@
 // glTF loader tests: each writes its own small .gltf / .glb into a fresh temporary directory,
-// filled as a tinygltf::Model and written by the project's glTF writer (geometry/gltf_model.h);
+// filled as a tinygltf::Model and written by the project's glTF writer (io/gltf_model.h);
 // only JSON that no model can hold (a syntax error, a buffer naming a file) is written by hand.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "core/error.h"
-#include "geometry/gltf_checks.h"
-#include "geometry/gltf_loader.h"
-#include "geometry/gltf_model.h"
+#include "io/gltf_checks.h"
+#include "io/gltf_loader.h"
+#include "io/gltf_model.h"
 
 namespace tripath {
 namespace {

@@ -16,9 +16,9 @@
 #include "core/error.h"
 #include "core/vec.h"
 #include "image/image.h"
-#include "image/error_map.h"
+#include "evaluation/error_map.h"
 #include "image/exposure.h"
-#include "image/metrics.h"
+#include "evaluation/metrics.h"
 #include "image/text.h"
 
 namespace fs = std::filesystem;
@@ -409,7 +409,7 @@ TEST(Metrics, RelMseWithoutTailLeavesOutTheWorstPixels) {
     EXPECT_NEAR(relMseWithoutTail(compareImages(test, ref), 1000), (998 * eBackground + eA) / 2997, 1e-12);
 }
 
-// The error map's scale (image/error_map.h): the ends clamp to the first and last colours, and the
+// The error map's scale (evaluation/error_map.h): the ends clamp to the first and last colours, and the
 // colours brighten decade by decade. A pixel whose channels are all off by d on a reference of 1
 // has e = d² / 1.01; at e = 1e-2, 0.4 of the way up the 5-decade scale, the colour is 0.6 of the way
 // from the second stop (87, 16, 110) to the third (188, 55, 84): (148, 39, 94) in sRGB. Catches a

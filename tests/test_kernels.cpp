@@ -1,4 +1,4 @@
-// The kernels of the three-point form (src/paths/oracle.h) at hand-made points, against values
+// The kernels of the three-point form (tests/oracle.h) at hand-made points, against values
 // worked out by hand from the definitions in DESIGN.md §1 -- not from the code's own formulas:
 //   ε(x0 → x1)      = Le · |cos θ0| · |cos θ1|   (cosines of the segment x0–x1 at both ends)
 //   ρ(x″ → x′ → x)  = f_r · |cos θ′| · |cos θ|   (cosines of the OUTGOING segment x′–x), f_r = R/π
@@ -25,7 +25,7 @@
 
 #include "geometry/scene.h"
 #include "scenes/scene_builder.h"
-#include "paths/oracle.h"
+#include "oracle.h"
 
 namespace tripath {
 namespace {

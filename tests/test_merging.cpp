@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "scenes/builtin_scenes.h"
-#include "geometry/point_grid.h"
+#include "paths/point_grid.h"
 #include "core/rng.h"
 #include "integrators/integrator.h"
 #include "support.h"

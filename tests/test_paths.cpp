@@ -8,9 +8,9 @@
 #include "paths/connect.h"
 #include "paths/kernels.h"
 #include "paths/merge.h"
-#include "paths/oracle.h"
 #include "paths/walk.h"
 #include "scenes/builtin_scenes.h"
+#include "oracle.h"
 #include "test_scenes.h"
 
 namespace tripath {

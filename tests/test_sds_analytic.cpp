@@ -34,7 +34,7 @@
 
 #include "scenes/builtin_scenes.h"
 #include "scenes/failure_scenes.h"
-#include "geometry/gltf_loader.h"
+#include "io/gltf_loader.h"
 #include "geometry/scene.h"
 #include "scenes/scene_builder.h"
 #include "integrators/integrator.h"

@@ -13,7 +13,7 @@ SIZE = dict(width=24, height=16, threads=1)
 
 
 def relmse(image, reference, epsilon=0.01):
-    """relMSE as src/image/metrics.h defines it, in double precision."""
+    """relMSE as src/evaluation/metrics.h defines it, in double precision."""
     x, r = image.astype(np.float64), reference.astype(np.float64)
     return np.mean((x - r) ** 2 / (r ** 2 + epsilon))
 

@@ -7,7 +7,7 @@
 // paths that bdpt lacks) for a multiple of the time, in the reference streams, and cached in
 // <out>/references/ under a name that carries the settings; a cached one is reused when its
 // metadata matches. Every scene and given reference is checked before the first render. From the R runs of each
-// method and of the bias reference, Welch's t-test per block (image/bias.h) says where a
+// method and of the bias reference, Welch's t-test per block (evaluation/bias.h) says where a
 // difference is bias rather than noise. <out>/index.html has the scenes × methods table,
 // <out>/results.csv the same numbers. Ctrl-C finishes nothing new: the scenes done so far are
 // reported.
@@ -20,8 +20,8 @@
 
 #include "evaluation/benchmark.h"
 #include "core/error.h"
-#include "image/bias.h"
-#include "image/markup.h"
+#include "evaluation/bias.h"
+#include "evaluation/markup.h"
 #include "image/text.h"
 
 namespace tripath::evaluation {

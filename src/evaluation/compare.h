@@ -16,8 +16,8 @@
 #include "core/stats.h"
 #include "evaluation/reference_file.h"
 #include "image/draw.h"
-#include "image/metrics.h"
-#include "integrators/render_request.h"
+#include "evaluation/metrics.h"
+#include "requests/render_request.h"
 #include "integrators/team.h"
 
 namespace tripath::evaluation {
@@ -100,7 +100,7 @@ struct Run {
     uint64_t seed;
     std::vector<Checkpoint> checkpoints;  // the last one is the finished render
     StatsSnapshot stats{};                // what the finished render did (rays, BSDF calls, …)
-    double flip = 0;                      // HDR-FLIP of the finished render (image/flip.h), at the reference's exposures
+    double flip = 0;                      // HDR-FLIP of the finished render (evaluation/flip.h), at the reference's exposures
     const Checkpoint& final() const { return checkpoints.back(); }
 };
 

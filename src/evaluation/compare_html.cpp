@@ -8,7 +8,7 @@
 #include <algorithm>
 
 #include "evaluation/compare.h"
-#include "image/markup.h"
+#include "evaluation/markup.h"
 
 namespace tripath::evaluation {
 

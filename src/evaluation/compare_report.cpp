@@ -10,10 +10,10 @@
 
 #include "evaluation/compare.h"
 #include "core/error.h"
-#include "image/chart.h"
-#include "image/compose.h"
-#include "image/error_map.h"
-#include "image/inset.h"
+#include "evaluation/chart.h"
+#include "evaluation/compose.h"
+#include "evaluation/error_map.h"
+#include "evaluation/inset.h"
 
 namespace tripath::evaluation {
 

@@ -8,7 +8,7 @@
 
 #include "evaluation/compare.h"
 #include "core/error.h"
-#include "image/flip.h"
+#include "evaluation/flip.h"
 
 namespace tripath::evaluation {
 

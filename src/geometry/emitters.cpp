@@ -1,6 +1,6 @@
 #include "geometry/emitters.h"
 
-#include "geometry/scene.h"
+#include "geometry/triangle.h"
 #include "core/stats.h"
 
 namespace tripath {

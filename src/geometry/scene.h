@@ -10,23 +10,13 @@
 #include "geometry/camera.h"
 #include "geometry/emitters.h"
 #include "geometry/scene_desc.h"
+#include "geometry/triangle.h"
 #include "core/warnings.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
 
 namespace tripath {
-
-
-struct Triangle {
-    Vec3 p[3];
-    Vec3 n[3];            // shading normals per corner (the geometric normal when the mesh has none)
-    Vec3 ng;              // unit geometric normal by winding, computed once at load
-    bool smooth = false;  // true when n[] came from the file
-    int material = 0;
-    Vec3 geometricNormal() const { return ng; }
-    float area() const { return 0.5f * length(cross(p[1] - p[0], p[2] - p[0])); }
-};
 
 // A point on a surface, as a ray query returns it.
 struct SurfacePoint {

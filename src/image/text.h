@@ -1,6 +1,6 @@
 // Text labels drawn into an Image, in DejaVu Sans (Debian's fonts-dejavu-core, installed by
-// scripts/install-deps.sh; the charts of chart.h use the same font through Cairo). OpenImageIO
-// draws the glyphs; it stays inside text.cpp.
+// scripts/install-deps.sh; the charts of evaluation/chart.h use the same font through Cairo).
+// OpenImageIO draws the glyphs; it stays inside text.cpp.
 #pragma once
 #include <string>
 

@@ -15,7 +15,7 @@
 #include <span>
 #include <vector>
 
-#include "geometry/point_grid.h"
+#include "paths/point_grid.h"
 #include "paths/vertex.h"
 
 namespace tripath {

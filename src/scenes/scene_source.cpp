@@ -4,7 +4,7 @@
 
 #include "scenes/builtin_scenes.h"
 #include "core/error.h"
-#include "geometry/gltf_loader.h"
+#include "io/gltf_loader.h"
 
 namespace tripath {
 

@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "geometry/gltf_loader.h"
+#include "io/gltf_loader.h"
 #include "geometry/scene_desc.h"
 #include "core/warnings.h"
 

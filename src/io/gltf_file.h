@@ -3,12 +3,12 @@
 // version are checked first (gltf_document.h); every buffer URI is checked before tinygltf opens
 // any file, so that a refusal names the buffer (a data: URI's size, a URI scheme, the file it
 // names: external_files.h), and tinygltf's file-system callbacks then open only the approved
-// buffer files; image files are never opened or decoded. A header of the geometry library's own (the loader's
+// buffer files; image files are never opened or decoded. A header of the io library's own (the loader's
 // interface is gltf_loader.h).
 #pragma once
 #include <tiny_gltf.h>
 
-#include "geometry/gltf_checks.h"
+#include "io/gltf_checks.h"
 
 namespace tripath::gltf {
 

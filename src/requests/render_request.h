@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/gltf_loader.h"
+#include "io/gltf_loader.h"
 #include "geometry/scene.h"
 #include "image/image.h"
 #include "integrators/integrator.h"

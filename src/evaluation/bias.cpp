@@ -1,4 +1,4 @@
-#include "image/bias.h"
+#include "evaluation/bias.h"
 
 #include <fmt/format.h>
 

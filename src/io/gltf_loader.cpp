@@ -11,7 +11,7 @@
 // inverse transpose. Mirroring transforms (negative determinant) reverse the winding so the front
 // face stays where the file put it. Triangles that are degenerate in world space are dropped.
 // Lights: KHR_lights_punctual point lights; camera: the first perspective camera in depth-first order.
-#include "geometry/gltf_loader.h"
+#include "io/gltf_loader.h"
 
 #include <glm/glm.hpp>
 #include <tiny_gltf.h>
@@ -24,11 +24,11 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/gltf_accessors.h"
-#include "geometry/gltf_checks.h"
-#include "geometry/gltf_file.h"
-#include "geometry/gltf_materials.h"
-#include "geometry/gltf_transforms.h"
+#include "io/gltf_accessors.h"
+#include "io/gltf_checks.h"
+#include "io/gltf_file.h"
+#include "io/gltf_materials.h"
+#include "io/gltf_transforms.h"
 
 namespace tripath::gltf {
 

@@ -1,7 +1,7 @@
 // Node transforms in glm (gltf_transforms.h). glm supplies the types, products, determinant and
 // quaternion rotation; where its own operators would add in another order or move signs of
 // zero, the functions below say so and fix the order and the signs themselves.
-#include "geometry/gltf_transforms.h"
+#include "io/gltf_transforms.h"
 
 #include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/matrix_transform.hpp>

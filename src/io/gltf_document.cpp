@@ -1,6 +1,6 @@
 // The container, JSON and version checks that run before tinygltf reads a glTF file
 // (gltf_document.h).
-#include "geometry/gltf_document.h"
+#include "io/gltf_document.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,11 +1,11 @@
-#include "image/compose.h"
+#include "evaluation/compose.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
 #include "core/error.h"
-#include "image/metrics.h"
+#include "evaluation/metrics.h"
 #include "image/text.h"
 
 namespace tripath {

@@ -1,5 +1,5 @@
 // The checks and message helpers that the pieces of the glTF loader share (gltf_checks.h).
-#include "geometry/gltf_checks.h"
+#include "io/gltf_checks.h"
 
 #include <cmath>
 #include <sstream>

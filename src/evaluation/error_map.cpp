@@ -1,4 +1,4 @@
-#include "image/error_map.h"
+#include "evaluation/error_map.h"
 
 #include <fmt/format.h>
 

@@ -2,7 +2,7 @@
 // glTF, after the container's header), the parsed JSON and its asset.version. tinygltf would say
 // only "Invalid magic." of a renamed file, pass nlohmann's exception text on as it is, call a .gltf
 // of `{}` unreadable and load a version "3.0" without a word; these checks name what is wrong in
-// one line, quoting none of the file. A header of the geometry library's own (the loader's
+// one line, quoting none of the file. A header of the io library's own (the loader's
 // interface is gltf_loader.h).
 #pragma once
 #include <nlohmann/json.hpp>
@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/gltf_checks.h"
+#include "io/gltf_checks.h"
 
 namespace tripath::gltf {
 

@@ -14,7 +14,7 @@
 //
 // Its own file so that the mapping, its validation and the warnings about what it drops read in
 // one place; gltf_writer.h writes materials so that this mapping gives them back.
-#include "geometry/gltf_materials.h"
+#include "io/gltf_materials.h"
 
 #include <cmath>
 

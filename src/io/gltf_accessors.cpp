@@ -1,6 +1,6 @@
 // Reading glTF accessors with their bounds checked (gltf_accessors.h): the only place that turns
 // the file's buffer bytes into numbers.
-#include "geometry/gltf_accessors.h"
+#include "io/gltf_accessors.h"
 
 #include <cstring>
 

@@ -1,4 +1,4 @@
-#include "integrators/interrupt.h"
+#include "requests/interrupt.h"
 
 #include <csignal>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-#include "geometry/gltf_writer.h"
+#include "io/gltf_writer.h"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include <set>
 
 #include "core/error.h"
-#include "geometry/gltf_model.h"
+#include "io/gltf_model.h"
 
 namespace tripath {
 

@@ -1,5 +1,5 @@
 // Error metrics of a render against a reference (see metrics.h for the definitions).
-#include "image/metrics.h"
+#include "evaluation/metrics.h"
 
 #include <fmt/format.h>
 

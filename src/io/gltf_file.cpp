@@ -1,6 +1,6 @@
 // The glTF file and the files it names, read through tinygltf (gltf_file.h): which buffer files
 // tinygltf may open is decided here, before it parses, and enforced by its file-system callbacks.
-#include "geometry/gltf_file.h"
+#include "io/gltf_file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -14,8 +14,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "geometry/external_files.h"
-#include "geometry/gltf_document.h"
+#include "io/external_files.h"
+#include "io/gltf_document.h"
 
 namespace tripath::gltf {
 

@@ -1,4 +1,4 @@
-#include "paths/oracle.h"
+#include "oracle.h"
 
 #include <limits>
 

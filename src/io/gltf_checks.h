@@ -1,6 +1,6 @@
 // What the pieces of the glTF loader share to check what they read and to say what is wrong: a
 // failure is one InputError line that starts with the file's path, a warning reaches the sink
-// once per message whichever piece finds it. A header of the geometry library's own (the
+// once per message whichever piece finds it. A header of the io library's own (the
 // loader's interface is gltf_loader.h).
 #pragma once
 #include <set>

@@ -1,5 +1,5 @@
 // The policy for files named by glTF buffer URIs (see external_files.h for the rules and why).
-#include "geometry/external_files.h"
+#include "io/external_files.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "integrators/render_request.h"
+#include "requests/render_request.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -1,6 +1,7 @@
-// The oracle: f(x̄) of a whole path as the literal product of the kernels of points (kernels.h),
-// and the pieces of it the tests name. The renderer's estimates are checked against f(x̄)/p from
-// here; walks, connections and merges call the same kernels through their fast overloads.
+// The oracle: f(x̄) of a whole path as the literal product of the kernels of points
+// (paths/kernels.h), and the pieces of it the tests name. The renderer's estimates are checked
+// against f(x̄)/p from here; walks, connections and merges call the same kernels through their
+// fast overloads.
 #pragma once
 #include <vector>
 

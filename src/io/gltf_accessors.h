@@ -2,7 +2,7 @@
 // (POSITION, NORMAL) and unsigned byte, short or int indices. Every accessor, bufferView and
 // buffer index, the stride and the whole byte range are checked before a byte is read, so a
 // hostile file fails with a message instead of reading out of bounds. Sparse accessors and
-// accessors without a bufferView are refused. A header of the geometry library's own (the
+// accessors without a bufferView are refused. A header of the io library's own (the
 // loader's interface is gltf_loader.h).
 #pragma once
 #include <tiny_gltf.h>
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/gltf_checks.h"
+#include "io/gltf_checks.h"
 #include "core/vec.h"
 
 namespace tripath::gltf {

@@ -3,12 +3,12 @@
 // and what meshes, cameras and lights take from the result. The sums run in a fixed order and
 // zero components keep their sign, which the tangent frames built around normals see
 // (gltf_transforms.cpp says where glm's own order would differ). A header of
-// the geometry library's own (the loader's interface is gltf_loader.h).
+// the io library's own (the loader's interface is gltf_loader.h).
 #pragma once
 #include <glm/glm.hpp>
 #include <tiny_gltf.h>
 
-#include "geometry/gltf_checks.h"
+#include "io/gltf_checks.h"
 #include "core/vec.h"
 
 namespace tripath::gltf {

@@ -1,4 +1,4 @@
-#include "image/inset.h"
+#include "evaluation/inset.h"
 
 #include <fmt/format.h>
 

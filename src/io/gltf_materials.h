@@ -1,13 +1,13 @@
 // glTF materials → the scene's Materials: which of the renderer's few BSDFs each glTF material
 // becomes, from its pbrMetallicRoughness factors and a few KHR_materials extensions (the table
-// at the top of gltf_materials.cpp; docs/gltf.md for users). A header of the geometry library's
+// at the top of gltf_materials.cpp; docs/gltf.md for users). A header of the io library's
 // own (the loader's interface is gltf_loader.h).
 #pragma once
 #include <tiny_gltf.h>
 
 #include <vector>
 
-#include "geometry/gltf_checks.h"
+#include "io/gltf_checks.h"
 #include "geometry/material.h"
 
 namespace tripath::gltf {

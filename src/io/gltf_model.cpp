@@ -1,4 +1,4 @@
-#include "geometry/gltf_model.h"
+#include "io/gltf_model.h"
 
 #include <filesystem>
 

@@ -3,7 +3,7 @@
 // 2-D filter of [1] is a product of two 1-D kernels, or (the blue-yellow contrast sensitivity) a
 // weighted sum of two such products, so each is applied as passes over rows and then columns:
 // O(r) work per pixel rather than O(r²), with the same result as the 2-D kernel.
-#include "image/flip.h"
+#include "evaluation/flip.h"
 
 #include <fmt/format.h>
 

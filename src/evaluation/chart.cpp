@@ -1,6 +1,6 @@
 // Log-log charts drawn with Cairo: one routine, drawChart, lays the chart out and draws it onto
 // whichever surface it is given, so the SVG and the PNG are the same drawing by construction.
-#include "image/chart.h"
+#include "evaluation/chart.h"
 
 #include <cairo-svg.h>
 #include <cairo.h>
