@@ -4,7 +4,6 @@
 #include <tbb/parallel_for.h>
 
 #include "core/stats.h"
-#include "paths/kernels.h"
 
 namespace tripath {
 
@@ -13,17 +12,17 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     Pass pass;
     pass.index = index;
     if (!firstRadius_) firstRadius_ = integrator.firstMergeRadius(scene);
-    const float radius = integrator.mergeRadius(*firstRadius_, index);
-    pass.mis = integrator.misContext(scene, radius);
+    const PassConstants constants = passConstants(integrator.lightPaths(scene), integrator.mergeRadius(*firstRadius_, index));
+    pass.mis = integrator.misContext(constants);
     search_.reset();
     if (!integrator.hasLightPhase()) return pass;
 
-    const uint64_t paths = static_cast<uint64_t>(integrator.lightPaths(scene));
+    const uint64_t paths = static_cast<uint64_t>(constants.lightPaths);
     const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
     const WalkPdfs pdfs = integrator.strategies().lightWalkPdfs();
     const WalkSettings& walk = integrator.settings().walk;
     store_.reset(paths);
-    const bool merges = radius > 0;
+    const bool merges = constants.radius > 0;
     mergeable_.resize(merges ? store_.chunks() : 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, store_.chunks(), 1), [&](const tbb::blocked_range<size_t>& r) {
         thread_local Subpath path;
@@ -48,7 +47,7 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     pass.light = &store_;
     if (merges) {
         const PhaseScope scope(Phase::Search);
-        search_.emplace(mergeable_, radius);
+        search_.emplace(mergeable_, constants.radius);
         pass.search = &*search_;
     }
     return pass;

@@ -13,7 +13,6 @@
 
 #include "core/stats.h"
 #include "integrators/light_phase.h"
-#include "paths/kernels.h"
 
 namespace tripath {
 
@@ -41,7 +40,7 @@ struct TileOutput {
 class TileSink final : public ContributionSink {
 public:
     TileSink(Film& film, const Camera& camera, double lightPaths, TileOutput& out, uint64_t pass)
-        : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPathsPerPass(camera, lightPaths))),
+        : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPaths)),
           pass_(pass) {}
     void setPixel(int pixel) { pixel_ = pixel; }
     void add(Strategy st, const Connection& c) override {
@@ -89,7 +88,7 @@ void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pa
     const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
     const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
     thread_local PathBuffers paths;
-    TileSink sink(film, cam, pass.mis.lightPaths, out, pass.index);
+    TileSink sink(film, cam, pass.mis.constants.lightPaths, out, pass.index);
     enrolThread();
     const PhaseScope scope(Phase::Sampling);
     const bool packets = integrator.tracesCameraRays();

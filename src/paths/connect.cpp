@@ -72,8 +72,8 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     Junction junction;
     if (mis.strategies.readsCameraPdfs(t - 1, s, t)) junction.cameraEnd = segment.toArea(atQ.pdfTowardCamera(), pt);
     if (mis.strategies.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);
-    if (mis.strategies.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(mis.lightPaths), qs);
-    if (mis.strategies.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(mis.lightPaths), *qsMinus);
+    if (mis.strategies.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(mis.constants.lightPaths), qs);
+    if (mis.strategies.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(mis.constants.lightPaths), *qsMinus);
     c.setWeight(misWeight(light, s, camera, t, junction, mis));
     return c;
 }

@@ -5,8 +5,6 @@
 
 namespace tripath {
 
-float mergeEta(float radius, double lightPaths) { return static_cast<float>(kPi * double(radius) * radius * lightPaths); }
-
 Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                  const MisContext& mis) {
     Connection c;
@@ -19,7 +17,7 @@ Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::
     const LocalScattering at(scene, z, incoming.towardB(), toCamera.towardB());
     {
         const PhaseScope scattering(Phase::Scattering);
-        c.unweighted = z.beta * rho(at.value(), traced(z, zBefore)) * y.beta * (1.0f / mis.mergeEta);
+        c.unweighted = z.beta * rho(at.value(), traced(z, zBefore)) * y.beta * (1.0f / mis.constants.mergeEta);
     }
     if (isBlack(c.unweighted)) return c;
     const PhaseScope pdfs(Phase::Mis);
@@ -29,7 +27,7 @@ Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::
     Junction junction;
     junction.cameraEnd = y.pdfFwd;
     junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), zBefore);
-    junction.lightEnd = incoming.toArea(at.pdfTowardLight(mis.lightPaths), yBefore);
+    junction.lightEnd = incoming.toArea(at.pdfTowardLight(mis.constants.lightPaths), yBefore);
     if (s >= 3) junction.lightBeforeEnd = light[s - 3].pdfRev;
     c.setWeight(mergeWeight(light, s, camera, t, junction, mis));
     return c;
