@@ -7,6 +7,10 @@
 
 namespace tripath {
 
+namespace {
+constexpr Counter kLightVertices{Event::LightVertices};
+}  // namespace
+
 Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
                      StreamDomain cameraDomain) {
     Pass pass;
@@ -27,7 +31,7 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, store_.chunks(), 1), [&](const tbb::blocked_range<size_t>& r) {
         thread_local Subpath path;
         enrolThread();
-        const PhaseScope scope(Phase::Sampling);
+        const PhaseScope scope(Phase::LightPaths);
         for (size_t c = r.begin(); c < r.end(); ++c) {
             LightStore::Chunk& chunk = store_.chunk(c);
             const uint64_t first = c * LightStore::kPathsPerChunk;
@@ -35,7 +39,7 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
                 Rng rng(seed, domain, index * paths + i);
                 lightSubpath(scene, rng, walk, pdfs, path);
                 recordRunningSums(path, true, pass.mis);
-                count(Event::LightVertices, path.size());
+                kLightVertices.add(path.size());
                 chunk.append(path);
             }
             if (merges) {
@@ -46,7 +50,7 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     });
     pass.light = &store_;
     if (merges) {
-        const PhaseScope scope(Phase::Search);
+        const PhaseScope scope(Phase::MergeIndex);
         search_.emplace(mergeable_, constants.radius);
         pass.search = &*search_;
     }

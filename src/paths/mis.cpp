@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "core/stats.h"
 #include "paths/kernels.h"
 
 namespace tripath {
@@ -162,7 +161,6 @@ bool canUseRunningSums(const MisContext& mis) {
 // r, add up to term(r) · W_j or term(r) · V_j.
 void recordRunningSums(std::span<Vertex> path, bool light, const MisContext& mis) {
     if (!mis.runningSums) return;
-    const PhaseScope scope(Phase::Mis);
     const int n = static_cast<int>(path.size());
     const StrategySet set = mis.strategies;
     const MisHeuristic h = mis.heuristic;
@@ -199,7 +197,6 @@ static MisWeight firstHitWeight(std::span<const Vertex> camera, int t) {
 MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                     const Junction& junction, const MisContext& mis) {
     if (mis.strategies.uniqueStrategy()) return firstHitWeight(camera, t);
-    const PhaseScope scope(Phase::Mis);
     const Competition c = competeInRange(light, s, camera, t, junction, mis, true);
     if (!std::isfinite(c.sum)) return {0.0f, true};
     return {1.0f / c.sum, false};
@@ -208,7 +205,6 @@ MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex
 MisWeight mergeWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                       const Junction& junction, const MisContext& mis) {
     if (mis.strategies.uniqueStrategy()) return firstHitWeight(camera, t);
-    const PhaseScope scope(Phase::Mis);
     // The reference: the connection (s−1, t) that holds the merged vertex on the camera side,
     // counted if it is enabled and possible (z_{t−1} never scatters through a delta lobe -- merges
     // happen only where it does not -- but y_{s−2} may).

@@ -2,7 +2,6 @@
 
 #include <limits>
 
-#include "core/stats.h"
 #include "paths/kernels.h"
 #include "paths/roulette.h"
 
@@ -39,7 +38,6 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
 // flow, so v lies on `from`'s light side; a light walk goes with it. `lightPaths`: the pass's N_L,
 // which the sensor's pdf is over.
 void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode, double lightPaths) {
-    const PhaseScope scope(Phase::Mis);
     const Vertex& from = path.back();
     Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
     const Segment ahead(from, v), behind(from, beforeFrom);
