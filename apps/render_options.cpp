@@ -132,9 +132,9 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
         ->capture_default_str();
     cmd.add_flag("--stats", o.stats,
                  "At the end, print what the render did (rays, BSDF calls, connections, splats, merges: in total, per "
-                 "camera sample and per second) and where its CPU time went (ray traversal, BSDFs and emitters, pdfs "
-                 "and MIS, range search, film, the walks' own logic); the phase timers slow the render a few percent, "
-                 "so they run only with this flag");
+                 "camera sample and per second) and where its CPU time went among the render loop's phases (the light "
+                 "phase's light paths and merge index, the tiles of camera samples, the film); the phase sampling "
+                 "runs only with this flag");
 }
 
 void validateRenderOptions(const RenderOptions& o, bool withIntegrator) {

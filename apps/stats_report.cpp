@@ -28,8 +28,8 @@ std::string statsReport(const RenderResult& r, uint64_t pixels) {
     const uint64_t outside = s.phaseSamples[static_cast<int>(Phase::Idle)];
     out += fmt::format("  outside the phases below (pass set-up, TBB scheduling and waiting): {:.1f} % of the CPU time\n",
                        100.0 * double(outside) / double(working + outside));
-    out += fmt::format("  share of the CPU time in each phase ({} profiling samples, at most one per ms of CPU; exclusive: a shadow "
-                       "ray inside a connection is traversal):\n", working);
+    out += fmt::format("  share of the CPU time in each phase of the render loop ({} profiling samples, at most one per ms of "
+                       "CPU; a tile's rays, BSDFs, connections and merges are its camera samples' time):\n", working);
     for (int i = 0; i < kPhaseCount; ++i) {
         const auto p = static_cast<Phase>(i);
         if (p == Phase::Idle) continue;

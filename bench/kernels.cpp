@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "bench_scenes.h"
@@ -22,6 +23,7 @@ namespace {
 
 constexpr size_t kPool = 1024;  // a power of two: the cycling index is a mask
 constexpr uint64_t kSeed = 7;
+constexpr double kLightPaths = double(kWidth) * kHeight;  // N_L: one light path per pixel, as rendered
 
 Rng testRng(uint64_t index) { return Rng(kSeed, static_cast<uint64_t>(StreamDomain::Test), index); }
 
@@ -120,7 +122,7 @@ const VertexPools& vertexPools() {
         for (uint64_t i = 0; p.triples.size() < kPool || p.emitterEdges.size() < kPool || surfaces.size() < 2 * kPool; ++i) {
             Rng rng = testRng(1000 + i);
             const float x = rng.uniform() * kWidth, y = rng.uniform() * kHeight;
-            cameraSubpath(scene, Vec2{x, y}, rng, walk, WalkPdfs::All, cam);
+            cameraSubpath(scene, Vec2{x, y}, rng, walk, WalkPdfs::All, kLightPaths, cam);
             lightSubpath(scene, rng, walk, WalkPdfs::All, light);
             if (cam.size() >= 2 && p.sensorEdges.size() < kPool) p.sensorEdges.push_back({cam[1], cam[0]});
             if (light.size() >= 2 && p.emitterEdges.size() < kPool) p.emitterEdges.push_back({light[0], light[1]});
@@ -186,9 +188,8 @@ void registerPathKernels() {
             const auto& [light, v, camera] = p.triples[i];
             const Vec3 l = normalize(light.p - v.p), c = normalize(camera.p - v.p);
             const LocalScattering at(scene, v, &l, &c);
-            // (surface vertices: the N_L the sensor's pdf would be over does not matter here)
             Spectrum f = at.value();
-            float pdfs = at.pdfTowardCamera() + at.pdfTowardLight(0);
+            float pdfs = at.pdfTowardCamera() + at.pdfTowardLight(kLightPaths);
             benchmark::DoNotOptimize(f);
             benchmark::DoNotOptimize(pdfs);
         });
@@ -278,7 +279,8 @@ void runMis(benchmark::State& state, int k, MisSeries series) {
     constexpr size_t kPaths = 64;
     std::vector<SyntheticPath> paths;
     Rng rng = testRng(static_cast<uint64_t>(k));
-    MisContext mis{series.heuristic, series.set, Roulette{}, 0.5f};  // roulette from the 3rd vertex, as rendered
+    // Roulette from the 3rd vertex, as rendered; a merge factor η of 0.5.
+    MisContext mis{series.heuristic, series.set, Roulette{}, passConstants(kLightPaths, std::sqrt(0.5f / (kPi * kLightPaths)))};
     mis.runningSums = series.runningSums;
     for (size_t i = 0; i < kPaths; ++i) {
         paths.push_back(syntheticPath(s, t, rng));
@@ -313,7 +315,7 @@ void runConnect(benchmark::State& state, int s, int t) {
         Rng rng = testRng(1'000'000 + i);
         SubpathPair p;
         const float x = rng.uniform() * kWidth, y = rng.uniform() * kHeight;
-        cameraSubpath(scene, Vec2{x, y}, rng, walk, WalkPdfs::All, p.camera);
+        cameraSubpath(scene, Vec2{x, y}, rng, walk, WalkPdfs::All, kLightPaths, p.camera);
         lightSubpath(scene, rng, walk, WalkPdfs::All, p.light);
         if (static_cast<int>(p.camera.size()) < t || static_cast<int>(p.light.size()) < s) continue;
         if (s == 0 && p.camera[t - 1].emitter < 0) continue;
@@ -323,7 +325,7 @@ void runConnect(benchmark::State& state, int s, int t) {
         state.SkipWithError("could not find subpaths for this (s, t)");
         return;
     }
-    const MisContext mis{MisHeuristic::Power, StrategySet{}, Roulette{}};
+    const MisContext mis{MisHeuristic::Power, StrategySet{}, Roulette{}, passConstants(kLightPaths, 0.0f)};
     uint64_t nonzero = 0;
     const RayCounts before = threadRayCounts();
     cycle(state, kPairs, [&](size_t i) {

@@ -73,7 +73,7 @@ struct MergeSetup {
             Rng rng(kSeed, static_cast<uint64_t>(StreamDomain::CameraSample), i * 61);
             const Vec2 raster{rng.uniform() * kWidth, rng.uniform() * kHeight};
             Subpath z;
-            cameraSubpath(scene, raster, rng, walk, WalkPdfs::All, z);
+            cameraSubpath(scene, raster, rng, walk, WalkPdfs::All, pass.mis.constants.lightPaths, z);
             recordRunningSums(z, false, pass.mis);
             cameras.push_back(std::move(z));
         }

@@ -64,10 +64,11 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
     const bool lightPhase = integrator && integrator->hasLightPhase();
     std::vector<Subpath> lightPaths(lightPhase ? kBlockPixels : 0);
     LightStore store;
-    Pass pass;
-    if (integrator) pass.mis = integrator->misContext(scene, 0.0f);
-    tbb::task_arena& arena = arenaFor(spec.threads);
     const uint64_t pixels = uint64_t(kWidth) * kHeight;
+    Pass pass;
+    pass.mis.constants = passConstants(double(pixels), 0.0f);  // N_L: one light path per pixel, as rendered
+    if (integrator) pass.mis = integrator->misContext(pass.mis.constants);
+    tbb::task_arena& arena = arenaFor(spec.threads);
     uint64_t iteration = 0;
 
     auto oneSample = [&](Worker& w, int x, int y, int blockPixel, uint64_t passIndex) {
@@ -78,7 +79,7 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
         const Vec2 raster{x + jx, y + jy};
         switch (spec.kind) {
             case SampleKind::CameraSubpath:
-                cameraSubpath(scene, raster, rng, settings.walk, WalkPdfs::All, w.paths.camera);
+                cameraSubpath(scene, raster, rng, settings.walk, WalkPdfs::All, pass.mis.constants.lightPaths, w.paths.camera);
                 w.sink.sum += w.paths.camera.back().beta.x;
                 break;
             case SampleKind::LightSubpath:

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "paths/point_grid.h"
 #include "core/rng.h"
 #include "integrators/integrator.h"
+#include "integrators/light_phase.h"
 #include "support.h"
 
 namespace tripath {
@@ -208,6 +210,30 @@ TEST(MergeRadius, TheDefaultFollowsThePixelNotTheSceneExtent) {
 TEST(MergeRadius, TheDefaultMeasuresThePixelBeyondMirrors) {
     const double expected = 0.75 * std::sqrt(1.9 * 1.9 + 1.2 * 1.2) * 2 * std::tan(0.15) / 128;
     EXPECT_NEAR(defaultRadius("sds-mirrors", 128), expected, 0.03 * expected);
+}
+
+// A pass's light phase makes its constants (paths/pass_constants.h) and traces that many light
+// paths: N_L as given, or one per pixel (32² here); the radius of its index, r_1 (i + 1)^((α−1)/2)
+// (0.1 / √2 for pass 3 at α = 0.5); η = π r² N_L. Catches a pass that falls back to one light path
+// per pixel when a count is given, or traces a count other than its constants say, a radius of the
+// wrong index, and an η that leaves out N_L.
+TEST(MergeRadius, APassCarriesItsLightPathsRadiusAndEta) {
+    const Scene scene(builtinScene("cornell"), 32, 32);
+    for (const std::optional<int64_t> given : {std::optional<int64_t>(300), std::optional<int64_t>()})
+        for (const std::string name : {"vcm", "bdpt"}) {
+            IntegratorSettings is;
+            is.lightPaths = given;
+            is.merge.radius = 0.1f;
+            is.merge.alpha = 0.5f;
+            LightPhase phase;
+            const PassConstants c = phase.run(scene, *makeIntegrator(name, is), 3, 1, StreamDomain::Test).mis.constants;
+            const double lightPaths = given ? 300.0 : 1024.0, radius = name == "vcm" ? 0.1 / std::sqrt(2.0) : 0.0;
+            const std::string what = name + (given ? " with 300 light paths" : "");
+            EXPECT_EQ(c.lightPaths, lightPaths) << what;
+            EXPECT_EQ(phase.store().paths(), size_t(lightPaths)) << what;
+            EXPECT_NEAR(c.radius, radius, 1e-7) << what;
+            EXPECT_NEAR(c.mergeEta, kPi * radius * radius * lightPaths, 1e-5 * lightPaths) << what;
+        }
 }
 
 // ---- images against bdpt ---------------------------------------------------------------------

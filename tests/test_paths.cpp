@@ -137,7 +137,7 @@ double bruteForceWeight(const Scene& scene, const Path& x, PathStrategy chosen, 
     const MisHeuristic h = mis.heuristic;
     auto term = [&](double p) { return h == MisHeuristic::Balance ? p : h == MisHeuristic::Power ? p * p : (p > 0 ? 1.0 : 0.0); };
     auto pdf = [&](PathStrategy st) {
-        return st.merge ? mergePdf(scene, x, st.index, mis.roulette.depth, mis.mergeEta)
+        return st.merge ? mergePdf(scene, x, st.index, mis.roulette.depth, mis.constants.mergeEta)
                         : strategyPdf(scene, x, st.index, mis.roulette.depth);
     };
     double sum = 0;
@@ -146,6 +146,13 @@ double bruteForceWeight(const Scene& scene, const Path& x, PathStrategy chosen, 
         if (mergeCanSample(x, i, mis.strategies)) sum += term(pdf({i, true}));
     }
     return term(pdf(chosen)) / sum;
+}
+
+// The pass the oracles' paths belong to: one light path per pixel of the 24² test images (the
+// N_L the camera's pdf above is over), merging with factor η (through the radius that gives it).
+PassConstants testPass(float eta = 0) {
+    const double lightPaths = 24.0 * 24.0;
+    return passConstants(lightPaths, static_cast<float>(std::sqrt(eta / (kPi * lightPaths))));
 }
 
 // ---- sampling full paths with the production walks ------------------------------------------
@@ -166,7 +173,7 @@ std::vector<SampledPath> samplePaths(const Scene& scene, int samples, const MisC
     for (int i = 0; i < samples; ++i) {
         Rng rng(11, static_cast<uint64_t>(StreamDomain::Test), i);
         const float rx = rng.uniform() * scene.camera().width(), ry = rng.uniform() * scene.camera().height();
-        cameraSubpath(scene, Vec2{rx, ry}, rng, ws, set.cameraWalkPdfs(), camera);
+        cameraSubpath(scene, Vec2{rx, ry}, rng, ws, set.cameraWalkPdfs(), mis.constants.lightPaths, camera);
         lightSubpath(scene, rng, ws, set.lightWalkPdfs(), light);
         for (int t = 1; t <= static_cast<int>(camera.size()); ++t)
             for (int s = 0; s <= static_cast<int>(light.size()); ++s) {
@@ -245,7 +252,7 @@ TEST(Mis, ConnectionWeightsMatchBruteForce) {
             for (float eta : etasOf(set))
                 for (MisHeuristic h : kHeuristics) {
                     // Roulette from the 3rd vertex: within max depth 5, some generators play and some not.
-                    const MisContext mis{h, set, Roulette{3}, eta};
+                    const MisContext mis{h, set, Roulette{3}, testPass(eta)};
                     // The photon-mapping sets connect only s = 0: camera walks that hit an emitter, rarer
                     // (none at all under a point light); their merges are checked below.
                     const auto paths = samplePaths(scene, set.maxS == 0 ? 1000 : 150, mis);
@@ -281,7 +288,7 @@ TEST(Mis, RunningSumsGiveTheWeightsOfTheFullWalk) {
             for (int rrDepth = 1; rrDepth <= 4; ++rrDepth)
                 for (float eta : etasOf(set))
                     for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power}) {
-                        const MisContext full{h, set, Roulette{rrDepth}, eta};
+                        const MisContext full{h, set, Roulette{rrDepth}, testPass(eta)};
                         MisContext sums = full;
                         sums.runningSums = true;
                         ASSERT_TRUE(canUseRunningSums(sums));
@@ -290,7 +297,7 @@ TEST(Mis, RunningSumsGiveTheWeightsOfTheFullWalk) {
                         for (int i = 0; i < 30; ++i) {
                             Rng rng(17, static_cast<uint64_t>(StreamDomain::Test), i);
                             const Vec2 raster{rng.uniform() * 24, rng.uniform() * 24};
-                            cameraSubpath(scene, raster, rng, ws, WalkPdfs::All, camera);
+                            cameraSubpath(scene, raster, rng, ws, WalkPdfs::All, full.constants.lightPaths, camera);
                             lightSubpath(scene, rng, ws, WalkPdfs::All, light);
                             recordRunningSums(camera, false, sums);
                             recordRunningSums(light, true, sums);
@@ -493,13 +500,13 @@ Connection mergeAt(const Scene& scene, const Path& x, int j, const MisContext& m
 TEST(Mis, MergeWeightsMatchBruteForce) {
     for (const auto& [desc, sparse] : oracleScenes()) {
         const Scene scene(desc, 24, 24);
-        const auto paths = samplePaths(scene, 100, {MisHeuristic::Power, StrategySet{}, Roulette{3}});
+        const auto paths = samplePaths(scene, 100, {MisHeuristic::Power, StrategySet{}, Roulette{3}, testPass()});
         int checked = 0;
         for (StrategySet set : kSets) {
             if (!set.merges()) continue;
             for (float eta : kEtas)
                 for (MisHeuristic h : kHeuristics) {
-                    const MisContext mis{h, set, Roulette{3}, eta};
+                    const MisContext mis{h, set, Roulette{3}, testPass(eta)};
                     for (const SampledPath& p : paths)
                         for (int j = 1; j + 1 < static_cast<int>(p.x.size()); ++j) {
                             if (!mergeCanSample(p.x, j, set)) continue;
@@ -536,12 +543,11 @@ TEST(Mis, LightTracingsOddsGrowWithTheLightPaths) {
             const double share[3] = {1.0, 3.0, 0.25};  // N_L / pixels
             bool seen = true;
             for (int n = 0; n < 3 && seen; ++n) {
-                WalkSettings ws{1, 1000};
-                ws.lightPaths = share[n] * pixels;
-                const MisContext mis{h, StrategySet{}, kNoRoulette, 0.0f, ws.lightPaths};
+                const WalkSettings ws{1, 1000};
+                const MisContext mis{h, StrategySet{}, kNoRoulette, passConstants(share[n] * pixels, 0.0f)};
                 Subpath camera;
                 Rng walk = rng;
-                cameraSubpath(scene, raster, walk, ws, WalkPdfs::All, camera);
+                cameraSubpath(scene, raster, walk, ws, WalkPdfs::All, mis.constants.lightPaths, camera);
                 if (camera.size() < 2 || camera[1].emitter < 0) {
                     seen = false;
                     break;
@@ -576,9 +582,9 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
         for (StrategySet set : kSets)
             for (float eta : etasOf(set))
                 for (MisHeuristic h : kHeuristics) {
-                    const MisContext mis{h, set, Roulette{2}, eta};
+                    const MisContext mis{h, set, Roulette{2}, testPass(eta)};
                     // Paths from every connection, so that the merging sets see paths of every kind too.
-                    const auto paths = samplePaths(scene, 60, {h, StrategySet{}, Roulette{2}});
+                    const auto paths = samplePaths(scene, 60, {h, StrategySet{}, Roulette{2}, testPass()});
                     for (const SampledPath& p : paths) {
                         const int k = static_cast<int>(p.x.size()) - 1;
                         double sum = 0;
@@ -623,7 +629,7 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
 TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
     for (const auto& [desc, sparse] : oracleScenes()) {
         const Scene scene(desc, 24, 24);
-        const MisContext mis{MisHeuristic::Balance, StrategySet{}, Roulette{2}};
+        const MisContext mis{MisHeuristic::Balance, StrategySet{}, Roulette{2}, testPass()};
         const auto paths = samplePaths(scene, 200, mis);
         int checked = 0;
         for (const SampledPath& p : paths) {

@@ -87,12 +87,10 @@ std::string eventKey(Event e) {
 std::string_view phaseName(Phase p) {
     switch (p) {
     case Phase::Idle: return "outside the render's phases";
-    case Phase::Sampling: return "walks and connections (own logic)";
-    case Phase::Traversal: return "ray traversal (Embree)";
-    case Phase::Scattering: return "BSDFs and emitters";
-    case Phase::Mis: return "pdfs and MIS";
-    case Phase::Search: return "light store and range search";
-    case Phase::Film: return "film";
+    case Phase::LightPaths: return "light phase: light paths";
+    case Phase::MergeIndex: return "light phase: merge index";
+    case Phase::CameraSamples: return "camera samples (tiles)";
+    case Phase::Film: return "film: splats and blocks";
     case Phase::Count: break;
     }
     return "?";

@@ -1,22 +1,21 @@
 // Where a render's work and time go: event counters that are always on, and phase
 // sampling that runs only when asked for (`tripath render --stats`).
 //
-// Counters. Each thread counts into its own thread-local array (an increment is one instruction:
-// no sharing, no atomics, no check on the hot path), and a thread that enrols once (the render
-// loop's tasks do, at their start) lists its array where snapshots find it; when the thread ends,
-// its counts move to a total of finished threads. The counts are of events a seed determines
-// (rays, BSDF calls, connections), so they are the same for any number of threads. A snapshot
-// reads other threads' arrays without synchronisation of its own: take it when the work it
-// measures has been joined (render() does), never while another render runs.
+// Counters. Each file that counts an event declares its Counter once, at its top, and bumps it
+// where the event happens. Each thread counts into its own thread-local array (an increment is
+// one instruction: no sharing, no atomics, no check on the hot path), and a thread that enrols
+// once (the render loop's tasks do, at their start) lists its array where snapshots find it; when
+// the thread ends, its counts move to a total of finished threads. The counts are of events a seed
+// determines (rays, BSDF calls, connections), so they are the same for any number of threads. A
+// snapshot reads other threads' arrays without synchronisation of its own: take it when the work
+// it measures has been joined (render() does), never while another render runs.
 //
-// Phases. With timing on, each thread keeps a tag of the phase it is in (a PhaseScope sets it and
-// puts the outer one back, so phases are exclusive: a shadow ray cast inside a connection is
-// traversal, not sampling), and a profiling timer (SIGPROF every millisecond of the process's
-// CPU time) samples the tag of the thread that is running. The shares of the samples are the
-// shares of CPU time, to within the sampling error (about 1/sqrt(samples), which the report
-// shows). Tagging is one load and two stores per scope, so the render runs at its own speed;
-// reading a clock around every scope instead would cost ~8 ns per read here and distort exactly
-// the small, frequent phases (a BSDF evaluation) that the report is for.
+// Phases are the render loop's: the light phase's tracing and its merge index, the tiles of camera
+// samples, the film. The loop tags each task with its phase (a PhaseScope per task or step, never
+// inside a kernel: a tile's rays, BSDFs, connections and merges are all its camera samples'
+// time), and with timing on a profiling timer (SIGPROF every millisecond of the process's CPU
+// time) samples the tag of the thread that is running. The shares of the samples are the shares
+// of CPU time, to within the sampling error (about 1/sqrt(samples), which the report shows).
 #pragma once
 #include <array>
 #include <atomic>
@@ -47,13 +46,11 @@ std::string_view eventName(Event e);
 std::string eventKey(Event e);
 
 enum class Phase : int {
-    Idle,        // outside any scope: not working on a render
-    Sampling,    // the walks' and connections' own logic: everything not below
-    Traversal,   // Embree: closest-hit and shadow rays
-    Scattering,  // BSDF sampling and evaluation; Le at connections (emitter points: Sampling)
-    Mis,         // area pdfs from points and MIS weights
-    Search,      // light phase: storing and indexing; merges: range queries
-    Film,        // adding contributions to the film
+    Idle,           // outside any scope: pass set-up, TBB scheduling and waiting, or no render
+    LightPaths,     // the light phase: tracing and storing the pass's light subpaths
+    MergeIndex,     // the light phase: indexing the light vertices for merging
+    CameraSamples,  // the tiles: camera walks, connections, merges, and their own pixels' film writes
+    Film,           // after each pass its splats, after each block the fold into the film's totals
     Count
 };
 inline constexpr int kPhaseCount = static_cast<int>(Phase::Count);
@@ -61,7 +58,17 @@ std::string_view phaseName(Phase p);
 
 inline thread_local uint64_t tlsEvents[kEventCount];  // zero-initialised: no guard on access
 
-inline void count(Event e, uint64_t n = 1) { tlsEvents[static_cast<int>(e)] += n; }
+// One event's counter, declared once at the top of a file that counts it, e.g.
+//     constexpr Counter kShadowRays{Event::ShadowRays};
+// and bumped where the event happens: kShadowRays.add().
+class Counter {
+public:
+    explicit constexpr Counter(Event e) : index_(static_cast<int>(e)) {}
+    void add(uint64_t n = 1) const { tlsEvents[index_] += n; }
+
+private:
+    int index_;
+};
 
 // Lists the calling thread's counters for snapshots; the first call per thread does the work.
 void enrolThread();

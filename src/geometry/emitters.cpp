@@ -5,6 +5,10 @@
 
 namespace tripath {
 
+namespace {
+constexpr Counter kEmitterSamples{Event::EmitterSamples};
+}  // namespace
+
 Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Material>& materials,
                    const std::vector<Emitter>& pointLights)
     : byTriangle_(triangles.size(), -1) {
@@ -38,7 +42,7 @@ Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Mat
 }
 
 EmitterSample Emitters::sample(float uc, Vec2 u, const std::vector<Triangle>& triangles) const {
-    count(Event::EmitterSamples);
+    kEmitterSamples.add();
     const size_t i = choice_.sample(uc);
     const Emitter& e = all_[i];
     EmitterSample s;

@@ -22,6 +22,10 @@ namespace tripath {
 
 namespace {
 
+constexpr Counter kBsdfSamples{Event::BsdfSamples};
+constexpr Counter kBsdfEvaluations{Event::BsdfEvaluations};
+constexpr Counter kBsdfPdfs{Event::BsdfPdfs};
+
 // ---------------------------------------------------------------------------------------------
 // Small geometric helpers
 
@@ -240,20 +244,19 @@ bool isDelta(const Material& m) {
 // Non-delta lobes are reflection only: both directions strictly on the same side of the shading
 // plane (so grazing z = 0 gives 0); TransportMode only matters for refraction.
 Spectrum evalBsdf(const Material& m, Vec3 wo, Vec3 wi, TransportMode /*mode*/) {
-    count(Event::BsdfEvaluations);
+    kBsdfEvaluations.add();
     if (isDelta(m) || !(wo.z * wi.z > 0)) return Spectrum(0.0f);
     return finiteOrZero(evalUpper(m, toSideOf(wo, wo), toSideOf(wo, wi)));
 }
 
 float pdfBsdf(const Material& m, Vec3 wo, Vec3 wi) {
-    count(Event::BsdfPdfs);
+    kBsdfPdfs.add();
     if (isDelta(m) || !(wo.z * wi.z > 0)) return 0.0f;
     return finiteOrZero(pdfUpper(m, toSideOf(wo, wo), toSideOf(wo, wi)));
 }
 
 std::optional<BsdfSample> sampleBsdf(const Material& m, Vec3 wo, Vec2 u, float uc, TransportMode mode) {
-    count(Event::BsdfSamples);
-    const PhaseScope scope(Phase::Scattering);
+    kBsdfSamples.add();
     switch (m.type) {
     case MaterialType::Mirror: return sampleMirror(m, wo);
     case MaterialType::Dielectric: return sampleDielectric(m, wo, uc, mode);

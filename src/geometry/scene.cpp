@@ -13,6 +13,11 @@
 
 namespace tripath {
 
+namespace {
+constexpr Counter kClosestHitRays{Event::ClosestHitRays};
+constexpr Counter kShadowRays{Event::ShadowRays};
+}  // namespace
+
 // A hit point computed from barycentrics is off the triangle's plane by a few ulps of the LARGEST
 // coordinate involved (not of the coordinate along the normal, which may be near zero), so the
 // offset is relative to max|p|: 2^-18 ≈ 32 ulps of it, plus 2^-16 absolute for scenes near the
@@ -177,8 +182,7 @@ std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) 
     // Debian's Embree asserts on invalid rays; a non-finite ray (which validation should have made
     // impossible) must cost a sample, never the process.
     if (!isFinite(origin) || !isFinite(dir)) return std::nullopt;
-    count(Event::ClosestHitRays);
-    const PhaseScope scope(Phase::Traversal);
+    kClosestHitRays.add();
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
@@ -222,9 +226,8 @@ void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::o
         packet.ray.id[i] = 0;
         packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     }
-    count(Event::ClosestHitRays, uint64_t(lanes));
+    kClosestHitRays.add(uint64_t(lanes));
     if (lanes > 0) {
-        const PhaseScope scope(Phase::Traversal);
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -256,8 +259,7 @@ bool Scene::unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const {
     const Vec3 from = aSurface ? offsetRayOrigin(a, aNormal, b - a) : a;
     const Vec3 to = bSurface ? offsetRayOrigin(b, bNormal, a - b) : b;
     if (!isFinite(from) || !isFinite(to)) return false;
-    count(Event::ShadowRays);
-    const PhaseScope scope(Phase::Traversal);
+    kShadowRays.add();
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay ray;

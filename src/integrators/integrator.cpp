@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "paths/kernels.h"
 
 namespace tripath {
 
@@ -43,12 +42,13 @@ float Integrator::mergeRadius(float firstRadius, uint64_t index) const {
     return static_cast<float>(firstRadius * std::pow(double(index + 1), 0.5 * (double(settings_.merge.alpha) - 1.0)));
 }
 
-double Integrator::lightPaths(const Scene& scene) const { return lightPathsPerPass(scene.camera(), settings_.walk.lightPaths); }
+double Integrator::lightPaths(const Scene& scene) const {
+    const Camera& cam = scene.camera();
+    return settings_.lightPaths ? double(*settings_.lightPaths) : double(cam.width()) * cam.height();
+}
 
-MisContext Integrator::misContext(const Scene& scene, float radius) const {
-    const double lightPaths = this->lightPaths(scene);
-    const float eta = radius > 0 ? mergeEta(radius, lightPaths) : 0.0f;
-    MisContext mis{settings_.mis, strategies(), Roulette{settings_.walk.rrDepth}, eta, lightPaths};
+MisContext Integrator::misContext(const PassConstants& constants) const {
+    MisContext mis{settings_.mis, strategies(), Roulette{settings_.walk.rrDepth}, constants};
     mis.runningSums = canUseRunningSums(mis);
     return mis;
 }
@@ -73,7 +73,7 @@ void Integrator::splatLightPaths(const Scene& scene, const Pass& pass, int pixel
 }
 
 void Integrator::cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng, Subpath& camera) const {
-    cameraSubpath(scene, ray, rng, settings_.walk, strategies().cameraWalkPdfs(), camera);
+    cameraSubpath(scene, ray, rng, settings_.walk, strategies().cameraWalkPdfs(), pass.mis.constants.lightPaths, camera);
     recordRunningSums(camera, false, pass.mis);
 }
 

@@ -2,6 +2,7 @@
 // Each one lives in its own file with its parameters documented at the top.
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "paths/strategies.h"
@@ -27,6 +28,7 @@ inline constexpr float kFallbackRadiusFactor = 0.003f;
 
 struct IntegratorSettings {
     WalkSettings walk;
+    std::optional<int64_t> lightPaths;  // N_L, the light paths per pass, as given (Integrator::lightPaths)
     MisHeuristic mis = MisHeuristic::Power;
     MergeSettings merge;
 };
@@ -38,7 +40,8 @@ struct PathBuffers {
 
 // What every camera sample of one pass shares: the pass's stored light subpaths (its light
 // phase, integrators/light_phase.h), the range search over them, and the MIS context with the
-// pass's merge factor. Read-only while the camera samples run.
+// pass's constants (N_L, merge radius and η: pass_constants.h). Read-only while the camera
+// samples run.
 struct Pass {
     uint64_t index = 0;                         // 0-based, over the whole render
     const LightStore* light = nullptr;          // set when the integrator has a light phase
@@ -76,16 +79,17 @@ public:
 
     // Whether passes trace and store light subpaths first: for any strategy with s ≥ 2 or a merge.
     bool hasLightPhase() const { return strategies().merges() || strategies().maxS >= 2; }
-    // N_L, the light paths each pass traces when it has a light phase: the settings' count, or
-    // one per pixel (paths/kernels.h).
+    // N_L, the light paths each pass traces when it has a light phase: the settings' count, or one
+    // per pixel. The one place that number is decided; the light phase puts it in the pass's
+    // constants (pass_constants.h), which every kernel then reads.
     double lightPaths(const Scene& scene) const;
     // The first pass's merge radius r_1 (0 when the integrator does not merge). It may trace a
     // few hundred rays (the default measures pixels): compute it once per render.
     float firstMergeRadius(const Scene& scene) const;
     // The radius of 0-based pass `index` given r_1: the schedule r_1 · (index + 1)^((α−1)/2).
     float mergeRadius(float firstRadius, uint64_t index) const;
-    // The MIS context of a pass whose merge radius is `radius`.
-    MisContext misContext(const Scene& scene, float radius) const;
+    // The MIS context of a pass with these constants.
+    MisContext misContext(const PassConstants& constants) const;
 
 protected:
     // The sample's camera subpath along `ray`, with the MIS running sums of

@@ -4,31 +4,34 @@
 #include <tbb/parallel_for.h>
 
 #include "core/stats.h"
-#include "paths/kernels.h"
 
 namespace tripath {
+
+namespace {
+constexpr Counter kLightVertices{Event::LightVertices};
+}  // namespace
 
 Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
                      StreamDomain cameraDomain) {
     Pass pass;
     pass.index = index;
     if (!firstRadius_) firstRadius_ = integrator.firstMergeRadius(scene);
-    const float radius = integrator.mergeRadius(*firstRadius_, index);
-    pass.mis = integrator.misContext(scene, radius);
+    const PassConstants constants = passConstants(integrator.lightPaths(scene), integrator.mergeRadius(*firstRadius_, index));
+    pass.mis = integrator.misContext(constants);
     search_.reset();
     if (!integrator.hasLightPhase()) return pass;
 
-    const uint64_t paths = static_cast<uint64_t>(integrator.lightPaths(scene));
+    const uint64_t paths = static_cast<uint64_t>(constants.lightPaths);
     const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
     const WalkPdfs pdfs = integrator.strategies().lightWalkPdfs();
     const WalkSettings& walk = integrator.settings().walk;
     store_.reset(paths);
-    const bool merges = radius > 0;
+    const bool merges = constants.radius > 0;
     mergeable_.resize(merges ? store_.chunks() : 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, store_.chunks(), 1), [&](const tbb::blocked_range<size_t>& r) {
         thread_local Subpath path;
         enrolThread();
-        const PhaseScope scope(Phase::Sampling);
+        const PhaseScope scope(Phase::LightPaths);
         for (size_t c = r.begin(); c < r.end(); ++c) {
             LightStore::Chunk& chunk = store_.chunk(c);
             const uint64_t first = c * LightStore::kPathsPerChunk;
@@ -36,7 +39,7 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
                 Rng rng(seed, domain, index * paths + i);
                 lightSubpath(scene, rng, walk, pdfs, path);
                 recordRunningSums(path, true, pass.mis);
-                count(Event::LightVertices, path.size());
+                kLightVertices.add(path.size());
                 chunk.append(path);
             }
             if (merges) {
@@ -47,8 +50,8 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
     });
     pass.light = &store_;
     if (merges) {
-        const PhaseScope scope(Phase::Search);
-        search_.emplace(mergeable_, radius);
+        const PhaseScope scope(Phase::MergeIndex);
+        search_.emplace(mergeable_, constants.radius);
         pass.search = &*search_;
     }
     return pass;

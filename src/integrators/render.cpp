@@ -13,13 +13,13 @@
 
 #include "core/stats.h"
 #include "integrators/light_phase.h"
-#include "paths/kernels.h"
 
 namespace tripath {
 
 namespace {
 
 constexpr int kTileSize = 16;
+constexpr Counter kSplats{Event::Splats};
 
 struct Splat {
     int pixel;
@@ -41,11 +41,10 @@ struct TileOutput {
 class TileSink final : public ContributionSink {
 public:
     TileSink(Film& film, const Camera& camera, double lightPaths, TileOutput& out, uint64_t pass)
-        : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPathsPerPass(camera, lightPaths))),
+        : film_(film), camera_(camera), out_(out), splatShare_(static_cast<float>(1.0 / lightPaths)),
           pass_(pass) {}
     void setPixel(int pixel) { pixel_ = pixel; }
     void add(Strategy st, const Connection& c) override {
-        const PhaseScope scope(Phase::Film);
         if (c.weightGuarded) ++out_.guardedWeights;
         const Spectrum w = c.weighted();
         if (!isFinite(w) || !isFinite(c.unweighted)) {
@@ -56,7 +55,6 @@ public:
         if (!st.merge && st.t == 1) {
             const int x = std::min(static_cast<int>(c.raster->x), camera_.width() - 1);
             const int y = std::min(static_cast<int>(c.raster->y), camera_.height() - 1);
-            count(Event::Splats);
             out_.splats.push_back({y * camera_.width() + x, st, w * splatShare_, c.unweighted * splatShare_});
         } else {
             film_.add(pixel_, st, w, c.unweighted);
@@ -89,9 +87,9 @@ void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pa
     const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
     const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
     thread_local PathBuffers paths;
-    TileSink sink(film, cam, pass.mis.lightPaths, out, pass.index);
+    TileSink sink(film, cam, pass.mis.constants.lightPaths, out, pass.index);
     enrolThread();
-    const PhaseScope scope(Phase::Sampling);
+    const PhaseScope scope(Phase::CameraSamples);
     const bool packets = integrator.tracesCameraRays();
     // Runs of up to 8 pixels of a row: their camera rays are traced together (Scene::intersect8),
     // then each sample goes on with its own stream. The runs depend on the tile alone.
@@ -141,6 +139,7 @@ public:
         });
         const PhaseScope filing(Phase::Film);
         for (TileOutput& out : outputs_) {
+            kSplats.add(out.splats.size());
             for (const Splat& sp : out.splats) result.film.add(sp.pixel, sp.strategy, sp.weighted, sp.unweighted);
             out.splats.clear();
             result.droppedSamples += out.dropped;

@@ -79,7 +79,8 @@ struct RenderResult {
     // The team's first kDroppedLogSize dropped samples in pass, tile and pixel order: the same log
     // for any number of ranks and threads.
     std::vector<DroppedSample> droppedLog{};
-    // What the render did (core/stats.h): its events, and with timing on its cycles per phase.
+    // What the render did (core/stats.h): its events, and with timing on its profiling samples
+    // per phase of the render loop.
     // Taken as the difference of two process-wide snapshots, so renders must not overlap.
     StatsSnapshot stats{};
     // The budget it was given, the resumed render's part included (0: no bound of that kind), and

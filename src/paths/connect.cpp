@@ -7,6 +7,9 @@ namespace tripath {
 
 namespace {
 
+constexpr Counter kConnections{Event::Connections};
+constexpr Counter kEmitterHits{Event::EmitterHits};
+
 // s = 0: the camera subpath's last vertex pt lies on an emitter, which is the light's start.
 // Its reverse pdf is the emitter sampler's, and the vertex before it would have been generated
 // by an emission direction from pt. Whatever pt's material, it emits here: it is x0, not a
@@ -17,15 +20,11 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
     const Vertex& pt = camera[t - 1];
     const Vertex& ptMinus = camera[t - 2];
     if (pt.emitter < 0) return c;
-    count(Event::EmitterHits);
+    kEmitterHits.add();
     const Segment toCamera(pt, ptMinus);
     const LocalScattering at(scene, pt, nullptr, toCamera.towardB());
-    {
-        const PhaseScope scattering(Phase::Scattering);
-        c.unweighted = pt.beta * emittance(at.value(), traced(pt, ptMinus));  // ε(pt → ptMinus)
-    }
+    c.unweighted = pt.beta * emittance(at.value(), traced(pt, ptMinus));  // ε(pt → ptMinus)
     if (isBlack(c.unweighted)) return c;
-    const PhaseScope pdfs(Phase::Mis);
     Junction junction;
     if (mis.strategies.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter);
     if (mis.strategies.readsCameraPdfs(t - 2, 0, t)) junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), ptMinus);
@@ -47,7 +46,7 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     const Vertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
     const int k = s + t - 1;
     if (scattersDelta(qs, s - 1, k) || scattersDelta(pt, s, k)) return c;  // no shadow ray joins a delta lobe
-    count(Event::Connections);
+    kConnections.add();
     const Segment segment(qs, pt);
     if (t == 1) {
         c.raster = scene.camera().raster(-segment.direction());
@@ -57,23 +56,19 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     const Segment backQ(qs, qsMinus), backP(pt, ptMinus);  // to each endpoint's own predecessor
     const LocalScattering atQ(scene, qs, backQ.towardB(), segment.towardB());
     const LocalScattering atP(scene, pt, &towardQ, backP.towardB());
-    {
-        const PhaseScope scattering(Phase::Scattering);
-        const Spectrum kernelQ = s == 1 ? emittance(atQ, segment) : rho(atQ, segment);
-        const Spectrum kernelP = t == 1 ? Spectrum(W(atP)) : rho(atP.value(), traced(pt, *ptMinus));
-        c.unweighted = qs.beta * kernelQ * g(segment) * kernelP * pt.beta;
-    }
+    const Spectrum kernelQ = s == 1 ? emittance(atQ, segment) : rho(atQ, segment);
+    const Spectrum kernelP = t == 1 ? Spectrum(W(atP)) : rho(atP.value(), traced(pt, *ptMinus));
+    c.unweighted = qs.beta * kernelQ * g(segment) * kernelP * pt.beta;
     if (isBlack(c.unweighted)) return c;
     if (!visible(scene, qs, pt)) {
         c.unweighted = Spectrum(0.0f);
         return c;
     }
-    const PhaseScope pdfs(Phase::Mis);
     Junction junction;
     if (mis.strategies.readsCameraPdfs(t - 1, s, t)) junction.cameraEnd = segment.toArea(atQ.pdfTowardCamera(), pt);
     if (mis.strategies.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);
-    if (mis.strategies.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(mis.lightPaths), qs);
-    if (mis.strategies.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(mis.lightPaths), *qsMinus);
+    if (mis.strategies.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(mis.constants.lightPaths), qs);
+    if (mis.strategies.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(mis.constants.lightPaths), *qsMinus);
     c.setWeight(misWeight(light, s, camera, t, junction, mis));
     return c;
 }

@@ -10,10 +10,6 @@ bool LocalScattering::emits() const {
     return v_.kind == Vertex::Kind::Emitter || (v_.kind == Vertex::Kind::Surface && !hasLight_);
 }
 
-double lightPathsPerPass(const Camera& camera, double requested) {
-    return requested > 0 ? requested : double(camera.width()) * camera.height();
-}
-
 Spectrum LocalScattering::value() const {
     if (v_.kind == Vertex::Kind::Sensor) return Spectrum(hasLight_ ? scene_.camera().importance(light_) : 0.0f);
     if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, camera_);
@@ -27,7 +23,7 @@ float LocalScattering::pdfTowardCamera() const {
     return pdfBsdf(*v_.material, lightLocal_, cameraLocal_);
 }
 
-float LocalScattering::pdfTowardLight(double requestedLightPaths) const {
+float LocalScattering::pdfTowardLight(double lightPaths) const {
     if (v_.kind == Vertex::Kind::Sensor) {
         // Per-pixel pdf / N_L, the per-pixel pdf being the whole image's times the pixel count.
         // Not gated by the image's edge: where the camera generated the vertex, the direction
@@ -36,7 +32,7 @@ float LocalScattering::pdfTowardLight(double requestedLightPaths) const {
         // would make the camera's own strategy impossible. A direction truly outside has W = 0.
         const Camera& cam = scene_.camera();
         if (!hasLight_ || !(dot(light_, v_.ng) > 0)) return 0.0f;  // v_.ng: the optical axis
-        return cam.pixelDensity(light_) / static_cast<float>(lightPathsPerPass(cam, requestedLightPaths));
+        return cam.pixelDensity(light_) / static_cast<float>(lightPaths);
     }
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
     return pdfBsdf(*v_.material, cameraLocal_, lightLocal_);

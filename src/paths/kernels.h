@@ -90,13 +90,6 @@ inline float shadingCorrection(const Vertex& v, Vec3 towardLight) {
 // agreeing on smooth meshes.
 inline bool sidesAgree(const Vertex& v, Vec3 w) { return dot(v.ng, w) * dot(v.ns, w) > 0; }
 
-// Light paths traced per pass, N_L: `requested` if it is above 0, else one per pixel. Each pixel's
-// camera sample connects with one of them, and each of them is joined to the sensor (t = 1) once
-// and may land in any pixel, so a splat counts 1/N_L there, and MIS compares the camera's
-// per-pixel pdf divided by N_L with the light strategies' pdfs (Veach §10.3.4.3); a merge's η is
-// π r² N_L (merge.h). The one place that number is decided.
-double lightPathsPerPass(const Camera& camera, double requested);
-
 // Vertex v between its light-side and camera-side neighbours: the factor it contributes to the
 // regrouped product, and the pdfs with which it generates either neighbour. The directions to
 // the neighbours and, on a surface, the shading frame and local directions are computed once for
@@ -131,10 +124,12 @@ public:
     // direction: its BSDF's, or an emitter's emission distribution.
     float pdfTowardCamera() const;
     // Solid-angle pdf with which v, reached from its camera side, generates the light-side
-    // direction: its BSDF's, or the sensor's per-pixel pdf over N_L (lightPathsPerPass, with
-    // `requestedLightPaths` as requested). Zero through a delta lobe, which MIS knows by the
-    // vertex's flag, not by the zero.
-    float pdfTowardLight(double requestedLightPaths) const;
+    // direction: its BSDF's, or the sensor's per-pixel pdf over the pass's N_L, `lightPaths`
+    // (pass_constants.h): each pixel's camera sample connects with one of the pass's light paths,
+    // and each of them is joined to the sensor once and may land in any pixel, so MIS compares
+    // the camera's per-pixel pdf divided by N_L with the light strategies' pdfs (Veach §10.3.4.3).
+    // Zero through a delta lobe, which MIS knows by the vertex's flag, not by the zero.
+    float pdfTowardLight(double lightPaths) const;
 
 private:
     bool emits() const;  // an emitter end: no light side

@@ -1,11 +1,8 @@
 #include "paths/merge.h"
 
-#include "core/stats.h"
 #include "paths/kernels.h"
 
 namespace tripath {
-
-float mergeEta(float radius, double lightPaths) { return static_cast<float>(kPi * double(radius) * radius * lightPaths); }
 
 Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                  const MisContext& mis) {
@@ -17,19 +14,15 @@ Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::
     if (z.delta || y.delta || !(dot(y.ng, z.ng) > 0)) return c;
     const Segment incoming(y, yBefore), toCamera(z, zBefore);
     const LocalScattering at(scene, z, incoming.towardB(), toCamera.towardB());
-    {
-        const PhaseScope scattering(Phase::Scattering);
-        c.unweighted = z.beta * rho(at.value(), traced(z, zBefore)) * y.beta * (1.0f / mis.mergeEta);
-    }
+    c.unweighted = z.beta * rho(at.value(), traced(z, zBefore)) * y.beta * (1.0f / mis.constants.mergeEta);
     if (isBlack(c.unweighted)) return c;
-    const PhaseScope pdfs(Phase::Mis);
     // The reference connection (s−1, t) joins y_{s−2} to z_{t−1}: z_{t−1}'s light-side pdf is the
     // light walk's step to y_{s−1}; y_{s−3}'s pdf through y_{s−2} from the merged vertex is the
     // one the light walk recorded when it went on from y_{s−2} to y_{s−1}.
     Junction junction;
     junction.cameraEnd = y.pdfFwd;
     junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), zBefore);
-    junction.lightEnd = incoming.toArea(at.pdfTowardLight(mis.lightPaths), yBefore);
+    junction.lightEnd = incoming.toArea(at.pdfTowardLight(mis.constants.lightPaths), yBefore);
     if (s >= 3) junction.lightBeforeEnd = light[s - 3].pdfRev;
     c.setWeight(mergeWeight(light, s, camera, t, junction, mis));
     return c;

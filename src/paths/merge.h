@@ -30,10 +30,6 @@
 
 namespace tripath {
 
-// The merge factor η = π r² N_L: a merge's pdf is its reference connection's times the merged
-// vertex's light-side pdf times η.
-float mergeEta(float radius, double lightPaths);
-
 // Merges light[s−1] (with light[0..s−1) its light prefix, s ≥ 2) with camera[t−1] (t ≥ 2):
 // f/p of the merged path and its MIS weight among the enabled strategies (mis.h).
 Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "core/stats.h"
 #include "paths/kernels.h"
 
 namespace tripath {
@@ -70,7 +69,7 @@ Competition compete(std::span<const Vertex> light, int s, std::span<const Vertex
     const bool merges = strategies.merges();
     // The merge at x_j, j = 1 … k−1 (non-delta): rj is the ratio of the connection with x_j on
     // the camera side, pFromLight x_j's pdf from the light side (as the chain measure counts it).
-    auto mergeTerm = [&](float rj, float pFromLight) { return rj * pFromLight * mis.mergeEta; };
+    auto mergeTerm = [&](float rj, float pFromLight) { return rj * pFromLight * mis.constants.mergeEta; };
 
     // With running sums, the steps stop where every remaining term is one the subpath's vertex
     // holds: past the two vertices whose pdfs the junction defines, and past those whose roulette
@@ -162,7 +161,6 @@ bool canUseRunningSums(const MisContext& mis) {
 // r, add up to term(r) · W_j or term(r) · V_j.
 void recordRunningSums(std::span<Vertex> path, bool light, const MisContext& mis) {
     if (!mis.runningSums) return;
-    const PhaseScope scope(Phase::Mis);
     const int n = static_cast<int>(path.size());
     const StrategySet set = mis.strategies;
     const MisHeuristic h = mis.heuristic;
@@ -175,12 +173,12 @@ void recordRunningSums(std::span<Vertex> path, bool light, const MisContext& mis
         if (light) {
             const float own = ownPdf(path, m, delta(m), m > 0 && delta(m - 1), mis.roulette);
             const bool possible = m > 0 ? !delta(m) && !delta(m - 1) : !x.isDeltaLight();
-            const float merge = merges && m >= 1 && !delta(m) ? term(own * mis.mergeEta, h) : 0.0f;
+            const float merge = merges && m >= 1 && !delta(m) ? term(own * mis.constants.mergeEta, h) : 0.0f;
             const float connection = possible && set.enabled(m, 2) ? 1.0f : 0.0f;
             sum = term(other / own, h) * (sum + merge + connection);
         } else if (m > 0) {
             const float a = term(other / ownPdf(path, m, delta(m), delta(m - 1), mis.roulette), h);
-            const float merge = merges && !delta(m) ? term(other * mis.mergeEta, h) : 0.0f;
+            const float merge = merges && !delta(m) ? term(other * mis.constants.mergeEta, h) : 0.0f;
             const float connection = !delta(m) && !delta(m - 1) && set.enabled(1, m) ? a : 0.0f;
             sum = a * sum + merge + connection;
         }
@@ -199,7 +197,6 @@ static MisWeight firstHitWeight(std::span<const Vertex> camera, int t) {
 MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                     const Junction& junction, const MisContext& mis) {
     if (mis.strategies.uniqueStrategy()) return firstHitWeight(camera, t);
-    const PhaseScope scope(Phase::Mis);
     const Competition c = competeInRange(light, s, camera, t, junction, mis, true);
     if (!std::isfinite(c.sum)) return {0.0f, true};
     return {1.0f / c.sum, false};
@@ -208,7 +205,6 @@ MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex
 MisWeight mergeWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                       const Junction& junction, const MisContext& mis) {
     if (mis.strategies.uniqueStrategy()) return firstHitWeight(camera, t);
-    const PhaseScope scope(Phase::Mis);
     // The reference: the connection (s−1, t) that holds the merged vertex on the camera side,
     // counted if it is enabled and possible (z_{t−1} never scatters through a delta lobe -- merges
     // happen only where it does not -- but y_{s−2} may).

@@ -52,6 +52,7 @@
 #pragma once
 #include <span>
 
+#include "paths/pass_constants.h"
 #include "paths/roulette.h"
 #include "paths/vertex.h"
 
@@ -141,15 +142,15 @@ struct MisWeight {
 };
 
 // What a weight depends on besides the path: the heuristic, the strategies the integrator enables,
-// and the roulette its walks play (each strategy's pdf includes its walks' continuation factors).
-// With merges, also the pass's merge factor η = π r² N_L: a merge at x_j has the pdf of the
-// connection with x_j on the camera side times x_j's pdf from the light side times η (merge.h).
+// and the roulette its walks play (each strategy's pdf includes its walks' continuation factors);
+// and the pass's constants: N_L, which the sensor's pdf in t = 1 connections is over, and with
+// merges the merge factor η = π r² N_L: a merge at x_j has the pdf of the connection with x_j on
+// the camera side times x_j's pdf from the light side times η (merge.h).
 struct MisContext {
     MisHeuristic heuristic = MisHeuristic::Power;
     StrategySet strategies;
     Roulette roulette;
-    float mergeEta = 0;
-    double lightPaths = 0;  // N_L as requested (0: one per pixel; lightPathsPerPass): the sensor's pdf in t = 1 connections
+    PassConstants constants;
     // The subpaths carry running sums recorded for this context (recordRunningSums): weights in
     // O(1). Only for a summable set under the balance or power heuristic.
     bool runningSums = false;

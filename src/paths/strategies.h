@@ -17,6 +17,9 @@
 
 namespace tripath {
 
+inline constexpr Counter kRangeQueries{Event::RangeQueries};
+inline constexpr Counter kMerges{Event::Merges};
+
 // Strategy (1, t): next-event estimation from a fresh emitter point.
 inline Connection connectNextEvent(const Scene& scene, Rng& rng, std::span<const Vertex> camera, int t, const MisContext& mis) {
     const Vertex y0 = sampleEmitterVertex(scene, rng);
@@ -61,13 +64,11 @@ void evaluateMerges(const Scene& scene, const LightVertexSearch& search, const S
                 points[n] = camera[t - 1].p;
                 ts[n++] = t;
             }
-        count(Event::RangeQueries, uint64_t(n));
-        const PhaseScope searching(Phase::Search);
+        kRangeQueries.add(uint64_t(n));
         search.forEachWithin(std::span<const Vec3>(points, n), [&](int query, std::span<const Vertex> light, int s) {
             const int tq = ts[query];
             if (s + tq - 2 > maxDepth) return;
-            count(Event::Merges);
-            const PhaseScope merging(Phase::Sampling);
+            kMerges.add();
             const Connection c = merge(scene, light, s, camera, tq, mis);
             if (!isBlack(c.unweighted)) sink(Strategy{s, tq, true}, c);
         });

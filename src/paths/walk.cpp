@@ -1,12 +1,17 @@
 #include "paths/walk.h"
 
-#include "core/stats.h"
+#include <limits>
+
 #include "paths/kernels.h"
 #include "paths/roulette.h"
 
 namespace tripath {
 
 namespace {
+
+// What a light walk passes for N_L: it never reaches the sensor (a pinhole cannot be hit), the one
+// vertex whose pdf reads N_L; were it read, the weights over it would be guarded (mis.h), not wrong.
+constexpr double kNoSensor = std::numeric_limits<double>::quiet_NaN();
 
 Vec2 uniform2(Rng& rng) {
     const float a = rng.uniform();
@@ -30,10 +35,9 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
 // The area pdfs of the segment just traced from `from` (the path's last vertex) to v, the
 // vertex about to be appended: v's pdfFwd, and the pdfRev of the vertex before `from`, which
 // `from` would generate having been reached from v. A camera walk goes against the light's
-// flow, so v lies on `from`'s light side; a light walk goes with it. `lightPaths`: N_L as
-// requested, which the sensor's pdf is over.
+// flow, so v lies on `from`'s light side; a light walk goes with it. `lightPaths`: the pass's N_L,
+// which the sensor's pdf is over.
 void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode, double lightPaths) {
-    const PhaseScope scope(Phase::Mis);
     const Vertex& from = path.back();
     Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
     const Segment ahead(from, v), behind(from, beforeFrom);
@@ -78,9 +82,9 @@ Spectrum stepFactor(const Subpath& path, const Vertex& v, Spectrum scatter, floa
 // origin, and on short segments the direction between the vertices is not quite the sampled one;
 // connections see only the points, so the walks must too. Only the pdfs `pdfs` asks for are
 // computed.
-// `firstHit`, if set, is what the first ray hits, traced already.
+// `firstHit`, if set, is what the first ray hits, traced already; `lightPaths` is the pass's N_L.
 void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, float pdf, Vec3 dir, TransportMode mode,
-                const WalkSettings& settings, WalkPdfs pdfs, size_t maxVertices, Subpath& path,
+                const WalkSettings& settings, WalkPdfs pdfs, double lightPaths, size_t maxVertices, Subpath& path,
                 const std::optional<SurfacePoint>* firstHit = nullptr) {
     while (path.size() < maxVertices) {
         const Vertex& from = path.back();
@@ -93,7 +97,7 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, f
         v.beta = beta * stepFactor(path, v, scatter, pdf, mode);
         if (!isFinite(v.beta) || isBlack(v.beta)) return;  // a grazing hit (p_A = 0) or coincident points
         if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0))
-            recordPdfs(scene, path, v, mode, settings.lightPaths);
+            recordPdfs(scene, path, v, mode, lightPaths);
         path.push_back(v);
         if (path.size() == maxVertices || (mode == TransportMode::Radiance && settings.cameraUntilNonDelta && !v.delta)) return;
 
@@ -150,7 +154,7 @@ Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
 }
 
 void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
-                   Subpath& path) {
+                   double lightPaths, Subpath& path) {
     path.clear();
     path.push_back(sensorVertex(scene));
     const Camera& cam = scene.camera();
@@ -159,7 +163,7 @@ void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const Wal
     // per-pixel density (camera.h), both of a direction the camera made (however it rounds at the
     // image's edge). MIS sees the per-pixel pdf over N_L (kernels.h).
     randomWalk(scene, rng, Spectrum(1.0f), Spectrum(cam.importanceDensity(dir)), cam.pixelDensity(dir), dir,
-               TransportMode::Radiance, settings, pdfs, static_cast<size_t>(settings.maxDepth) + 1, path, ray.hit);
+               TransportMode::Radiance, settings, pdfs, lightPaths, static_cast<size_t>(settings.maxDepth) + 1, path, ray.hit);
 }
 
 void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {
@@ -173,7 +177,7 @@ void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Wa
     if (!(pdfDir > 0)) return;
     const Spectrum Le = scene.emitters().Le(y0.emitter, y0.ng, dir);
     if (isBlack(Le)) return;
-    randomWalk(scene, rng, y0.beta, Le, pdfDir, dir, TransportMode::Importance, settings, pdfs,
+    randomWalk(scene, rng, y0.beta, Le, pdfDir, dir, TransportMode::Importance, settings, pdfs, kNoSensor,
                static_cast<size_t>(settings.maxDepth), path);
 }
 

@@ -12,7 +12,6 @@ struct WalkSettings {
     int maxDepth = 16;  // longest path in segments: camera subpaths get ≤ maxDepth+1 vertices, light ≤ maxDepth
     int rrDepth = 3;    // Russian roulette once a subpath has this many vertices (roulette.h); the front ends default per integrator (integrator.h)
     bool cameraUntilNonDelta = false;  // end camera walks at their first vertex that scatters through no delta lobe
-    double lightPaths = 0;  // N_L per pass as requested (0: one per pixel): the camera walk's first pdf is over it (kernels.h)
 };
 
 // The sensor endpoint z0 of every camera subpath.
@@ -31,9 +30,10 @@ struct CameraRay {
     const std::optional<SurfacePoint>* hit = nullptr;
 };
 
-// Fills `path` with a camera subpath whose first segment is `ray`.
+// Fills `path` with a camera subpath whose first segment is `ray`. `lightPaths`: the pass's N_L,
+// which the sensor's pdf of that segment is over (pass_constants.h).
 void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
-                   Subpath& path);
+                   double lightPaths, Subpath& path);
 // Fills `path` with a light subpath starting from a power-sampled emitter point.
 void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path);
 

@@ -117,7 +117,7 @@ IntegratorSettings integratorSettings(const RenderRequest& r) {
     s.walk.rrDepth = rouletteDepth(r, r.integrator);
     s.mis = parseMisHeuristic(r.mis);
     s.merge = r.merge;
-    s.walk.lightPaths = r.lightPathsGiven ? double(r.lightPaths) : 0.0;
+    if (r.lightPathsGiven) s.lightPaths = r.lightPaths;
     return s;
 }
 
