@@ -290,7 +290,7 @@ SceneDesc degenerateFarScene() {
     addSquare(s, "light", light, at(0, 1.99f, 0), {0, -1, 0}, 0.235f * k);
     const int box = addMaterial(s, lambertian("box", Spectrum(0.725f, 0.71f, 0.68f)));
     addBox(s, "box", box, at(-0.6f, 0, -0.6f), at(0, 1.2f, 0));
-    s.camera = CameraDesc{true, at(0, 1, 3.9f), {0, 0, -1}, {0, 1, 0}, 0.6911f};
+    s.camera = CameraDesc{true, at(0, 1, 3.77f), {0, 0, -1}, {0, 1, 0}, 0.6911f};  // the Cornell box's view
     return s;
 }
 
