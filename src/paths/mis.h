@@ -48,7 +48,8 @@
 // then steps over the vertices whose pdfs the junction defines (two) and those whose roulette
 // factor depends on the other walk's length (up to --rr-depth), and takes the rest from the
 // vertex where it stopped: O(1) in the path length. The O(k) walk stays as the reference the
-// tests hold the running sums to, and serves the uniform heuristic and the bounded sets.
+// tests hold the running sums to, and serves the uniform heuristic, the bounded sets, and any
+// path whose running sums leave the float range (where the walk's own products stay in it).
 #pragma once
 #include <span>
 
