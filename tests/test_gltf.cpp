@@ -482,24 +482,40 @@ TEST_F(GltfTest, NoCameraLeavesCameraAbsent) {
     EXPECT_FALSE(load(b.write(file("nocamera.gltf"))).camera.present);
 }
 
-TEST_F(GltfTest, PointLightFromKhrLightsPunctual) {
+TEST_F(GltfTest, PunctualLightsFromKhrLightsPunctual) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
-    b.model.lights.resize(2);  // tinygltf lists KHR_lights_punctual in extensionsUsed
+    b.model.lights.resize(3);  // tinygltf lists KHR_lights_punctual in extensionsUsed
     b.model.lights[0].type = "point";
     b.model.lights[0].color = {1, 0.5, 0.25};
     b.model.lights[0].intensity = 100;
     b.model.lights[1].type = "spot";
     b.model.lights[1].intensity = 5;
+    b.model.lights[1].spot.innerConeAngle = 0.25;
+    b.model.lights[1].spot.outerConeAngle = 0.5;
+    b.model.lights[2].type = "directional";
+    b.model.lights[2].intensity = 3;
+    b.model.lights[2].range = 10;
     b.addRoot({.mesh = 0});
     b.addRoot({.translation = {0, 5, 0}, .children = {2}});
     b.addNode({.light = 0, .translation = {1, 0, 0}});
-    b.addRoot({.light = 1});
+    b.addRoot({.light = 1, .translation = {0, 0, 2}});
+    // A quarter turn about −x takes the node's −Z to −Y: a light shining straight down.
+    b.addRoot({.light = 2, .rotation = {-std::sqrt(0.5), 0, 0, std::sqrt(0.5)}});
     const SceneDesc scene = load(b.write(file("lights.gltf")));
-    ASSERT_EQ(scene.pointLights.size(), 1u);
-    expectNear(scene.pointLights[0].position, {1, 5, 0});
-    expectNear(scene.pointLights[0].intensity, {100, 50, 25});
-    EXPECT_EQ(warningsContaining("spot lights are ignored"), 1u);
+    ASSERT_EQ(scene.lights.size(), 3u);
+    EXPECT_EQ(scene.lights[0].kind, LightDesc::Kind::Point);
+    expectNear(scene.lights[0].position, {1, 5, 0});
+    expectNear(scene.lights[0].intensity, {100, 50, 25});
+    EXPECT_EQ(scene.lights[1].kind, LightDesc::Kind::Spot);
+    expectNear(scene.lights[1].position, {0, 0, 2});
+    expectNear(scene.lights[1].direction, {0, 0, -1});
+    EXPECT_FLOAT_EQ(scene.lights[1].innerConeAngle, 0.25f);
+    EXPECT_FLOAT_EQ(scene.lights[1].outerConeAngle, 0.5f);
+    EXPECT_EQ(scene.lights[2].kind, LightDesc::Kind::Directional);
+    expectNear(scene.lights[2].direction, {0, -1, 0});
+    expectNear(scene.lights[2].intensity, {3, 3, 3});
+    EXPECT_EQ(warningsContaining("range is ignored"), 1u);
 }
 
 // --- containers -----------------------------------------------------------------------------

@@ -39,7 +39,7 @@ float forwardSolidAngle(const Scene& scene, const Path& x, size_t i) {
 
 // Area pdf of x_i when the light side generates it (from x_{i-1}, x_{i-2}); 0 through a delta.
 float forwardPdf(const Scene& scene, const Path& x, size_t i) {
-    if (i == 0) return scene.emitters().pdfA(x[0].emitter);
+    if (i == 0) return scene.emitters().pdfA(x[0].emitter, x[0].ns);
     return toAreaPdf(forwardSolidAngle(scene, x, i), x[i - 1], x[i]);
 }
 
@@ -463,7 +463,7 @@ Subpath lightPrefix(const Scene& scene, const Path& x, int s) {
     }
     if (s > 0) {  // x0 as next-event estimation and light subpaths produce it: a point on an emitter
         y[0].kind = Vertex::Kind::Emitter;
-        y[0].delta = false;
+        y[0].delta = scene.emitters().all()[size_t(y[0].emitter)].delta();  // a delta light, else no delta
     }
     return y;
 }
@@ -555,7 +555,7 @@ TEST(Mis, LightTracingsOddsGrowWithTheLightPaths) {
                 const Connection hit = connect(scene, {}, 0, camera, 2, mis);
                 Vertex y0 = camera[1];
                 y0.kind = Vertex::Kind::Emitter;
-                y0.pdfFwd = scene.emitters().pdfA(y0.emitter);
+                y0.pdfFwd = scene.emitters().pdfA(y0.emitter, y0.ns);
                 y0.beta = Spectrum(1.0f / y0.pdfFwd);
                 const Connection splat = connect(scene, std::span<const Vertex>(&y0, 1), 1, std::span(camera).first(1), 1, mis);
                 if (isBlack(hit.unweighted) || isBlack(splat.unweighted)) {

@@ -246,7 +246,7 @@ SceneDesc emitterTestScene() {
         const EmitterCase& c = kEmitterCases[i];
         d.meshes.push_back({c.name, {c.p0, c.p1, c.p2}, {}, {0, 1, 2}, mats[i]});
     }
-    d.pointLights.push_back({{1, 1, 3}, Spectrum(0.25f)});
+    d.lights.push_back({{1, 1, 3}, Spectrum(0.25f)});
     return d;
 }
 
@@ -345,7 +345,7 @@ TEST(Emitters, SampledPointsFollowPowerShareTimesAreaAndReportTheirDensity) {
         observed[which * 32 + subTriangle(b1, b2)] += 1;
         const double density = kEmitterCases[which].density;
         if (std::abs(s.pdfA - density) > 1e-5 * density ||
-            std::abs(emitters.pdfA(static_cast<int>(s.emitter)) - density) > 1e-5 * density)
+            std::abs(emitters.pdfA(static_cast<int>(s.emitter), s.towardLight) - density) > 1e-5 * density)
             ++wrongDensity;
     }
     EXPECT_EQ(misplaced, 0);

@@ -51,7 +51,7 @@ inline SceneDesc everyEmitterKind() {
     addSphere(s, "smooth sphere", addMaterial(s, plastic), {-0.45f, 0.35f, 0.1f}, 0.35f, 6);
     addSquare(s, "back light", addMaterial(s, emitter("back light", Spectrum(4.0f))), {-0.5f, 1.5f, -0.99f},
               {0, 0, 1}, 0.1f);
-    s.pointLights.push_back({{0.3f, 1.6f, 0.4f}, Spectrum(0.5f)});
+    s.lights.push_back({{0.3f, 1.6f, 0.4f}, Spectrum(0.5f)});
     s.camera = CameraDesc{true, {0, 1, 3.9f}, {0, 0, -1}, {0, 1, 0}, 0.6911f};
     s.name = "every emitter kind";
     return s;

@@ -568,10 +568,10 @@ void expectSameScene(const SceneDesc& original, const SceneDesc& loaded, const s
     ASSERT_EQ(original.materials.size(), loaded.materials.size()) << what;
     for (size_t i = 0; i < original.materials.size(); ++i)
         expectSameMaterial(original.materials[i], loaded.materials[i], what + " material " + std::to_string(i));
-    ASSERT_EQ(original.pointLights.size(), loaded.pointLights.size()) << what;
-    for (size_t i = 0; i < original.pointLights.size(); ++i) {
-        EXPECT_TRUE(original.pointLights[i].position == loaded.pointLights[i].position) << what;
-        EXPECT_TRUE(original.pointLights[i].intensity == loaded.pointLights[i].intensity) << what;
+    ASSERT_EQ(original.lights.size(), loaded.lights.size()) << what;
+    for (size_t i = 0; i < original.lights.size(); ++i) {
+        EXPECT_TRUE(original.lights[i].position == loaded.lights[i].position) << what;
+        EXPECT_TRUE(original.lights[i].intensity == loaded.lights[i].intensity) << what;
     }
     const CameraDesc &ca = original.camera, &cb = loaded.camera;
     EXPECT_EQ(ca.present, cb.present) << what;
@@ -643,7 +643,7 @@ TEST(GltfExport, MaterialsMapBackThroughTheLoadersTable) {
     add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(1e6f, 3.3f, 0.0f), false);
     for (int i = 0; i < static_cast<int>(d.materials.size()); ++i)
         d.meshes.push_back({"tri", {{float(i), 0, 0}, {float(i) + 1, 0, 0}, {float(i), 1, 0}}, {}, {0, 1, 2}, i});
-    d.pointLights.push_back({{1, 2, 3}, Spectrum(100.0f, 0.5f, 0.0f)});
+    d.lights.push_back({{1, 2, 3}, Spectrum(100.0f, 0.5f, 0.0f)});
     d.camera = CameraDesc{true, {0.1f, 0.2f, 5}, normalize(Vec3(0.1f, -0.2f, -1)), {}, 0.5f};
     d.camera.up = normalize(cross(cross(d.camera.forward, Vec3(0, 1, 0)), d.camera.forward));
     const fs::path path = fs::temp_directory_path() / "tripath-export-materials.gltf";

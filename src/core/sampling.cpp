@@ -28,4 +28,12 @@ size_t Distribution1D::sample(float u) const {
     return std::min(i, size() - 1);
 }
 
+size_t Distribution1D::sample(float u, float& within) const {
+    const size_t i = sample(u);
+    const double width = cdf_[i + 1] - cdf_[i];
+    within = width > 0 ? static_cast<float>(std::clamp((double(u) - cdf_[i]) / width, 0.0, 1.0)) : 0.5f;
+    within = std::min(within, 0x1.fffffep-1f);
+    return i;
+}
+
 }  // namespace tripath

@@ -24,6 +24,22 @@ inline Vec3 sampleUniformSphere(Vec2 u) {
 }
 constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
 
+// Uniform direction in the cone of directions within θ_max of +z; pdf = 1 / (2π (1 − cos θ_max)).
+inline Vec3 sampleUniformCone(Vec2 u, float cosThetaMax) {
+    const float z = 1.0f - u.x * (1.0f - cosThetaMax);
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const float phi = 2.0f * kPi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline float uniformConePdf(float cosThetaMax) { return 1.0f / (2.0f * kPi * (1.0f - cosThetaMax)); }
+
+// Uniform point on the unit disc (polar, area-preserving); pdf = 1 / π.
+inline Vec2 sampleUniformDisc(Vec2 u) {
+    const float r = std::sqrt(u.x);
+    const float phi = 2.0f * kPi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi)};
+}
+
 // Uniform barycentrics on a triangle (the square-root parameterisation); pdf = 1 / area.
 inline Vec2 sampleUniformTriangle(Vec2 u) {
     const float su = std::sqrt(u.x);
@@ -39,6 +55,9 @@ public:
     size_t size() const { return cdf_.size() - 1; }
     // Index with probability weight[i] / total; u in [0, 1).
     size_t sample(float u) const;
+    // The same index, and where u fell inside its cell, rescaled to [0, 1): a second uniform
+    // number for placing a point inside the chosen cell (a piecewise-constant density).
+    size_t sample(float u, float& within) const;
     float probability(size_t i) const { return static_cast<float>(cdf_[i + 1] - cdf_[i]); }
     double total() const { return total_; }
 

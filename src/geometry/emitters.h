@@ -1,10 +1,25 @@
-// Emitters and how a point on them is sampled: emissive triangles (area lights) chosen in
-// proportion to their power, points uniform by area; and point lights (delta in position).
-// Every pdf is in area measure: picking probability × 1/area (DESIGN.md §1). A point light's
-// "area pdf" is its picking probability alone: a delta in position (Vertex::isDeltaLight).
+// Emitters and how a point on them is sampled: emissive triangles (area lights), point and spot
+// lights (deltas in position), directional lights (deltas in direction) and the environment
+// (radiance from every direction, environment.h). One is chosen in proportion to its power Φ:
+//     triangle     Φ = π A Le (per emitting face)     point        Φ = 4π I
+//     spot         Φ = I ∫ t² dω over its cone         directional  Φ = π R² E
+//     environment  Φ = π R² ∫ L(ω) dω
+// (luminance of each; R the radius of the scene's bounding sphere, whose disc of area π R² every
+// ray from an emitter at infinity crosses).
+//
+// Measures (docs/design.md, the vertex at infinity). A point on a triangle is measured by area,
+// so its pdf is picking probability × 1/area; a point or spot light's "area pdf" is its picking
+// probability alone (a delta in position). An emitter at infinity is a direction, measured in
+// solid angle: the environment's pdf is picking probability × its map's solid-angle density; a
+// directional light's is the picking probability (a delta in direction). Light leaving an emitter
+// at infinity crosses the bounding disc, facing it, at a point drawn uniformly: its density is
+// 1/(π R²) per unit area across the beam, which becomes an area density at the first surface by
+// that surface's cosine, as a solid-angle density does with cos / r² at a finite emitter.
 #pragma once
+#include <memory>
 #include <vector>
 
+#include "geometry/environment.h"
 #include "geometry/material.h"
 #include "core/sampling.h"
 #include "core/vec.h"
@@ -14,20 +29,31 @@ namespace tripath {
 struct Triangle;
 
 struct Emitter {
-    enum class Kind { Triangle, Point } kind = Kind::Triangle;
-    uint32_t triangle = 0;   // for Kind::Triangle
-    Vec3 position;           // for Kind::Point
-    Spectrum radiance;       // Le for triangles; radiant intensity I (W/sr) for point lights
+    enum class Kind { Triangle, Point, Spot, Directional, Environment } kind = Kind::Triangle;
+    uint32_t triangle = 0;   // Triangle
+    Vec3 position;           // Point, Spot
+    Vec3 axis;               // Spot: unit direction of its beam; Directional: unit direction toward the light
+    Spectrum radiance;       // Le (Triangle); I in W/sr (Point, Spot); E in W/m² (Directional); unused (Environment: its map)
+    float cosInner = 1, cosOuter = 0;  // Spot: full intensity inside the inner cone, none outside the outer
     bool twoSided = false;
-    float area = 0;          // triangle area
+    float area = 0;          // Triangle
     double power = 0;        // Φ, for the choice distribution
+    bool atInfinity() const { return kind == Kind::Directional || kind == Kind::Environment; }
+    bool delta() const { return kind == Kind::Point || kind == Kind::Spot || kind == Kind::Directional; }
 };
 
 struct EmitterSample {
-    Vec3 p;
-    Vec3 n;                  // surface normal (front face) of a triangle emitter; zero for a point light
+    Vec3 p;                  // the point (finite emitters)
+    Vec3 n;                  // surface normal (front face) of a triangle emitter; zero for the others
+    Vec3 towardLight;        // unit direction toward an emitter at infinity; zero for the others
     uint32_t emitter = 0;    // index into Emitters::all()
-    float pdfA = 0;          // area-measure pdf of p (picking probability for a point light)
+    float pdfA = 0;          // its pdf in the emitter's measure (area, or solid angle at infinity)
+};
+
+// The sphere around the scene's bounds that light from infinity is aimed at.
+struct BoundingSphere {
+    Vec3 centre;
+    float radius = 0;
 };
 
 class Emitters {
@@ -35,30 +61,47 @@ public:
     Emitters() = default;
     // `triangles` must outlive this object's use of emitterOfTriangle.
     Emitters(const std::vector<Triangle>& triangles, const std::vector<Material>& materials,
-             const std::vector<Emitter>& pointLights);
+             const std::vector<Emitter>& lights, std::shared_ptr<const Environment> environment, BoundingSphere bounds);
 
     bool empty() const { return all_.empty(); }
     const std::vector<Emitter>& all() const { return all_; }
     // Index of the emitter a triangle belongs to, or -1.
     int emitterOfTriangle(uint32_t triangle) const { return byTriangle_[triangle]; }
+    // Index of the environment emitter, or -1: what a ray that leaves the scene reaches.
+    int environment() const { return environment_; }
 
-    // Samples an emitter by power, then a point on it uniformly by area. u in [0,1)², uc in [0,1).
+    // Samples an emitter by power, then a point on it uniformly by area, or a direction from the
+    // environment's map. u in [0,1)², uc in [0,1).
     EmitterSample sample(float uc, Vec2 u, const std::vector<Triangle>& triangles) const;
-    // The area pdf with which sample() produces a given point on emitter e.
-    float pdfA(int e) const { return pdfA_[e]; }
+    // The pdf with which sample() produces a given point on emitter e (in its measure), or, for an
+    // emitter at infinity, the direction `towardLight`.
+    float pdfA(int e, Vec3 towardLight) const {
+        return e == environment_ ? pdfA_[size_t(e)] * environmentMap_->pdf(towardLight) : pdfA_[size_t(e)];
+    }
 
-    // A direction for light to leave a point of emitter e (front normal n): cosine-weighted over
-    // the emitting hemisphere(s) of a triangle, uniform over the sphere for a point light.
+    // A direction for light to leave a point of finite emitter e (front normal n): cosine-weighted
+    // over the emitting hemisphere(s) of a triangle, uniform over the sphere for a point light,
+    // over the outer cone for a spot.
     Vec3 sampleDirection(int e, Vec3 frontNormal, Vec2 u, float uc) const;
-    // Solid-angle pdf of sampleDirection producing ω.
+    // A point on the bounding disc facing unit direction `towardLight`, where light from an emitter
+    // at infinity starts toward the scene (along −towardLight); u in [0, 1)².
+    Vec3 beamOrigin(Vec3 towardLight, Vec2 u) const;
+    // The density with which emitter e generates the next vertex's direction: per unit solid angle
+    // (sampleDirection) at a finite emitter, per unit area across the beam (beamOrigin) at infinity.
     float directionPdf(int e, Vec3 frontNormal, Vec3 omega) const;
 
-    // Emitted radiance Le(x → ω) of emitter e leaving along unit ω (front face only unless two-sided).
+    // Emitted radiance Le(x → ω) of emitter e leaving along unit ω (front face only unless
+    // two-sided); I(ω) for point and spot lights, E for a directional light.
     Spectrum Le(int e, Vec3 frontNormal, Vec3 omega) const;
 
 private:
+    double powerOf(const Emitter& e) const;
+
     std::vector<Emitter> all_;
     std::vector<int> byTriangle_;
+    std::shared_ptr<const Environment> environmentMap_;
+    int environment_ = -1;
+    BoundingSphere bounds_;
     Distribution1D choice_;
     std::vector<float> pdfA_;  // per emitter, found once: next-event estimation asks at every vertex
 };

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "geometry/embree_isa.h"
@@ -65,6 +66,46 @@ void checkMesh(const SceneDesc& desc, const MeshDesc& m) {
                                          desc.name, m.name));
 }
 
+// The emitter a punctual light is, or none if it emits nothing; InputError for a bad one.
+std::optional<Emitter> punctualEmitter(const LightDesc& l, const std::string& scene) {
+    const Spectrum& i = l.intensity;
+    if (!isFinite(l.position) || !isFinite(i) || i.x < 0 || i.y < 0 || i.z < 0)
+        throw InputError(fmt::format("{}: a light has a non-finite or negative value", scene));
+    if (!isFinite(l.direction) || !(lengthSquared(l.direction) > 0))
+        throw InputError(fmt::format("{}: a light's direction is not finite or zero", scene));
+    if (!(l.innerConeAngle >= 0 && l.innerConeAngle < l.outerConeAngle && l.outerConeAngle <= 0.5f * kPi))
+        throw InputError(fmt::format("{}: a spot light's cone angles are not 0 <= inner < outer <= pi/2", scene));
+    if (isBlack(i)) return std::nullopt;
+    Emitter e;
+    e.position = l.position;
+    e.radiance = i;
+    switch (l.kind) {
+        case LightDesc::Kind::Point: e.kind = Emitter::Kind::Point; break;
+        case LightDesc::Kind::Spot:
+            e.kind = Emitter::Kind::Spot;
+            e.axis = normalize(l.direction);
+            e.cosInner = std::cos(l.innerConeAngle);
+            e.cosOuter = std::cos(l.outerConeAngle);
+            break;
+        case LightDesc::Kind::Directional:
+            e.kind = Emitter::Kind::Directional;
+            e.axis = -normalize(l.direction);
+            break;
+    }
+    return e;
+}
+
+// The environment a scene's map describes, or none; InputError for a bad map.
+std::shared_ptr<const Environment> environment(const EnvironmentDesc& d, const std::string& scene) {
+    if (!d.present()) return nullptr;
+    if (d.width < 1 || d.height < 1 || d.texels.size() != size_t(d.width) * size_t(d.height))
+        throw InputError(fmt::format("{}: the environment map's size does not match its texels", scene));
+    for (const Spectrum& t : d.texels)
+        if (!isFinite(t) || t.x < 0 || t.y < 0 || t.z < 0)
+            throw InputError(fmt::format("{}: the environment has a non-finite or negative radiance", scene));
+    return std::make_shared<const Environment>(d.width, d.height, d.texels);
+}
+
 }  // namespace
 
 Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
@@ -76,19 +117,16 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
     addMeshes(desc, warn);
     if (triangles_.empty()) throw InputError(fmt::format("{}: the scene has no triangles", name_));
 
-    std::vector<Emitter> points;
-    for (const PointLightDesc& l : desc.pointLights) {
-        if (!isFinite(l.position) || !isFinite(l.intensity) || l.intensity.x < 0 || l.intensity.y < 0 ||
-            l.intensity.z < 0)
-            throw InputError(fmt::format("{}: a point light has a non-finite or negative value", name_));
-        if (isBlack(l.intensity)) continue;
-        Emitter e;
-        e.position = l.position;
-        e.radiance = l.intensity;
-        points.push_back(e);
-    }
-    emitters_ = Emitters(triangles_, materials_, points);
-    if (emitters_.empty()) throw InputError(fmt::format("{}: the scene has no emitter (nothing emits light)", name_));
+    const Vec3 centre = (lo_ + hi_) * 0.5f;
+    // A little beyond the bounds' corners: rays from emitters at infinity start outside the scene.
+    const BoundingSphere sphere{centre, 0.5f * length(hi_ - lo_) * 1.01f + 1e-4f * maxComponent(abs(centre))};
+    std::vector<Emitter> lights;
+    for (const LightDesc& l : desc.lights)
+        if (auto e = punctualEmitter(l, name_)) lights.push_back(*e);
+    emitters_ = Emitters(triangles_, materials_, lights, environment(desc.environment, name_), sphere);
+    if (emitters_.empty())
+        throw InputError(fmt::format("{}: the scene has no emitter: add an emissive material, a KHR_lights_punctual light, "
+                                     "or an environment (--environment)", name_));
 
     const CameraDesc cam = desc.camera.present ? desc.camera : frameBounds(lo_, hi_);
     if (!isFinite(cam.position) || !isFinite(cam.forward) || !isFinite(cam.up) || !(lengthSquared(cam.forward) > 0) ||
@@ -254,16 +292,14 @@ SurfacePoint Scene::surfacePoint(uint32_t triangle, float u, float v, float tHit
     return sp;
 }
 
-bool Scene::unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const {
-    const bool aSurface = lengthSquared(aNormal) > 0, bSurface = lengthSquared(bNormal) > 0;
-    const Vec3 from = aSurface ? offsetRayOrigin(a, aNormal, b - a) : a;
-    const Vec3 to = bSurface ? offsetRayOrigin(b, bNormal, a - b) : b;
-    if (!isFinite(from) || !isFinite(to)) return false;
+namespace {
+
+// Whether nothing lies along from + t·d for t in (0, tFar): one occlusion ray.
+bool unoccludedRay(RTCScene scene, Vec3 from, Vec3 d, float tFar) {
     kShadowRays.add();
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay ray;
-    const Vec3 d = to - from;
     ray.org_x = from.x;
     ray.org_y = from.y;
     ray.org_z = from.z;
@@ -271,12 +307,28 @@ bool Scene::unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const {
     ray.dir_y = d.y;
     ray.dir_z = d.z;
     ray.tnear = 0.0f;
-    ray.tfar = 1.0f;  // the direction spans the whole segment between the offset ends
+    ray.tfar = tFar;
     ray.mask = 0xffffffffu;
     ray.time = 0.0f;
     ray.flags = 0;
-    rtcOccluded1(rtcScene_, &ctx, &ray);
+    rtcOccluded1(scene, &ctx, &ray);
     return ray.tfar >= 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace
+
+bool Scene::unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const {
+    const bool aSurface = lengthSquared(aNormal) > 0, bSurface = lengthSquared(bNormal) > 0;
+    const Vec3 from = aSurface ? offsetRayOrigin(a, aNormal, b - a) : a;
+    const Vec3 to = bSurface ? offsetRayOrigin(b, bNormal, a - b) : b;
+    if (!isFinite(from) || !isFinite(to)) return false;
+    return unoccludedRay(rtcScene_, from, to - from, 1.0f);  // the direction spans the whole segment between the offset ends
+}
+
+bool Scene::unoccludedToward(Vec3 p, Vec3 normal, Vec3 dir) const {
+    const Vec3 from = lengthSquared(normal) > 0 ? offsetRayOrigin(p, normal, dir) : p;
+    if (!isFinite(from) || !isFinite(dir)) return false;
+    return unoccludedRay(rtcScene_, from, dir, 3.0e38f);
 }
 
 namespace {

@@ -62,6 +62,9 @@ public:
     // True when nothing blocks the open segment between a and b. Each end is a surface point (its
     // geometric normal given, to offset from) or a free point (a null normal: point light, sensor).
     bool unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const;
+    // True when nothing blocks the ray from p (a surface point with geometric normal `normal`, or a
+    // free point: a null normal) along unit `dir` out of the scene: toward an emitter at infinity.
+    bool unoccludedToward(Vec3 p, Vec3 normal, Vec3 dir) const;
 
     // Shading normal at barycentrics (u, v) of a triangle, on the side of the geometric normal.
     Vec3 shadingNormal(uint32_t triangle, float u, float v) const;

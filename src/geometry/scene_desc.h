@@ -17,10 +17,27 @@ struct MeshDesc {
     int material = 0;                  // index into SceneDesc::materials
 };
 
-// KHR_lights_punctual point light: radiant intensity I = colour × intensity (W/sr).
-struct PointLightDesc {
+// A KHR_lights_punctual light. Point and spot: radiant intensity I = colour × intensity (W/sr),
+// a spot's falling off as t² between its inner and outer cone; directional: irradiance
+// E = colour × intensity (W/m²) on a surface facing it. Spot and directional lights shine along
+// `direction`, their node's −Z.
+struct LightDesc {
+    enum class Kind { Point, Spot, Directional };
     Vec3 position;
     Spectrum intensity;
+    Kind kind = Kind::Point;
+    Vec3 direction{0, 0, -1};     // unit
+    float innerConeAngle = 0;     // radians, spot
+    float outerConeAngle = kPi / 4;
+};
+
+// Radiance from infinitely far away, as an equirectangular map (geometry/environment.h gives the
+// convention): width × height linear RGB radiances, rows from the top. None when empty.
+struct EnvironmentDesc {
+    int width = 0, height = 0;
+    std::vector<Spectrum> texels;
+    std::string source;           // the file, or the constant as given, for messages and metadata
+    bool present() const { return !texels.empty(); }
 };
 
 struct CameraDesc {
@@ -35,7 +52,8 @@ struct SceneDesc {
     std::string name;              // file path or built-in name, for messages and metadata
     std::vector<Material> materials;
     std::vector<MeshDesc> meshes;
-    std::vector<PointLightDesc> pointLights;
+    std::vector<LightDesc> lights;
+    EnvironmentDesc environment;
     CameraDesc camera;
 };
 

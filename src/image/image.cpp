@@ -85,7 +85,7 @@ void openAndWrite(OIIO::ImageOutput& out, const std::string& tmp, const std::str
         throw InputError(fmt::format("cannot write '{}': {}", path, oiioError(&out)));
 }
 
-Image readAny(const std::string& path, bool requireExr, Metadata* meta) {
+Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::size_t maxPixels = SIZE_MAX) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(fmt::format("cannot read '{}': file does not exist", path));
     if (fs::is_directory(path, ec)) throw InputError(fmt::format("cannot read '{}': it is a directory", path));
@@ -106,6 +106,9 @@ Image readAny(const std::string& path, bool requireExr, Metadata* meta) {
     if (spec.depth > 1) throw InputError(fmt::format("cannot read '{}': volume images are not supported", path));
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
         throw InputError(fmt::format("cannot read '{}': image has no pixels", path));
+    if (std::size_t(spec.width) * std::size_t(spec.height) > maxPixels)
+        throw InputError(fmt::format("cannot read '{}': {}x{} pixels is more than the {} allowed", path, spec.width,
+                                     spec.height, maxPixels));
 
     // Only the data window is read; an EXR whose data window is offset from
     // its display window is taken as-is (tripath never writes one).
@@ -183,6 +186,6 @@ void writePng(const std::string& path, const Image& img, float exposureStops) {
 
 Image readExr(const std::string& path, Metadata* meta) { return readAny(path, true, meta); }
 
-Image readImage(const std::string& path) { return readAny(path, false, nullptr); }
+Image readImage(const std::string& path, std::size_t maxPixels) { return readAny(path, false, nullptr, maxPixels); }
 
 }  // namespace tripath

@@ -3,6 +3,7 @@
 // does not pay its compile cost or inherit its headers.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -53,8 +54,9 @@ void writePng(const std::string& path, const Image& img, float exposureStops = 0
 Image readExr(const std::string& path, Metadata* meta = nullptr);
 
 // Reads any format OpenImageIO understands as float RGB, without colour
-// conversion: an 8-bit PNG value v comes back as v / 255.
-Image readImage(const std::string& path);
+// conversion: an 8-bit PNG value v comes back as v / 255. A header that claims more than
+// `maxPixels` pixels is refused before anything is allocated.
+Image readImage(const std::string& path, std::size_t maxPixels = SIZE_MAX);
 
 // The sRGB EOTF: the linear value of an encoded one in [0, 1]. Of an 8-bit code c (as in CSS
 // "#rrggbb") it is srgbDecode(c / 255.0f), which writePng writes back as c.

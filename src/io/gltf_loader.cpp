@@ -10,7 +10,7 @@
 // else every root node) are composed parent × child; positions take the full matrix, normals its
 // inverse transpose. Mirroring transforms (negative determinant) reverse the winding so the front
 // face stays where the file put it. Triangles that are degenerate in world space are dropped.
-// Lights: KHR_lights_punctual point lights; camera: the first perspective camera in depth-first order.
+// Lights: KHR_lights_punctual point, spot and directional lights; camera: the first perspective camera in depth-first order.
 #include "io/gltf_loader.h"
 
 #include <glm/glm.hpp>
@@ -355,8 +355,10 @@ void Loader::addCamera(int cameraIndex, const glm::dmat4& world, int nodeIndex) 
     scene_.camera.yfov = float(yfov);
 }
 
-// glTF gives a point light's intensity in candela (lm/sr). This renderer has no photometric
-// units, so the number is taken as radiant intensity in W/sr: I = color × intensity.
+// glTF gives point and spot intensities in candela (lm/sr) and a directional light's in lux
+// (lm/m²). This renderer has no photometric units, so the numbers are taken as radiant intensity
+// in W/sr and irradiance in W/m²: colour × intensity. Spot and directional lights shine along
+// their node's −Z; `range` is a rasteriser's cut-off, not physics, and is ignored.
 void Loader::addLight(const tinygltf::Node& node, const glm::dmat4& world, int nodeIndex) {
     const auto ext = node.extensions.find("KHR_lights_punctual");
     if (ext == node.extensions.end()) return;
@@ -367,17 +369,33 @@ void Loader::addLight(const tinygltf::Node& node, const glm::dmat4& world, int n
     if (index < 0 || size_t(index) >= model_.lights.size())
         report_.fail(nodeName + " references light " + std::to_string(index) + ", which does not exist");
     const tinygltf::Light& light = model_.lights[size_t(index)];
-    if (light.type != "point") {
-        report_.warnOnce(excerpt(light.type) + " lights are ignored (only point lights are supported)");
-        return;
-    }
     const std::string what = "light " + std::to_string(index);
+    LightDesc l;
+    if (light.type == "point") {
+        l.kind = LightDesc::Kind::Point;
+    } else if (light.type == "spot") {
+        l.kind = LightDesc::Kind::Spot;
+        const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
+        if (!std::isfinite(inner) || !std::isfinite(outer) || inner < 0 || inner >= outer || outer > 0.5 * kPi)
+            report_.fail(what + " spot cone angles must satisfy 0 <= inner < outer <= pi/2");
+        l.innerConeAngle = float(inner);
+        l.outerConeAngle = float(outer);
+    } else if (light.type == "directional") {
+        l.kind = LightDesc::Kind::Directional;
+    } else {
+        report_.fail(what + " has type " + excerpt(light.type) + ", not point, spot or directional");
+    }
     const Vec3 color = finiteVec3(light.color, Vec3(1.0f), what + " color", report_);
     if (!std::isfinite(float(light.intensity))) report_.fail(what + " intensity is not finite");
     if (light.intensity < 0 || color.x < 0 || color.y < 0 || color.z < 0)
         report_.fail(what + " has negative color or intensity");
-    if (light.range > 0) report_.warnOnce("light range is ignored (point lights fall off as 1/r^2)");
-    scene_.pointLights.push_back({transformPoint(world, Vec3(0.0f)), color * float(light.intensity)});
+    if (light.range > 0) report_.warnOnce("light range is ignored (lights fall off physically, as 1/r^2)");
+    l.position = transformPoint(world, Vec3(0.0f));
+    l.intensity = color * float(light.intensity);
+    const Vec3 direction = transformDirection(linearPart(world), Vec3(0, 0, -1));
+    if (isBlack(direction) || !isFinite(direction)) report_.fail(nodeName + " light transform is degenerate");
+    l.direction = normalize(direction);
+    scene_.lights.push_back(l);
 }
 
 }  // namespace

@@ -166,12 +166,26 @@ int ModelBuilder::addNode(tinygltf::Node node) {
     return index;
 }
 
-// glTF cameras look down their node's −z with +y up: the node matrix's columns are the scene's
-// right, up and −forward, and the position.
+// A node looking down `forward` (its −z) from `position`, +y as near `up` as forward allows:
+// the node matrix's columns are the right, up and −forward directions, and the position.
+void setFrame(tinygltf::Node& node, Vec3 position, Vec3 forward, Vec3 up) {
+    const Vec3 f = normalize(forward);
+    Vec3 r = cross(f, up);
+    if (!(lengthSquared(r) > 1e-12f)) r = cross(f, Vec3(1, 0, 0));
+    r = normalize(r);
+    const Vec3 u = cross(r, f);
+    node.matrix.clear();
+    for (const Vec3 column : {r, u, -f, position}) {
+        const std::vector<double> xyz = numbers(column);
+        node.matrix.insert(node.matrix.end(), xyz.begin(), xyz.end());
+        node.matrix.push_back(0.0);
+    }
+    node.matrix.back() = 1.0;
+}
+
 void ModelBuilder::addCamera() {
     const CameraDesc& c = scene_.camera;
     if (!c.present) return;
-    const Vec3 f = normalize(c.forward), r = normalize(cross(f, c.up)), u = cross(r, f);
     tinygltf::Camera camera;
     camera.type = "perspective";
     camera.perspective.yfov = number(c.yfov);
@@ -181,29 +195,26 @@ void ModelBuilder::addCamera() {
     tinygltf::Node node;
     node.name = "camera";
     node.camera = 0;
-    for (const Vec3 column : {r, u, -f}) {
-        const std::vector<double> xyz = numbers(column);
-        node.matrix.insert(node.matrix.end(), xyz.begin(), xyz.end());
-        node.matrix.push_back(0.0);
-    }
-    const std::vector<double> position = numbers(c.position);
-    node.matrix.insert(node.matrix.end(), position.begin(), position.end());
-    node.matrix.push_back(1.0);
+    setFrame(node, c.position, c.forward, c.up);
     addNode(node);
 }
 
 void ModelBuilder::addLights() {
-    for (const PointLightDesc& l : scene_.pointLights) {
+    for (const LightDesc& l : scene_.lights) {
         const Scaled i = splitScale(l.intensity);
         const int index = static_cast<int>(model_.lights.size());
         tinygltf::Light light;
-        light.type = "point";
+        light.type = l.kind == LightDesc::Kind::Point ? "point" : l.kind == LightDesc::Kind::Spot ? "spot" : "directional";
         light.color = numbers(isBlack(i.factor) ? Vec3(1.0f) : i.factor);
         light.intensity = number(isBlack(i.factor) ? 0.0f : i.scale);
+        if (l.kind == LightDesc::Kind::Spot) {
+            light.spot.innerConeAngle = number(l.innerConeAngle);
+            light.spot.outerConeAngle = number(l.outerConeAngle);
+        }
         model_.lights.push_back(light);
         tinygltf::Node node;
-        node.name = fmt::format("point light {}", index);
-        node.translation = numbers(l.position);
+        node.name = fmt::format("{} light {}", light.type, index);
+        setFrame(node, l.position, l.direction, Vec3(0, 1, 0));
         setExtension(node.extensions, "KHR_lights_punctual", "light", tinygltf::Value(index));
         addNode(node);
     }

@@ -26,7 +26,7 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
     c.unweighted = pt.beta * emittance(at.value(), traced(pt, ptMinus));  // ε(pt → ptMinus)
     if (isBlack(c.unweighted)) return c;
     Junction junction;
-    if (mis.strategies.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter);
+    if (mis.strategies.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter, pt.ns);
     if (mis.strategies.readsCameraPdfs(t - 2, 0, t)) junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), ptMinus);
     c.setWeight(misWeight(light, 0, camera, t, junction, mis));
     return c;
@@ -46,6 +46,7 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     const Vertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
     const int k = s + t - 1;
     if (scattersDelta(qs, s - 1, k) || scattersDelta(pt, s, k)) return c;  // no shadow ray joins a delta lobe
+    if (pt.atInfinity) return c;  // a camera ray that left the scene: only s = 0 reaches its end
     kConnections.add();
     const Segment segment(qs, pt);
     if (t == 1) {

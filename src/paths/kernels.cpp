@@ -3,6 +3,8 @@
 namespace tripath {
 
 bool visible(const Scene& scene, const Vertex& a, const Vertex& b) {
+    if (b.atInfinity) return scene.unoccludedToward(a.p, a.offsetNormal(), b.ns);
+    if (a.atInfinity) return scene.unoccludedToward(b.p, b.offsetNormal(), a.ns);
     return scene.unoccluded(a.p, a.offsetNormal(), b.p, b.offsetNormal());
 }
 

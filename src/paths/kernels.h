@@ -30,17 +30,28 @@
 namespace tripath {
 
 // |cos θ| at vertex v for the unit direction w: geometric normal, or the sensor's axis;
-// 1 at a point light (it has no surface to foreshorten).
-[[gnu::always_inline]] inline float cosine(const Vertex& v, Vec3 w) { return v.isDeltaLight() ? 1.0f : absDot(v.ng, w); }
+// 1 at an emitter without a surface (a point light has none to foreshorten; at infinity, the
+// solid-angle measure has none).
+[[gnu::always_inline]] inline float cosine(const Vertex& v, Vec3 w) { return v.isFreeEmitter() ? 1.0f : absDot(v.ng, w); }
 
 // The segment between two vertices, its direction and length computed once for the kernels
 // that share it (g, the cosines of ρ or ε, and the area pdfs at either end).
+//
+// A segment to a vertex at infinity (vertex.h) has that vertex's direction and, in place of the
+// squared length, 1: the far end is measured in solid angle, so g = V (no 1/r²), its cosine is 1,
+// a solid-angle pdf toward it is its pdf, and the beam's density per unit area across it (emitters.h)
+// becomes an area density at the near end by the near end's cosine alone (docs/design.md).
 class Segment {
 public:
     Segment(const Vertex& a, const Vertex& b) : Segment(a, &b) {}
     // The segment from a to its neighbour b, if a has one there (a subpath's endpoint does not).
     Segment(const Vertex& a, const Vertex* b) : a_(a), b_(b) {
         if (!b) return;
+        if (a.atInfinity || b->atInfinity) [[unlikely]] {
+            d2_ = 1.0f;
+            w_ = b->atInfinity ? b->ns : -a.ns;
+            return;
+        }
         d2_ = lengthSquared(b->p - a.p);
         w_ = (b->p - a.p) / std::sqrt(d2_);
     }
@@ -48,7 +59,8 @@ public:
     // its cosines are those of the ray itself, which an offset origin and rounded hit points make
     // differ slightly from the direction between the points (kernels that end up beside the
     // sampler's pdf of that ray must use its direction, or their ratio drifts: see `traced`).
-    Segment(const Vertex& a, const Vertex& b, Vec3 w) : a_(a), b_(&b), d2_(lengthSquared(b.p - a.p)), w_(w) {}
+    Segment(const Vertex& a, const Vertex& b, Vec3 w)
+        : a_(a), b_(&b), d2_(a.atInfinity || b.atInfinity ? 1.0f : lengthSquared(b.p - a.p)), w_(w) {}
     Vec3 direction() const { return w_; }  // unit, a → b
     // The direction as LocalScattering takes a neighbour: null where there is no b.
     const Vec3* towardB() const { return b_ ? &w_ : nullptr; }

@@ -45,7 +45,7 @@ void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, std::
     }
 }
 
-// Calls sink(strategy, merge) for each merge of a non-delta camera vertex z_{t−1} (t ≥ 2) with a
+// Calls sink(strategy, merge) for each merge of a non-delta camera vertex z_{t−1} (t ≥ 2) on a surface with a
 // light vertex the search finds within its radius, with k = s + t − 2 ≤ maxDepth and a non-zero
 // contribution, in a fixed order.
 template <class Sink>
@@ -60,7 +60,7 @@ void evaluateMerges(const Scene& scene, const LightVertexSearch& search, const S
     for (int t = 2; t <= last;) {
         int n = 0;
         for (; t <= last && n < kBatch; ++t)
-            if (!camera[t - 1].delta) {
+            if (!camera[t - 1].delta && !camera[t - 1].atInfinity) {
                 points[n] = camera[t - 1].p;
                 ts[n++] = t;
             }

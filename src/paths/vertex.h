@@ -16,12 +16,12 @@ namespace tripath {
 
 struct Vertex {
     enum class Kind : uint8_t { Sensor, Emitter, Surface };
-    // Widest fields first and the two bytes last: no padding inside (96 bytes; the light store
-    // holds millions and every walk step copies one).
+    // Widest fields first and the bytes last: no padding inside (96 bytes; the light store holds
+    // millions and every walk step copies one).
     const Material* material = nullptr;
     Vec3 p;
-    Vec3 ng;               // geometric normal; camera forward for the sensor; zero for a point light
-    Vec3 ns;               // shading normal (surfaces)
+    Vec3 ng;               // geometric normal; camera forward for the sensor; zero for an emitter without a surface
+    Vec3 ns;               // shading normal (surfaces); the unit direction toward an emitter at infinity
     Vec3 arrival;          // unit direction back along the ray its walk reached it by (kernels.h: traced)
     Spectrum beta{0.0f};
     uint32_t triangle = 0;
@@ -31,11 +31,18 @@ struct Vertex {
     float continuation = 1;  // Russian roulette's q for a walk going on from here (roulette.h)
     float misSum = 0;      // running sum of MIS terms from the subpath's start to here (mis.h)
     Kind kind = Kind::Surface;
-    bool delta = false;    // scatters through a delta lobe: nothing can connect to it
-    // Point light: a delta in position, so no path can hit it (strategy s = 0 is impossible).
-    bool isDeltaLight() const { return kind == Kind::Emitter && lengthSquared(ng) == 0; }
+    bool delta = false;    // scatters through a delta lobe (nothing can connect to it); at an emitter, a delta light
+    // A direction rather than a point (the environment, a directional light): measured in solid
+    // angle, its segments have the fixed direction `ns` and no length (kernels.h: Segment).
+    bool atInfinity = false;
+    // Point, spot and directional lights: deltas in position or direction, so no path can hit
+    // them (strategy s = 0 is impossible).
+    bool isDeltaLight() const { return kind == Kind::Emitter && delta; }
+    // An emitter without a surface (point, spot, directional, environment): no cosine foreshortens
+    // what it emits or receives there.
+    bool isFreeEmitter() const { return kind == Kind::Emitter && lengthSquared(ng) == 0; }
     // Has an area (a surface, an area emitter), so shadow rays start off it.
-    bool onSurface() const { return kind == Kind::Surface || (kind == Kind::Emitter && !isDeltaLight()); }
+    bool onSurface() const { return kind == Kind::Surface || (kind == Kind::Emitter && !isFreeEmitter()); }
     // The normal shadow rays offset along; zero for free points.
     Vec3 offsetNormal() const { return onSurface() ? ng : Vec3(0.0f); }
 };

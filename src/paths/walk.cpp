@@ -32,6 +32,16 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     return v;
 }
 
+// Where a camera walk's ray that leaves the scene ends: the environment, in the direction `dir`.
+Vertex environmentVertex(const Scene& scene, Vec3 dir) {
+    Vertex v;
+    v.kind = Vertex::Kind::Emitter;
+    v.atInfinity = true;
+    v.ns = dir;
+    v.emitter = scene.emitters().environment();
+    return v;
+}
+
 // The area pdfs of the segment just traced from `from` (the path's last vertex) to v, the
 // vertex about to be appended: v's pdfFwd, and the pdfRev of the vertex before `from`, which
 // `from` would generate having been reached from v. A camera walk goes against the light's
@@ -91,15 +101,15 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, f
         const Vec3 origin = from.onSurface() ? offsetRayOrigin(from.p, from.ng, dir) : from.p;
         const auto hit = firstHit ? *firstHit : scene.intersect(origin, dir);
         firstHit = nullptr;
-        if (!hit) return;
-        Vertex v = surfaceVertex(scene, *hit);
+        if (!hit && (mode == TransportMode::Importance || scene.emitters().environment() < 0)) return;
+        Vertex v = hit ? surfaceVertex(scene, *hit) : environmentVertex(scene, dir);
         v.arrival = -dir;
         v.beta = beta * stepFactor(path, v, scatter, pdf, mode);
         if (!isFinite(v.beta) || isBlack(v.beta)) return;  // a grazing hit (p_A = 0) or coincident points
         if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0))
             recordPdfs(scene, path, v, mode, lightPaths);
         path.push_back(v);
-        if (path.size() == maxVertices || (mode == TransportMode::Radiance && settings.cameraUntilNonDelta && !v.delta)) return;
+        if (!hit || path.size() == maxVertices || (mode == TransportMode::Radiance && settings.cameraUntilNonDelta && !v.delta)) return;
 
         const Vec3 wo = normalize(path[path.size() - 2].p - v.p);
         if (!sidesAgree(v, wo)) return;  // arrived through the surface's shading hemisphere: leak mask
@@ -142,12 +152,16 @@ Vertex sensorVertex(const Scene& scene) {
 Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
     const float uc = rng.uniform();
     const EmitterSample es = scene.emitters().sample(uc, uniform2(rng), scene.triangles());
+    const Emitter& e = scene.emitters().all()[es.emitter];
     Vertex y0;
     y0.kind = Vertex::Kind::Emitter;
     y0.p = es.p;
     y0.ng = es.n;
+    y0.ns = es.towardLight;
+    y0.atInfinity = e.atInfinity();
+    y0.delta = e.delta();
     y0.emitter = static_cast<int>(es.emitter);
-    y0.triangle = scene.emitters().all()[es.emitter].triangle;
+    y0.triangle = e.triangle;
     y0.pdfFwd = es.pdfA;
     y0.beta = Spectrum(1.0f / es.pdfA);
     return y0;
@@ -170,12 +184,17 @@ void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Wa
     path.clear();
     if (settings.maxDepth < 1) return;
     path.push_back(sampleEmitterVertex(scene, rng));
-    const Vertex& y0 = path.back();
+    Vertex& y0 = path.back();
+    const Emitters& emitters = scene.emitters();
     const float uc = rng.uniform();
-    const Vec3 dir = scene.emitters().sampleDirection(y0.emitter, y0.ng, uniform2(rng), uc);
-    const float pdfDir = scene.emitters().directionPdf(y0.emitter, y0.ng, dir);
+    const Vec2 u = uniform2(rng);
+    // From an emitter at infinity, light crosses the bounding disc at a point drawn on it: the
+    // walk starts there (y0.p), along the emitter's direction.
+    if (y0.atInfinity) y0.p = emitters.beamOrigin(y0.ns, u);
+    const Vec3 dir = y0.atInfinity ? -y0.ns : emitters.sampleDirection(y0.emitter, y0.ng, u, uc);
+    const float pdfDir = emitters.directionPdf(y0.emitter, y0.ng, dir);
     if (!(pdfDir > 0)) return;
-    const Spectrum Le = scene.emitters().Le(y0.emitter, y0.ng, dir);
+    const Spectrum Le = emitters.Le(y0.emitter, y0.ng, dir);
     if (isBlack(Le)) return;
     randomWalk(scene, rng, y0.beta, Le, pdfDir, dir, TransportMode::Importance, settings, pdfs, kNoSensor,
                static_cast<size_t>(settings.maxDepth), path);

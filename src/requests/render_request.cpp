@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cmath>
+
 #include "geometry/embree_isa.h"
 #include "core/error.h"
+#include "requests/environment_spec.h"
 #include "scenes/scene_source.h"
 #include "paths/kernels.h"
 
@@ -13,6 +16,12 @@ namespace tripath {
 namespace {
 
 bool merges(const Integrator& i) { return i.strategies().merges(); }
+
+// tripath:environment and tripath:environment-scale, when the request has an environment.
+Metadata environmentMetadata(const RenderRequest& r) {
+    if (r.environment.empty()) return {};
+    return {{"tripath:environment", r.environment}, {"tripath:environment-scale", fmt::format("{:.9g}", r.environmentScale)}};
+}
 
 // The front ends' names of the heuristics; the path core knows only the enum.
 MisHeuristic parseMisHeuristic(const std::string& name) {
@@ -55,6 +64,10 @@ void validateValues(const RenderRequest& r, Spelling spelling) {
         fail(fmt::format("{} must be a number of seconds above 0 and at most 1e7 (got {})",
                          name("time"), r.seconds));
     check(true, "max-depth", r.maxDepth, kMaxDepthRange);
+    if (r.environmentScaleGiven && !(std::isfinite(r.environmentScale) && r.environmentScale >= 0))
+        fail(fmt::format("{} must be a finite number of at least 0 (got {})", name("environment-scale"), r.environmentScale));
+    if (r.environmentScaleGiven && r.environment.empty())
+        fail(fmt::format("{} scales an environment: give one with {}", name("environment-scale"), name("environment")));
     check(true, "rr-depth", r.rrDepth, kRrDepthRange);
     check(true, "threads", r.threads, kThreadsRange);
     if (r.radiusGiven && !(r.merge.radius > 0 && r.merge.radius < 1e30f))
@@ -135,17 +148,22 @@ RenderSettings renderSettings(const RenderRequest& r) {
 }
 
 std::unique_ptr<Scene> loadScene(const RenderRequest& r, const WarningSink& warn) {
-    return std::make_unique<Scene>(loadSceneDesc(r.scene, r.gltf, warn), r.width, r.height, warn);
+    SceneDesc desc = loadSceneDesc(r.scene, r.gltf, warn);
+    if (!r.environment.empty()) desc.environment = loadEnvironment(r.environment, r.environmentScale, warn);
+    return std::make_unique<Scene>(std::move(desc), r.width, r.height, warn);
 }
 
 const char* streamsName(StreamDomain d) { return d == StreamDomain::Reference ? "reference" : "render"; }
 
 Metadata convergenceSettings(const RenderRequest& r, const std::string& integrator) {
-    return {{"tripath:scene", r.scene},
-            {"tripath:integrator", integrator},
-            {"tripath:max-depth", std::to_string(r.maxDepth)},
-            {"tripath:rr-depth", std::to_string(rouletteDepth(r, integrator))},
-            {"tripath:mis", r.mis}};
+    Metadata m{{"tripath:scene", r.scene},
+               {"tripath:integrator", integrator},
+               {"tripath:max-depth", std::to_string(r.maxDepth)},
+               {"tripath:rr-depth", std::to_string(rouletteDepth(r, integrator))},
+               {"tripath:mis", r.mis}};
+    const Metadata environment = environmentMetadata(r);
+    m.insert(m.end(), environment.begin(), environment.end());
+    return m;
 }
 
 Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator, const RenderResult& result,
@@ -165,8 +183,7 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:version", TRIPATH_VERSION},
                {"tripath:embree", embreeDescription()},
                {"tripath:ranks", std::to_string(ranks)}};
-    const Metadata light = lightPhaseMetadata(r, scene, integrator);
-    m.insert(m.end(), light.begin(), light.end());
+    for (const Metadata& more : {environmentMetadata(r), lightPhaseMetadata(r, scene, integrator)}) m.insert(m.end(), more.begin(), more.end());
     if (result.interrupted) m.push_back({"tripath:interrupted", interruptionText(result)});
     return m;
 }

@@ -23,6 +23,9 @@ inline constexpr int64_t kMaxLightPaths = int64_t(8192) * 8192;
 struct RenderRequest {
     std::string scene;                    // a built-in's name or a .gltf/.glb file
     GltfOptions gltf;
+    std::string environment;              // a map file or "R,G,B" (environment_spec.h); empty for none
+    float environmentScale = 1;           // multiplies the environment's radiance
+    bool environmentScaleGiven = false;
     std::string integrator = "bdpt";
     int spp = 0;                          // passes (0 unless given: then 16, or as many as `seconds` allows)
     double seconds = 0;                   // wall-clock budget (0 unless given)
@@ -91,7 +94,7 @@ std::unique_ptr<Scene> loadScene(const RenderRequest& r, const WarningSink& warn
 // "render" or "reference", as tripath:streams records a domain.
 const char* streamsName(StreamDomain d);
 // What decides the image a render converges to, as EXR metadata: tripath:scene, integrator,
-// max-depth, rr-depth and mis. Every check that a file may be added to or measured against
+// max-depth, rr-depth and mis, and tripath:environment and environment-scale when one is given. Every check that a file may be added to or measured against
 // (references, checkpoints, the benchmark's reference cache) starts from these.
 Metadata convergenceSettings(const RenderRequest& r, const std::string& integrator);
 // The EXR metadata describing a finished render by `ranks` processes; tripath:interrupted too

@@ -84,7 +84,7 @@ SceneDesc cornellPoint() {
     addCornellWalls(s);
     addCornellBoxes(s);
     const float area = 4.0f * kLightHalf * kLightHalf;
-    s.pointLights.push_back({{0, 1.9f, 0}, kLightRadiance * (area / 4.0f)});
+    s.lights.push_back({{0, 1.9f, 0}, kLightRadiance * (area / 4.0f)});
     return s;
 }
 

@@ -43,7 +43,7 @@ void addSmallLight(SceneDesc& s) {
 // The same intensity toward the ball as the square light: I = L · A along its normal.
 void addCausticPointLight(SceneDesc& s) {
     const float area = 4.0f * kCausticLightHalf * kCausticLightHalf;
-    s.pointLights.push_back({kCausticLight, Spectrum(kCausticRadiance * area)});
+    s.lights.push_back({kCausticLight, Spectrum(kCausticRadiance * area)});
 }
 
 }  // namespace
@@ -109,7 +109,7 @@ SceneDesc sdsMirrorsScene() {
     addQuad(s, "hood +x", black, {hx, lo, hz + o}, {hx, lo, -hz - o}, {hx, top + o, -hz - o}, {hx, top + o, hz + o});
     addQuad(s, "hood -z", black, {hx + o, lo, -hz}, {-hx - o, lo, -hz}, {-hx - o, top + o, -hz}, {hx + o, top + o, -hz});
     addQuad(s, "hood +z", black, {-hx - o, lo, hz}, {hx + o, lo, hz}, {hx + o, top + o, hz}, {-hx - o, top + o, hz});
-    s.pointLights.push_back({k.light, Spectrum(k.intensity)});
+    s.lights.push_back({k.light, Spectrum(k.intensity)});
 
     Material floorMirror;
     floorMirror.name = "floor mirror";
