@@ -1,12 +1,19 @@
 #include "oracle.h"
 
+#include <cmath>
 #include <limits>
 
 namespace tripath {
 
-namespace {
-Vec3 unitDirection(const Vertex& from, const Vertex& to) { return normalize(to.p - from.p); }
-}  // namespace
+Vec3 unitDirection(const Vertex& from, const Vertex& to) {
+    if (to.atInfinity) return to.ns;
+    if (from.atInfinity) return -from.ns;
+    return normalize(to.p - from.p);
+}
+
+float cosineToward(const Vertex& x, Vec3 w) {
+    return x.kind == Vertex::Kind::Emitter && lengthSquared(x.ng) == 0 ? 1.0f : std::abs(dot(x.ng, w));
+}
 
 float inverseSquaredDistance(const Vertex& a, const Vertex& b) {
     const float d2 = lengthSquared(a.p - b.p);
@@ -24,7 +31,13 @@ Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight,
     return LocalScattering(scene, v, towardLight ? &l : nullptr, towardCamera ? &c : nullptr).value();
 }
 
-float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to) { return Segment(from, to).toArea(pdfOmega, to); }
+float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to) {
+    if (to.atInfinity) return pdfOmega;
+    const float c = cosineToward(to, unitDirection(to, from));
+    if (from.atInfinity) return pdfOmega * c;
+    const float d2 = lengthSquared(to.p - from.p);
+    return d2 > 0 ? pdfOmega * c / d2 : 0.0f;
+}
 
 Spectrum pathContribution(const Scene& scene, const std::vector<Vertex>& x) {
     const size_t k = x.size() - 1;

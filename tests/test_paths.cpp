@@ -18,7 +18,7 @@ namespace {
 
 using Path = std::vector<Vertex>;  // x0 (emitter) … xk (sensor)
 
-Vec3 dirTo(const Vertex& from, const Vertex& to) { return normalize(to.p - from.p); }
+Vec3 dirTo(const Vertex& from, const Vertex& to) { return unitDirection(from, to); }
 // x_i scatters through a delta lobe: an interior vertex of delta material. x0 emits and xk senses,
 // whatever their material or however the walk that found them saw them.
 bool scattersDelta(const Path& x, int i) {
@@ -106,7 +106,7 @@ double vertexPdf(const Scene& scene, const Path& x, int i, bool lightSide, int r
     if (g < 0 || g > k) return lightSide ? forwardPdf(scene, x, i) : 1.0;
     double p;
     if (scattersDelta(x, g))
-        p = scattersDelta(x, i) ? 1.0 : std::abs(dot(x[i].ng, dirTo(x[i], x[g])));
+        p = scattersDelta(x, i) ? 1.0 : cosineToward(x[i], dirTo(x[i], x[g]));
     else if (scattersDelta(x, i))
         p = lightSide ? forwardSolidAngle(scene, x, i) : reverseSolidAngle(scene, x, i);
     else
@@ -215,6 +215,7 @@ std::vector<OracleScene> oracleScenes(Pdfs pdfs = Pdfs::FromPoints) {
     for (MaterialType type : {MaterialType::Mirror, MaterialType::Dielectric, MaterialType::Conductor})
         v.push_back({test::cornellEmissive(type)});
     v.push_back({test::everyEmitterKind()});
+    v.push_back({test::everyEmitterKindUnderTheSky()});
     for (const char* name : {"caustic", "caustic-point", "sds", "sds-point", "door-ajar", "contact", "grazing", "degenerate",
                              "degenerate-tiny", "degenerate-far"})
         if (pdfs == Pdfs::Recorded || std::string(name) != "degenerate-tiny") v.push_back({builtinScene(name), true});
@@ -459,7 +460,7 @@ Subpath lightPrefix(const Scene& scene, const Path& x, int s) {
         y[i].pdfFwd = forwardPdf(scene, x, i);
         y[i].pdfRev = reversePdf(scene, x, i);
         y[i].beta = Spectrum(1.0f);
-        if (i > 0) y[i].arrival = normalize(y[i - 1].p - y[i].p);  // as a walk would have traced it
+        if (i > 0) y[i].arrival = dirTo(y[i], y[i - 1]);  // as a walk would have traced it
     }
     if (s > 0) {  // x0 as next-event estimation and light subpaths produce it: a point on an emitter
         y[0].kind = Vertex::Kind::Emitter;
@@ -475,9 +476,9 @@ Subpath cameraPrefix(const Scene& scene, const Path& x, int s) {
         z[j].pdfFwd = reversePdf(scene, x, k - j);
         z[j].pdfRev = forwardPdf(scene, x, k - j);
         z[j].beta = Spectrum(1.0f);
-        if (j > 0) z[j].arrival = normalize(z[j - 1].p - z[j].p);
+        if (j > 0) z[j].arrival = dirTo(z[j], z[j - 1]);
     }
-    if (s == 0) {  // x0 reached by the camera walk: a surface that happens to emit
+    if (s == 0 && !x[0].atInfinity) {  // x0 reached by the camera walk: a surface that happens to emit
         Vertex& e = z.back();
         e.kind = Vertex::Kind::Surface;
         e.material = &scene.materialOf(e.triangle);

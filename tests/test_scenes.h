@@ -76,4 +76,41 @@ inline SceneDesc lightBehindASmoothShadedWall() {
     return s;
 }
 
+// A small sky for the tests: 16 × 8 texels of a colour that varies across the map (so that a
+// flipped u or v changes what a surface receives), with one bright "sun" texel 400 times the rest,
+// where importance sampling matters.
+inline EnvironmentDesc testSky() {
+    EnvironmentDesc e;
+    e.width = 16;
+    e.height = 8;
+    for (int r = 0; r < e.height; ++r)
+        for (int c = 0; c < e.width; ++c)
+            e.texels.push_back(Spectrum(0.2f + 0.05f * float(c), 0.3f + 0.1f * float(r), 0.5f));
+    e.texels[2 * 16 + 11] = Spectrum(200.0f, 180.0f, 150.0f);
+    e.source = "test sky";
+    return e;
+}
+
+// everyEmitterKind under the sky as well: the test sky, a directional light and a spot shining in
+// through the box's open front, so that paths start or end at infinity and on every punctual kind.
+inline SceneDesc everyEmitterKindUnderTheSky() {
+    SceneDesc s = everyEmitterKind();
+    s.environment = testSky();
+    LightDesc sun;
+    sun.kind = LightDesc::Kind::Directional;
+    sun.direction = normalize(Vec3(0.2f, -0.5f, -1.0f));
+    sun.intensity = Spectrum(1.5f, 1.4f, 1.2f);
+    s.lights.push_back(sun);
+    LightDesc spot;
+    spot.kind = LightDesc::Kind::Spot;
+    spot.position = {-0.4f, 1.7f, 0.3f};
+    spot.direction = normalize(Vec3(0.3f, -1.0f, -0.2f));
+    spot.intensity = Spectrum(2.0f);
+    spot.innerConeAngle = 0.3f;
+    spot.outerConeAngle = 0.7f;
+    s.lights.push_back(spot);
+    s.name = "every emitter kind under the sky";
+    return s;
+}
+
 }  // namespace tripath::test
