@@ -158,12 +158,21 @@ public:
 
 using Triangle = std::array<Vec3, 3>;
 
+// The scene's triangles in world space: meshes as they are, then each instance's copy.
 std::vector<Triangle> triangles(const SceneDesc& scene) {
     std::vector<Triangle> out;
-    for (const MeshDesc& mesh : scene.meshes)
+    auto add = [&](const MeshDesc& mesh, const Affine& toWorld) {
         for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
-            out.push_back({mesh.positions[mesh.indices[t]], mesh.positions[mesh.indices[t + 1]],
-                           mesh.positions[mesh.indices[t + 2]]});
+            out.push_back({transformPoint(toWorld, mesh.positions[mesh.indices[t]]),
+                           transformPoint(toWorld, mesh.positions[mesh.indices[t + 1]]),
+                           transformPoint(toWorld, mesh.positions[mesh.indices[t + 2]])});
+    };
+    std::vector<bool> instanced(scene.meshes.size(), false);
+    for (const InstancesDesc& group : scene.instances) instanced.at(size_t(group.mesh)) = true;
+    for (size_t i = 0; i < scene.meshes.size(); ++i)
+        if (!instanced[i]) add(scene.meshes[i], Affine{});
+    for (const InstancesDesc& group : scene.instances)
+        for (const Affine& a : group.toWorld) add(scene.meshes[size_t(group.mesh)], a);
     return out;
 }
 
@@ -286,13 +295,17 @@ TEST_F(GltfTest, LoadsOnlyTheDefaultScene) {
     expectNear(tris[0][2], {0, 0, 6});
 }
 
-TEST_F(GltfTest, MeshInstancedByTwoNodesGivesTwoMeshes) {
+TEST_F(GltfTest, MeshPlacedByTwoNodesIsKeptOnceWithTwoTransforms) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3(kTriangle));
     b.addRoot({.mesh = 0});
     b.addRoot({.mesh = 0, .translation = {0, 3, 0}});
-    const auto tris = triangles(load(b.write(file("instanced.gltf"))));
+    const SceneDesc scene = load(b.write(file("instanced.gltf")));
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    ASSERT_EQ(scene.instances.size(), 2u);
+    const auto tris = triangles(scene);
     ASSERT_EQ(tris.size(), 2u);
+    expectNear(tris[0][1], {0, 1, 0});
     expectNear(tris[1][1], {0, 4, 0});
 }
 

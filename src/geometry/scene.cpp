@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "geometry/embree_isa.h"
 #include "core/error.h"
@@ -43,6 +44,13 @@ CameraDesc frameBounds(Vec3 lo, Vec3 hi) {
 
 namespace {
 
+// Beyond 1e15 m, squared distances between vertices (r² in g and every area pdf) come close to
+// float's range; nothing physical needs such coordinates.
+bool isCoordinate(Vec3 p) {
+    constexpr float kMaxCoordinate = 1e15f;
+    return isFinite(p) && maxComponent(abs(p)) <= kMaxCoordinate;
+}
+
 void checkMesh(const SceneDesc& desc, const MeshDesc& m) {
     if (m.indices.size() % 3 != 0)
         throw InputError(fmt::format("{}: mesh '{}' has {} indices, not a multiple of 3", desc.name, m.name,
@@ -57,11 +65,8 @@ void checkMesh(const SceneDesc& desc, const MeshDesc& m) {
         if (i >= m.positions.size())
             throw InputError(fmt::format("{}: mesh '{}' index {} is out of range ({} positions)", desc.name,
                                          m.name, i, m.positions.size()));
-    // Beyond 1e15 m, squared distances between vertices (r² in g and every area pdf) come close to
-    // float's range; nothing physical needs such coordinates.
-    constexpr float kMaxCoordinate = 1e15f;
     for (const Vec3& p : m.positions)
-        if (!isFinite(p) || maxComponent(abs(p)) > kMaxCoordinate)
+        if (!isCoordinate(p))
             throw InputError(fmt::format("{}: mesh '{}' has a vertex position that is not finite or beyond ±1e15",
                                          desc.name, m.name));
 }
@@ -106,6 +111,35 @@ std::shared_ptr<const Environment> environment(const EnvironmentDesc& d, const s
     return std::make_shared<const Environment>(d.width, d.height, d.texels);
 }
 
+// Per mesh, the transforms of all its instances; none for a mesh that appears as it is.
+std::vector<std::optional<std::vector<Affine>>> placements(const SceneDesc& desc) {
+    std::vector<std::optional<std::vector<Affine>>> out(desc.meshes.size());
+    for (const InstancesDesc& in : desc.instances) {
+        if (in.mesh < 0 || size_t(in.mesh) >= out.size())
+            throw InputError(fmt::format("{}: instances name mesh {}, which does not exist", desc.name, in.mesh));
+        for (const Affine& a : in.toWorld)
+            if (!isFinite(a) || !isFinite(normalTransform(a)))
+                throw InputError(fmt::format("{}: an instance of mesh '{}' has a transform that is not finite or "
+                                             "singular", desc.name, desc.meshes[size_t(in.mesh)].name));
+        auto& all = out[size_t(in.mesh)];
+        if (!all) all.emplace();
+        all->insert(all->end(), in.toWorld.begin(), in.toWorld.end());
+    }
+    return out;
+}
+
+// The mesh in world space as `toWorld` places it: normals through its inverse transpose, and the
+// winding reversed by a mirroring transform so the front stays on the side the normals say.
+MeshDesc placed(const MeshDesc& m, const Affine& toWorld) {
+    MeshDesc out = m;
+    const Affine normals = normalTransform(toWorld);
+    for (Vec3& p : out.positions) p = transformPoint(toWorld, p);
+    for (Vec3& n : out.normals) n = transformVector(normals, n);
+    if (determinant(toWorld) < 0)
+        for (size_t i = 0; i + 2 < out.indices.size(); i += 3) std::swap(out.indices[i + 1], out.indices[i + 2]);
+    return out;
+}
+
 }  // namespace
 
 Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
@@ -138,66 +172,143 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
 }
 
 Scene::Scene(const Scene& base, int width, int height)
-    : name_(base.name_), materials_(base.materials_), triangles_(base.triangles_), lo_(base.lo_), hi_(base.hi_),
+    : name_(base.name_), materials_(base.materials_), triangles_(base.triangles_),
+      worldTriangles_(base.worldTriangles_), instances_(base.instances_), lo_(base.lo_), hi_(base.hi_),
       cameraDesc_(base.cameraDesc_), camera_(base.cameraDesc_, width, height), emitters_(base.emitters_),
       device_(base.device_), rtcScene_(base.rtcScene_) {
     rtcRetainDevice(device_);
     rtcRetainScene(rtcScene_);
 }
 
+// World-space triangles first (meshes used once, copies of emissive meshes), then each other
+// instanced mesh once, in object space, with its instances.
 void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
-    lo_ = Vec3(3e38f);
-    hi_ = Vec3(-3e38f);
+    const std::vector<std::optional<std::vector<Affine>>> placement = placements(desc);
+    std::vector<size_t> prototypes;
     size_t degenerate = 0;
-    for (const MeshDesc& m : desc.meshes) {
+    for (size_t i = 0; i < desc.meshes.size(); ++i) {
+        const MeshDesc& m = desc.meshes[i];
         checkMesh(desc, m);
-        for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
-            Triangle t;
-            t.material = m.material;
-            t.smooth = !m.normals.empty();
-            for (int k = 0; k < 3; ++k) t.p[k] = m.positions[m.indices[i + k]];
-            const Vec3 c = cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
-            // Zero-area or needle-thin beyond float precision: no normal, no area pdf. Drop it.
-            if (!(length(c) > 0) || !isFinite(normalize(c))) {
-                ++degenerate;
-                continue;
-            }
-            const Vec3 ng = normalize(c);
-            t.ng = ng;
-            for (int k = 0; k < 3; ++k) {
-                Vec3 n = t.smooth ? m.normals[m.indices[i + k]] : ng;
-                if (!isFinite(n) || !(lengthSquared(n) > 0)) n = ng;
-                t.n[k] = normalize(n);
-                lo_ = min(lo_, t.p[k]);
-                hi_ = max(hi_, t.p[k]);
-            }
-            triangles_.push_back(t);
-        }
+        if (!placement[i])
+            degenerate += addTriangles(m);
+        else if (!isBlack(desc.materials[size_t(m.material)].emission))
+            for (const Affine& a : *placement[i]) degenerate += addTriangles(placed(m, a));
+        else if (!placement[i]->empty())
+            prototypes.push_back(i);
+    }
+    worldTriangles_ = uint32_t(triangles_.size());
+    for (size_t i : prototypes) {
+        const auto first = uint32_t(triangles_.size());
+        degenerate += addTriangles(desc.meshes[i]);
+        const auto count = uint32_t(triangles_.size() - first);
+        if (count == 0) continue;
+        for (const Affine& a : *placement[i]) instances_.push_back({a, normalTransform(a), first, count});
     }
     if (degenerate > 0) warn(fmt::format("{}: dropped {} degenerate (zero-area) triangles", name_, degenerate));
+    findBounds();
 }
 
+// Appends the mesh's triangles as they are; returns how many were degenerate and left out.
+size_t Scene::addTriangles(const MeshDesc& m) {
+    size_t degenerate = 0;
+    for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+        Triangle t;
+        t.material = m.material;
+        t.smooth = !m.normals.empty();
+        for (int k = 0; k < 3; ++k) t.p[k] = m.positions[m.indices[i + k]];
+        const Vec3 c = cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+        // Zero-area or needle-thin beyond float precision: no normal, no area pdf. Drop it.
+        if (!(length(c) > 0) || !isFinite(normalize(c))) {
+            ++degenerate;
+            continue;
+        }
+        const Vec3 ng = normalize(c);
+        t.ng = ng;
+        for (int k = 0; k < 3; ++k) {
+            Vec3 n = t.smooth ? m.normals[m.indices[i + k]] : ng;
+            if (!isFinite(n) || !(lengthSquared(n) > 0)) n = ng;
+            t.n[k] = normalize(n);
+        }
+        triangles_.push_back(t);
+    }
+    return degenerate;
+}
+
+// The box around the world-space triangles and every instance's, its corners where hits put them.
+void Scene::findBounds() {
+    lo_ = Vec3(3e38f);
+    hi_ = Vec3(-3e38f);
+    auto include = [&](Vec3 p) {
+        if (!isCoordinate(p))
+            throw InputError(fmt::format("{}: an instance places a vertex beyond ±1e15 or at a non-finite position", name_));
+        lo_ = min(lo_, p);
+        hi_ = max(hi_, p);
+    };
+    for (uint32_t i = 0; i < worldTriangles_; ++i)
+        for (const Vec3& p : triangles_[i].p) include(p);
+    for (const Instance& in : instances_)
+        for (uint32_t i = in.firstTriangle; i < in.firstTriangle + in.triangleCount; ++i)
+            for (const Vec3& p : triangles_[i].p) include(transformPoint(in.toWorld, p));
+}
+
+namespace {
+
+static_assert(sizeof(Affine) == 12 * sizeof(float), "Affine must be Embree's packed 3x4 column-major matrix");
+
+// Triangles [first, first + count) as an Embree geometry, committed.
+RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Triangle>& triangles, size_t first, size_t count) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * count));
+    auto* idx = static_cast<uint32_t*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), count));
+    for (size_t i = 0; i < count; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 p = triangles[first + i].p[k];
+            v[9 * i + 3 * k + 0] = p.x;
+            v[9 * i + 3 * k + 1] = p.y;
+            v[9 * i + 3 * k + 2] = p.z;
+            idx[3 * i + k] = static_cast<uint32_t>(3 * i + k);
+        }
+    rtcCommitGeometry(geom);
+    return geom;
+}
+
+}  // namespace
+
+// Geometry 0 holds the world-space triangles; geometry 1 + i is instance i, over an Embree scene
+// per instanced mesh (the instances hold the references to it).
 void Scene::buildBvh() {
     const std::string config = std::string("isa=") + kEmbreeIsas[embreeIsaLevel()];  // pinned: embree_isa.h
     device_ = rtcNewDevice(config.c_str());
     if (!device_) throw std::runtime_error("Embree: could not create a device");
     rtcScene_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(rtcScene_, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), 3 * triangles_.size()));
-    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                               3 * sizeof(uint32_t), triangles_.size()));
-    for (size_t i = 0; i < triangles_.size(); ++i)
-        for (int k = 0; k < 3; ++k) {
-            v[9 * i + 3 * k + 0] = triangles_[i].p[k].x;
-            v[9 * i + 3 * k + 1] = triangles_[i].p[k].y;
-            v[9 * i + 3 * k + 2] = triangles_[i].p[k].z;
-            idx[3 * i + k] = static_cast<uint32_t>(3 * i + k);
+    if (worldTriangles_ > 0) {
+        RTCGeometry geom = triangleGeometry(device_, triangles_, 0, worldTriangles_);
+        rtcAttachGeometryByID(rtcScene_, geom, 0);
+        rtcReleaseGeometry(geom);
+    }
+    RTCScene mesh = nullptr;
+    for (size_t i = 0; i < instances_.size(); ++i) {
+        const Instance& in = instances_[i];
+        if (i == 0 || in.firstTriangle != instances_[i - 1].firstTriangle) {
+            if (mesh) rtcReleaseScene(mesh);
+            mesh = rtcNewScene(device_);
+            rtcSetSceneBuildQuality(mesh, RTC_BUILD_QUALITY_HIGH);
+            RTCGeometry geom = triangleGeometry(device_, triangles_, in.firstTriangle, in.triangleCount);
+            rtcAttachGeometry(mesh, geom);
+            rtcReleaseGeometry(geom);
+            rtcCommitScene(mesh);
         }
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(rtcScene_, geom);
-    rtcReleaseGeometry(geom);
+        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, mesh);
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, &in.toWorld);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(rtcScene_, geom, static_cast<unsigned>(1 + i));
+        rtcReleaseGeometry(geom);
+    }
+    if (mesh) rtcReleaseScene(mesh);
     rtcCommitScene(rtcScene_);
 }
 
@@ -206,14 +317,23 @@ Scene::~Scene() {
     if (device_) rtcReleaseDevice(device_);
 }
 
+namespace {
+
+// The corners' normals n0, n1, n2 blended at barycentrics (u, v), unit, on the side of ng.
+Vec3 blendNormals(Vec3 n0, Vec3 n1, Vec3 n2, float u, float v, Vec3 ng) {
+    Vec3 n = n0 * (1.0f - u - v) + n1 * u + n2 * v;
+    if (!(lengthSquared(n) > 0)) return ng;
+    n = normalize(n);
+    return dot(n, ng) < 0 ? -n : n;
+}
+
+}  // namespace
+
 Vec3 Scene::shadingNormal(uint32_t triangle, float u, float v) const {
     const Triangle& t = triangles_[triangle];
     const Vec3 ng = t.geometricNormal();
     if (!t.smooth) return ng;
-    Vec3 n = t.n[0] * (1.0f - u - v) + t.n[1] * u + t.n[2] * v;
-    if (!(lengthSquared(n) > 0)) return ng;
-    n = normalize(n);
-    return dot(n, ng) < 0 ? -n : n;
+    return blendNormals(t.n[0], t.n[1], t.n[2], u, v, ng);
 }
 
 std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) const {
@@ -236,9 +356,10 @@ std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) 
     rh.ray.time = 0.0f;
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(rtcScene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    return surfacePoint(rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar);
+    return hitPoint(rh.hit.instID[0], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar);
 }
 
 void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::optional<SurfacePoint>> hits) const {
@@ -263,6 +384,7 @@ void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::o
         packet.ray.flags[i] = 0;
         packet.ray.id[i] = 0;
         packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
     kClosestHitRays.add(uint64_t(lanes));
     if (lanes > 0) {
@@ -273,7 +395,8 @@ void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::o
     }
     for (size_t i = 0; i < dirs.size(); ++i) {
         if (valid[i] && packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID)
-            hits[i] = surfacePoint(packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i], packet.ray.tfar[i]);
+            hits[i] = hitPoint(packet.hit.instID[0][i], packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i],
+                               packet.ray.tfar[i]);
         else
             hits[i].reset();
     }
@@ -289,6 +412,21 @@ SurfacePoint Scene::surfacePoint(uint32_t triangle, float u, float v, float tHit
     sp.p = t.p[0] * (1.0f - u - v) + t.p[1] * u + t.p[2] * v;
     sp.ng = t.geometricNormal();
     sp.ns = shadingNormal(triangle, u, v);
+    return sp;
+}
+
+// An instance's triangle as the flattened mesh would have it: the point through toWorld, the
+// normals through normalToWorld, each corner's unit before they are blended (as the loader leaves
+// the normals of a mesh it places in world space).
+SurfacePoint Scene::hitPoint(uint32_t instance, uint32_t primitive, float u, float v, float tHit) const {
+    if (instance == RTC_INVALID_GEOMETRY_ID) return surfacePoint(primitive, u, v, tHit);
+    const Instance& in = instances_[instance - 1];
+    SurfacePoint sp = surfacePoint(in.firstTriangle + primitive, u, v, tHit);
+    const Triangle& t = triangles_[sp.triangle];
+    auto normal = [&](Vec3 n) { return normalize(transformVector(in.normalToWorld, n)); };
+    sp.p = transformPoint(in.toWorld, sp.p);
+    sp.ng = normal(t.ng);
+    sp.ns = t.smooth ? blendNormals(normal(t.n[0]), normal(t.n[1]), normal(t.n[2]), u, v, sp.ng) : sp.ng;
     return sp;
 }
 

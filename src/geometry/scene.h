@@ -1,5 +1,11 @@
 // The renderable scene: triangles in one Embree BVH, their materials, the emitters and the
 // sensor. Built from a SceneDesc (gltf_loader or builtin_scenes), validated on the way in.
+//
+// A mesh with instances (scene_desc.h) is stored once: its triangles, in object space, get an
+// Embree scene of their own, which each instance places in the top BVH by its transform; a hit
+// on one reports world-space geometry and the triangle's index in the table, which names its
+// material. An emissive mesh is placed in world space once per instance instead, as a mesh used
+// once is: the emitters sample points on world-space triangles, indexed one to one.
 #pragma once
 #include <memory>
 #include <optional>
@@ -47,6 +53,8 @@ public:
     const std::string& name() const { return name_; }
     const Camera& camera() const { return camera_; }
     const Emitters& emitters() const { return emitters_; }
+    // Each mesh used once and each copy of an emissive mesh in world space, then each other
+    // instanced mesh once in object space: memory grows with the unique triangles, not the copies.
     const std::vector<Triangle>& triangles() const { return triangles_; }
     const std::vector<Material>& materials() const { return materials_; }
     const Material& materialOf(uint32_t triangle) const { return materials_[triangles_[triangle].material]; }
@@ -70,14 +78,29 @@ public:
     Vec3 shadingNormal(uint32_t triangle, float u, float v) const;
 
 private:
+    // One copy of an instanced mesh: its triangles from firstTriangle on (object space), placed by
+    // toWorld; Embree's instance geometry 1 + its index here.
+    struct Instance {
+        Affine toWorld, normalToWorld;
+        uint32_t firstTriangle = 0;
+        uint32_t triangleCount = 0;
+    };
+
     void addMeshes(const SceneDesc& desc, const WarningSink& warn);
+    size_t addTriangles(const MeshDesc& m);
+    void findBounds();
     // The hit record of a ray that hit triangle `triangle` at barycentrics (u, v), parameter t.
     SurfacePoint surfacePoint(uint32_t triangle, float u, float v, float t) const;
+    // The hit record of Embree's hit on primitive `primitive` of instance geometry `instance`
+    // (RTC_INVALID_GEOMETRY_ID: of the world-space triangles).
+    SurfacePoint hitPoint(uint32_t instance, uint32_t primitive, float u, float v, float t) const;
     void buildBvh();
 
     std::string name_;
     std::vector<Material> materials_;
     std::vector<Triangle> triangles_;
+    uint32_t worldTriangles_ = 0;     // triangles_[0, worldTriangles_) are in world space
+    std::vector<Instance> instances_;
     Vec3 lo_, hi_;
     CameraDesc cameraDesc_;  // the file's camera, or one framing the bounds: what reframing starts from
     Camera camera_;

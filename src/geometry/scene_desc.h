@@ -1,9 +1,12 @@
 // A scene as plain data, before any acceleration structure exists: what the glTF loader and the
-// built-in scenes produce and what Scene (geometry/scene.h) is built from. World space throughout.
+// built-in scenes produce and what Scene (geometry/scene.h) is built from. World space throughout,
+// but for the meshes that instances place: each is kept once, in its own space, with the transforms
+// that place its copies, so that a model of many copies costs the memory of one.
 #pragma once
 #include <string>
 #include <vector>
 
+#include "geometry/affine.h"
 #include "geometry/material.h"
 #include "core/vec.h"
 
@@ -40,6 +43,26 @@ struct EnvironmentDesc {
     bool present() const { return !texels.empty(); }
 };
 
+// A transform as EXT_mesh_gpu_instancing gives one: translation × rotation × scale.
+struct TrsDesc {
+    Vec3 translation{0, 0, 0};
+    float rotation[4] = {0, 0, 0, 1};  // quaternion x, y, z, w
+    Vec3 scale{1, 1, 1};
+    bool operator==(const TrsDesc&) const = default;
+};
+
+// Copies of one mesh: SceneDesc::meshes[mesh], in object space, appears once per transform
+// (object to world; normals go through its inverse transpose), and not as it is. A mesh may have
+// several such groups (one per glTF node that places it, say).
+struct InstancesDesc {
+    int mesh = 0;
+    std::vector<Affine> toWorld;
+    // When EXT_mesh_gpu_instancing gave the group: toWorld[i] is parent × trs[i] (as the loader
+    // composes them), kept so that an export says them as compactly. Empty otherwise.
+    std::vector<TrsDesc> trs;
+    Affine parent;
+};
+
 struct CameraDesc {
     bool present = false;          // false: frame the scene's bounds from a default direction
     Vec3 position{0, 0, 0};
@@ -52,6 +75,7 @@ struct SceneDesc {
     std::string name;              // file path or built-in name, for messages and metadata
     std::vector<Material> materials;
     std::vector<MeshDesc> meshes;
+    std::vector<InstancesDesc> instances;
     std::vector<LightDesc> lights;
     EnvironmentDesc environment;
     CameraDesc camera;

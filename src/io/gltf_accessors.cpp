@@ -40,17 +40,22 @@ Accessors::Bytes Accessors::accessorBytes(int index, size_t elementSize) const {
     return {data.data() + view.byteOffset + a.byteOffset, stride, a.count};
 }
 
-std::vector<Vec3> Accessors::readVec3(int index, const std::string& what) const {
+std::vector<float> Accessors::readFloats(int index, int type, const std::string& what) const {
     const tinygltf::Accessor& a = accessor(index, what);
-    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != TINYGLTF_TYPE_VEC3)
-        report_.fail(what + " accessor " + std::to_string(index) + " is not float VEC3");
-    const Bytes bytes = accessorBytes(index, 3 * sizeof(float));
-    std::vector<Vec3> out(bytes.count);
-    for (size_t i = 0; i < bytes.count; ++i) {
-        float v[3];
-        std::memcpy(v, bytes.first + i * bytes.stride, sizeof v);
-        out[i] = {v[0], v[1], v[2]};
-    }
+    const int components = type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != type)
+        report_.fail(what + " accessor " + std::to_string(index) + " is not float VEC" + std::to_string(components));
+    const size_t elementSize = size_t(components) * sizeof(float);
+    const Bytes bytes = accessorBytes(index, elementSize);
+    std::vector<float> out(bytes.count * size_t(components));
+    for (size_t i = 0; i < bytes.count; ++i) std::memcpy(&out[i * size_t(components)], bytes.first + i * bytes.stride, elementSize);
+    return out;
+}
+
+std::vector<Vec3> Accessors::readVec3(int index, const std::string& what) const {
+    const std::vector<float> v = readFloats(index, TINYGLTF_TYPE_VEC3, what);
+    std::vector<Vec3> out(v.size() / 3);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
     return out;
 }
 

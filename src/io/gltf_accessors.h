@@ -1,5 +1,5 @@
-// Typed reads of a glTF model's accessors, as the loader needs them: float VEC3 attributes
-// (POSITION, NORMAL) and unsigned byte, short or int indices. Every accessor, bufferView and
+// Typed reads of a glTF model's accessors, as the loader needs them: float VEC3 and VEC4 data
+// (POSITION, NORMAL, the instancing TRS) and unsigned byte, short or int indices. Every accessor, bufferView and
 // buffer index, the stride and the whole byte range are checked before a byte is read, so a
 // hostile file fails with a message instead of reading out of bounds. Sparse accessors and
 // accessors without a bufferView are refused. A header of the io library's own (the
@@ -23,6 +23,9 @@ public:
 
     // The elements of float VEC3 accessor `index`; `what` names the attribute in messages.
     std::vector<Vec3> readVec3(int index, const std::string& what) const;
+    // The components of float accessor `index` of TINYGLTF_TYPE_* `type` (VEC3, VEC4), element
+    // after element.
+    std::vector<float> readFloats(int index, int type, const std::string& what) const;
     // The elements of unsigned byte, short or int SCALAR accessor `index`, widened; `what` names
     // the primitive in messages.
     std::vector<uint32_t> readIndices(int index, const std::string& what) const;

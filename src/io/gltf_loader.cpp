@@ -10,6 +10,9 @@
 // else every root node) are composed parent × child; positions take the full matrix, normals its
 // inverse transpose. Mirroring transforms (negative determinant) reverse the winding so the front
 // face stays where the file put it. Triangles that are degenerate in world space are dropped.
+// Instancing: a mesh placed more than once (by several nodes, or by a node's
+// EXT_mesh_gpu_instancing, gltf_instancing.h) is kept once in its own space, its triangles
+// degenerate there dropped, with a transform per copy (SceneDesc::instances).
 // Lights: KHR_lights_punctual point, spot and directional lights; camera: the first perspective camera in depth-first order.
 #include "io/gltf_loader.h"
 
@@ -19,6 +22,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -27,6 +31,7 @@
 #include "io/gltf_accessors.h"
 #include "io/gltf_checks.h"
 #include "io/gltf_file.h"
+#include "io/gltf_instancing.h"
 #include "io/gltf_materials.h"
 #include "io/gltf_transforms.h"
 
@@ -83,6 +88,14 @@ public:
     SceneDesc load();
 
 private:
+    // Where a node places a mesh: at its world transform, or at each EXT_mesh_gpu_instancing instance.
+    struct Placement {
+        int mesh;
+        int node;
+        glm::dmat4 world;
+        std::optional<std::vector<TrsDesc>> instances;
+    };
+
     void checkExtensions();
     void warnIgnoredModelFeatures();
     int materialIndex(int gltfMaterial, const std::string& what);
@@ -91,6 +104,8 @@ private:
     void traverseScene();
     glm::dmat4 visitNode(int index, const glm::dmat4& parent);
 
+    void addMeshes();
+    void addInstances(const Placement& placement, std::pair<size_t, size_t> meshes);
     void addMesh(int meshIndex, const glm::dmat4& world, int nodeIndex);
     void addPrimitive(const tinygltf::Primitive& prim, const std::string& name, const glm::dmat4& world);
     std::vector<Vec3> worldNormals(const tinygltf::Primitive& prim, size_t vertexCount,
@@ -103,6 +118,7 @@ private:
 
     Report report_;
     bool allowExternalFiles_;
+    std::vector<Placement> placements_;  // in depth-first order
     tinygltf::Model model_;
     Accessors accessors_{model_, report_};
     SceneDesc scene_;
@@ -117,6 +133,7 @@ SceneDesc Loader::load() {
     warnIgnoredModelFeatures();
     scene_.materials = convertMaterials(model_, report_);
     traverseScene();
+    addMeshes();
     if (droppedTriangles_ > 0)
         report_.warnOnce("dropped " + std::to_string(droppedTriangles_) + " degenerate (zero-area) triangles");
     if (scene_.meshes.empty()) report_.fail("the scene contains no triangles");
@@ -214,7 +231,7 @@ glm::dmat4 Loader::visitNode(int index, const glm::dmat4& parent) {
     const tinygltf::Node& node = model_.nodes[size_t(index)];
     const glm::dmat4 world = compose(parent, localTransform(node, index, report_));
     if (!allFinite(world)) report_.fail("node " + std::to_string(index) + " has a non-finite world transform");
-    if (node.mesh >= 0) addMesh(node.mesh, world, index);
+    if (node.mesh >= 0) placements_.push_back({node.mesh, index, world, readInstances(node, index, accessors_, report_)});
     if (node.camera >= 0) addCamera(node.camera, world, index);
     addLight(node, world, index);
     return world;
@@ -222,6 +239,53 @@ glm::dmat4 Loader::visitNode(int index, const glm::dmat4& parent) {
 
 // ---------------------------------------------------------------------------------------------
 // Meshes
+
+// In the order the nodes placed them: a mesh placed once as world-space triangles, one placed more
+// often in its own space (where it is first placed) with its copies' transforms.
+void Loader::addMeshes() {
+    std::vector<size_t> copies(model_.meshes.size(), 0);
+    for (const Placement& p : placements_)
+        if (size_t(p.mesh) < copies.size()) copies[size_t(p.mesh)] += p.instances ? p.instances->size() : 1;
+    constexpr size_t kNone = std::numeric_limits<size_t>::max();
+    std::vector<std::pair<size_t, size_t>> objectSpace(model_.meshes.size(), {kNone, kNone});  // MeshDesc range
+    for (const Placement& p : placements_) {
+        if (size_t(p.mesh) >= copies.size() || (copies[size_t(p.mesh)] == 1 && !p.instances)) {
+            addMesh(p.mesh, p.world, p.node);
+            continue;
+        }
+        auto& range = objectSpace[size_t(p.mesh)];
+        if (range.first == kNone) {
+            range.first = scene_.meshes.size();
+            addMesh(p.mesh, glm::dmat4(1.0), p.node);
+            range.second = scene_.meshes.size();
+        }
+        addInstances(p, range);
+    }
+}
+
+// The placement's transforms, for each MeshDesc in [meshes.first, meshes.second). Instances
+// compose with the node's world transform rounded to float, as the group keeps it (parent), so
+// that an export, which writes that, loads back to the same transforms.
+void Loader::addInstances(const Placement& placement, std::pair<size_t, size_t> meshes) {
+    InstancesDesc group;
+    auto add = [&](const glm::dmat4& world) {
+        if (collapsesSpace(world))
+            report_.fail("node " + std::to_string(placement.node) + " transform collapses mesh " +
+                         std::to_string(placement.mesh) + " (zero scale or singular matrix)");
+        group.toWorld.push_back(toAffine(world));
+    };
+    if (placement.instances) {
+        group.parent = toAffine(placement.world);
+        group.trs = *placement.instances;
+        for (const TrsDesc& trs : group.trs) add(compose(toDmat4(group.parent), instanceMatrix(trs)));
+    } else {
+        add(placement.world);
+    }
+    for (size_t m = meshes.first; m < meshes.second; ++m) {
+        group.mesh = int(m);
+        scene_.instances.push_back(group);
+    }
+}
 
 void Loader::addMesh(int meshIndex, const glm::dmat4& world, int nodeIndex) {
     const std::string node = "node " + std::to_string(nodeIndex);

@@ -23,15 +23,21 @@ Vec3 toVec3(glm::dvec3 v) { return {float(v.x), float(v.y), float(v.z)}; }
 
 bool isAffine(const glm::dmat4& a) { return glm::row(a, 3) == glm::dvec4(0, 0, 0, 1); }
 
-// T × R × S of a node without a matrix; inputs already checked for length and finiteness, the
-// rotation normalised.
-glm::dmat4 composeTrs(const glm::dvec3& t, const glm::dquat& r, const glm::dvec3& s) {
+}  // namespace
+
+glm::dmat4 trsMatrix(const glm::dvec3& t, const glm::dquat& r, const glm::dvec3& s) {
     glm::dmat4 m = glm::scale(glm::dmat4(glm::mat3_cast(r)), s);  // R × S: columns scaled
     m[3] = glm::dvec4(t, 1.0);                                      // T × (R × S)
     return m;
 }
 
-}  // namespace
+Affine toAffine(const glm::dmat4& a) {
+    return {toVec3(glm::dvec3(a[0])), toVec3(glm::dvec3(a[1])), toVec3(glm::dvec3(a[2])), toVec3(glm::dvec3(a[3]))};
+}
+
+glm::dmat4 toDmat4(const Affine& a) {
+    return {glm::dvec4(toGlm(a.x), 0), glm::dvec4(toGlm(a.y), 0), glm::dvec4(toGlm(a.z), 0), glm::dvec4(toGlm(a.t), 1)};
+}
 
 glm::dmat3 linearPart(const glm::dmat4& a) { return glm::dmat3(a); }
 
@@ -97,7 +103,7 @@ glm::dmat4 localTransform(const tinygltf::Node& node, int index, const Report& r
     if (!allFinite(t) || !allFinite(q) || !allFinite(s)) report.fail(what + " has a non-finite translation, rotation or scale");
     const glm::dquat rotation(q[3], q[0], q[1], q[2]);  // glTF stores (x, y, z, w); glm takes w first
     if (!(glm::length(rotation) > 0)) report.fail(what + " rotation quaternion has zero length");
-    return composeTrs(glm::make_vec3(t.data()), glm::normalize(rotation), glm::make_vec3(s.data()));
+    return trsMatrix(glm::make_vec3(t.data()), glm::normalize(rotation), glm::make_vec3(s.data()));
 }
 
 }  // namespace tripath::gltf

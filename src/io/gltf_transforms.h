@@ -6,8 +6,10 @@
 // the io library's own (the loader's interface is gltf_loader.h).
 #pragma once
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
+#include "geometry/affine.h"
 #include "io/gltf_checks.h"
 #include "core/vec.h"
 
@@ -19,6 +21,9 @@ namespace tripath::gltf {
 // quaternion, normalised here) and scale, glTF's defaults filling what is absent. Fails on a
 // malformed, non-finite or non-affine transform or a zero quaternion.
 glm::dmat4 localTransform(const tinygltf::Node& node, int index, const Report& report);
+
+// T × R × S from a translation, a unit quaternion and a scale (checked by the caller).
+glm::dmat4 trsMatrix(const glm::dvec3& t, const glm::dquat& r, const glm::dvec3& s);
 
 // parent × child: the world transform of a child node.
 glm::dmat4 compose(const glm::dmat4& parent, const glm::dmat4& child);
@@ -35,6 +40,10 @@ bool collapsesSpace(const glm::dmat4& a);
 bool mirrors(const glm::dmat4& a);
 
 Vec3 transformPoint(const glm::dmat4& a, Vec3 p);
+
+// The transform in float, as an instance keeps it (scene_desc.h), and back.
+Affine toAffine(const glm::dmat4& a);
+glm::dmat4 toDmat4(const Affine& a);
 
 // Unit direction of m × v; zero vector when it vanishes or is not finite.
 Vec3 transformDirection(const glm::dmat3& m, Vec3 v);

@@ -2,10 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <set>
+#include <span>
 
 #include "core/error.h"
 #include "io/gltf_model.h"
@@ -28,6 +31,27 @@ double number(float x) {
 }
 
 std::vector<double> numbers(Vec3 v) { return {number(v.x), number(v.y), number(v.z)}; }
+
+// A node matrix, column-major: the affine map's columns, then its translation.
+std::vector<double> matrix(const Affine& a) {
+    std::vector<double> m;
+    for (const Vec3 column : {a.x, a.y, a.z, a.t}) {
+        const std::vector<double> xyz = numbers(column);
+        m.insert(m.end(), xyz.begin(), xyz.end());
+        m.push_back(m.size() == 15 ? 1.0 : 0.0);
+    }
+    return m;
+}
+
+// Two groups place their meshes alike.
+bool samePlacement(const InstancesDesc& a, const InstancesDesc& b) {
+    return a.toWorld == b.toWorld && a.trs == b.trs && a.parent == b.parent;
+}
+
+bool samePlacements(const std::vector<const InstancesDesc*>& a, const std::vector<const InstancesDesc*>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                      [](const InstancesDesc* x, const InstancesDesc* y) { return samePlacement(*x, *y); });
+}
 
 // ---- splitting a radiance or intensity into a factor in [0, 1] and a scale --------------------
 
@@ -65,7 +89,10 @@ private:
     }
     int addArray(const void* data, size_t bytes, int componentType, size_t count, int type);
     tinygltf::Material material(const Material& m);
-    void addMesh(const MeshDesc& m);
+    void addMeshes();
+    std::optional<tinygltf::Primitive> primitive(const MeshDesc& m);
+    int addMesh(std::span<const MeshDesc> meshes);
+    void addPlacement(int mesh, const InstancesDesc& group);
     int addNode(tinygltf::Node node);
     void addCamera();
     void addLights();
@@ -123,11 +150,11 @@ tinygltf::Material ModelBuilder::material(const Material& m) {
 static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floats");
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
 
-void ModelBuilder::addMesh(const MeshDesc& m) {
+std::optional<tinygltf::Primitive> ModelBuilder::primitive(const MeshDesc& m) {
     // glTF forbids empty accessors; a mesh without triangles has nothing to say anyway.
     if (m.indices.empty() || m.positions.empty()) {
         warn(fmt::format("mesh '{}' has no triangles and is left out", m.name));
-        return;
+        return std::nullopt;
     }
     Vec3 lo(3e38f), hi(-3e38f);
     for (const Vec3& p : m.positions) {
@@ -148,13 +175,75 @@ void ModelBuilder::addMesh(const MeshDesc& m) {
                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, m.indices.size(), TINYGLTF_TYPE_SCALAR);
     primitive.material = m.material;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    return primitive;
+}
+
+// One glTF mesh with a primitive per MeshDesc, named after the first; -1 when none has triangles.
+int ModelBuilder::addMesh(std::span<const MeshDesc> meshes) {
     tinygltf::Mesh mesh;
-    mesh.name = m.name;
-    mesh.primitives.push_back(primitive);
+    mesh.name = meshes.front().name;
+    for (const MeshDesc& m : meshes)
+        if (auto p = primitive(m)) mesh.primitives.push_back(std::move(*p));
+    if (mesh.primitives.empty()) return -1;
     model_.meshes.push_back(mesh);
+    return static_cast<int>(model_.meshes.size()) - 1;
+}
+
+// A mesh used once gets a node with no transform. Consecutive meshes placed alike (the
+// primitives of one instanced glTF mesh) become one glTF mesh, written once, with a node per
+// placement: a matrix each, or one node with EXT_mesh_gpu_instancing where the group came so.
+void ModelBuilder::addMeshes() {
+    std::vector<std::vector<const InstancesDesc*>> placements(scene_.meshes.size());
+    for (const InstancesDesc& group : scene_.instances) {
+        if (group.mesh < 0 || size_t(group.mesh) >= placements.size())
+            throw InputError(fmt::format("{}: instances name mesh {}, which does not exist", scene_.name, group.mesh));
+        placements[size_t(group.mesh)].push_back(&group);
+    }
+    const std::span<const MeshDesc> meshes(scene_.meshes);
+    for (size_t i = 0; i < meshes.size();) {
+        size_t end = i + 1;
+        while (!placements[i].empty() && end < meshes.size() && samePlacements(placements[end], placements[i])) ++end;
+        const int mesh = addMesh(meshes.subspan(i, end - i));
+        if (mesh >= 0) {
+            if (placements[i].empty()) {
+                tinygltf::Node node;
+                node.name = meshes[i].name;
+                node.mesh = mesh;
+                addNode(node);
+            }
+            for (const InstancesDesc* group : placements[i]) addPlacement(mesh, *group);
+        }
+        i = end;
+    }
+}
+
+void ModelBuilder::addPlacement(int mesh, const InstancesDesc& group) {
     tinygltf::Node node;
-    node.name = m.name;
-    node.mesh = static_cast<int>(model_.meshes.size()) - 1;
+    node.name = model_.meshes[size_t(mesh)].name;
+    node.mesh = mesh;
+    if (group.trs.empty()) {
+        for (const Affine& a : group.toWorld) {
+            node.matrix = matrix(a);
+            addNode(node);
+        }
+        return;
+    }
+    std::vector<float> t, r, s;
+    for (const TrsDesc& d : group.trs) {
+        t.insert(t.end(), {d.translation.x, d.translation.y, d.translation.z});
+        r.insert(r.end(), d.rotation, d.rotation + 4);
+        s.insert(s.end(), {d.scale.x, d.scale.y, d.scale.z});
+    }
+    const size_t n = group.trs.size();
+    const auto array = [&](const std::vector<float>& v, int type) {
+        return tinygltf::Value(addArray(v.data(), v.size() * sizeof(float), TINYGLTF_COMPONENT_TYPE_FLOAT, n, type));
+    };
+    node.matrix = matrix(group.parent);
+    tinygltf::Value::Object attributes{{"TRANSLATION", array(t, TINYGLTF_TYPE_VEC3)},
+                                       {"ROTATION", array(r, TINYGLTF_TYPE_VEC4)},
+                                       {"SCALE", array(s, TINYGLTF_TYPE_VEC3)}};
+    setExtension(node.extensions, "EXT_mesh_gpu_instancing", "attributes", tinygltf::Value(std::move(attributes)));
+    extensions_.insert("EXT_mesh_gpu_instancing");
     addNode(node);
 }
 
@@ -166,21 +255,14 @@ int ModelBuilder::addNode(tinygltf::Node node) {
     return index;
 }
 
-// A node looking down `forward` (its −z) from `position`, +y as near `up` as forward allows:
-// the node matrix's columns are the right, up and −forward directions, and the position.
-void setFrame(tinygltf::Node& node, Vec3 position, Vec3 forward, Vec3 up) {
+// The frame of a node looking down `forward` (its −z) from `position`, +y as near `up` as forward
+// allows: its columns are the right, up and −forward directions, and the position.
+Affine lookingAlong(Vec3 position, Vec3 forward, Vec3 up) {
     const Vec3 f = normalize(forward);
     Vec3 r = cross(f, up);
     if (!(lengthSquared(r) > 1e-12f)) r = cross(f, Vec3(1, 0, 0));
     r = normalize(r);
-    const Vec3 u = cross(r, f);
-    node.matrix.clear();
-    for (const Vec3 column : {r, u, -f, position}) {
-        const std::vector<double> xyz = numbers(column);
-        node.matrix.insert(node.matrix.end(), xyz.begin(), xyz.end());
-        node.matrix.push_back(0.0);
-    }
-    node.matrix.back() = 1.0;
+    return Affine{r, cross(r, f), -f, position};
 }
 
 void ModelBuilder::addCamera() {
@@ -195,7 +277,7 @@ void ModelBuilder::addCamera() {
     tinygltf::Node node;
     node.name = "camera";
     node.camera = 0;
-    setFrame(node, c.position, c.forward, c.up);
+    node.matrix = matrix(lookingAlong(c.position, c.forward, c.up));
     addNode(node);
 }
 
@@ -214,7 +296,7 @@ void ModelBuilder::addLights() {
         model_.lights.push_back(light);
         tinygltf::Node node;
         node.name = fmt::format("{} light {}", light.type, index);
-        setFrame(node, l.position, l.direction, Vec3(0, 1, 0));
+        node.matrix = matrix(lookingAlong(l.position, l.direction, Vec3(0, 1, 0)));
         setExtension(node.extensions, "KHR_lights_punctual", "light", tinygltf::Value(index));
         addNode(node);
     }
@@ -227,7 +309,7 @@ tinygltf::Model ModelBuilder::build() {
     model_.scenes[0].name = scene_.name;
     model_.defaultScene = 0;
     for (const Material& m : scene_.materials) model_.materials.push_back(material(m));
-    for (const MeshDesc& m : scene_.meshes) addMesh(m);
+    addMeshes();
     addCamera();
     addLights();
     model_.extensionsUsed.assign(extensions_.begin(), extensions_.end());

@@ -12,7 +12,10 @@
 // so the factor (≤ 1, as glTF requires) times the strength gives the radiance back exactly; point
 // lights likewise split into KHR_lights_punctual colour × intensity. Positions and normals go into
 // the buffer as the floats they are, one node per mesh with no transform, so triangles come back
-// bit for bit; other numbers as the shortest decimals that read back as the same floats. The
+// bit for bit; other numbers as the shortest decimals that read back as the same floats. A mesh
+// with instances is written once: consecutive meshes placed alike (one glTF mesh's primitives)
+// as one mesh, and each placement as a node with the transform's matrix, or as one node with
+// EXT_mesh_gpu_instancing where the scene kept the TRS it came as. The
 // camera becomes a perspective camera on a node whose matrix maps glTF's −z/+y view to the
 // scene's forward/up.
 #pragma once
