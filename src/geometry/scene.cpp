@@ -160,7 +160,7 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
     emitters_ = Emitters(triangles_, materials_, lights, environment(desc.environment, name_), sphere);
     if (emitters_.empty())
         throw InputError(fmt::format("{}: the scene has no emitter: add an emissive material, a KHR_lights_punctual light, "
-                                     "or an environment (--environment)", name_));
+                                     "or an environment (--environment; environment= in Python)", name_));
 
     const CameraDesc cam = desc.camera.present ? desc.camera : frameBounds(lo_, hi_);
     if (!isFinite(cam.position) || !isFinite(cam.forward) || !isFinite(cam.up) || !(lengthSquared(cam.forward) > 0) ||
