@@ -129,14 +129,10 @@ float Emitters::directionPdf(int e, Vec3 frontNormal, Vec3 omega) const {
 
 Spectrum Emitters::Le(int e, Vec3 frontNormal, Vec3 omega) const {
     const Emitter& em = all_[size_t(e)];
-    switch (em.kind) {
-        case Emitter::Kind::Triangle: return em.twoSided || dot(frontNormal, omega) > 0 ? em.radiance : Spectrum(0.0f);
-        case Emitter::Kind::Point:
-        case Emitter::Kind::Directional: return em.radiance;
-        case Emitter::Kind::Spot: return em.radiance * spotFalloff(em, dot(omega, em.axis));
-        case Emitter::Kind::Environment: return environmentMap_->radiance(-omega);
-    }
-    return Spectrum(0.0f);
+    if (em.kind == Emitter::Kind::Triangle) return em.twoSided || dot(frontNormal, omega) > 0 ? em.radiance : Spectrum(0.0f);
+    if (em.kind == Emitter::Kind::Point || em.kind == Emitter::Kind::Directional) return em.radiance;
+    if (em.kind == Emitter::Kind::Spot) return em.radiance * spotFalloff(em, dot(omega, em.axis));
+    return environmentMap_->radiance(-omega);
 }
 
 }  // namespace tripath
