@@ -1,5 +1,6 @@
 #include "geometry/emitters.h"
 
+#include "geometry/surface_textures.h"
 #include "geometry/triangle.h"
 #include "core/stats.h"
 
@@ -10,7 +11,7 @@ constexpr Counter kEmitterSamples{Event::EmitterSamples};
 }  // namespace
 
 Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Material>& materials,
-                   const std::vector<Emitter>& pointLights)
+                   const std::vector<Emitter>& pointLights, const SurfaceTextures* textures)
     : byTriangle_(triangles.size(), -1) {
     std::vector<double> power;
     for (uint32_t i = 0; i < triangles.size(); ++i) {
@@ -22,8 +23,16 @@ Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Mat
         e.radiance = m.emission;
         e.twoSided = m.twoSidedEmission;
         e.area = triangles[i].area();
-        // Φ = π · A · L for a Lambertian emitter, per emitting face.
-        e.power = kPi * double(e.area) * luminance(e.radiance) * (e.twoSided ? 2.0 : 1.0);
+        // Φ = π · A · L for a Lambertian emitter, per emitting face (L averaged over the triangle).
+        double areaTimesL = double(e.area) * luminance(e.radiance);
+        if (m.textures && m.textures->emissive) {
+            e.textures = m.textures.get();
+            e.texCoords = textures ? textures->find(i) : nullptr;
+            if (!e.texCoords) continue;  // unreachable: a textured material's triangles have records
+            areaTimesL = texturedEmitterPower(*e.textures, e.radiance, *e.texCoords, e.area);
+            if (!(areaTimesL > 0)) continue;
+        }
+        e.power = kPi * areaTimesL * (e.twoSided ? 2.0 : 1.0);
         byTriangle_[i] = static_cast<int>(all_.size());
         all_.push_back(e);
         power.push_back(e.power);
@@ -55,6 +64,7 @@ EmitterSample Emitters::sample(float uc, Vec2 u, const std::vector<Triangle>& tr
     const Triangle& tri = triangles[e.triangle];
     const Vec2 b = sampleUniformTriangle(u);
     s.p = tri.p[0] * (1.0f - b.x - b.y) + tri.p[1] * b.x + tri.p[2] * b.y;
+    s.bary = b;
     s.n = tri.geometricNormal();
     s.pdfA = pdfA_[i];
     return s;
@@ -76,9 +86,10 @@ float Emitters::directionPdf(int e, Vec3 frontNormal, Vec3 omega) const {
     return cosineHemispherePdf(c);
 }
 
-Spectrum Emitters::Le(int e, Vec3 frontNormal, Vec3 omega) const {
+Spectrum Emitters::Le(int e, Vec3 frontNormal, Vec3 omega, Vec2 bary) const {
     const Emitter& em = all_[e];
-    if (em.kind == Emitter::Kind::Point || em.twoSided || dot(frontNormal, omega) > 0) return em.radiance;
+    if (em.kind == Emitter::Kind::Point || em.twoSided || dot(frontNormal, omega) > 0)
+        return em.textures ? em.textures->emissionAt(em.radiance, em.texCoords->at(bary)) : em.radiance;
     return Spectrum(0.0f);
 }
 

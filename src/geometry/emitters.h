@@ -12,6 +12,9 @@
 namespace tripath {
 
 struct Triangle;
+class SurfaceTextures;
+struct MaterialTextures;
+struct TriangleTexCoords;
 
 struct Emitter {
     enum class Kind { Triangle, Point } kind = Kind::Triangle;
@@ -21,21 +24,28 @@ struct Emitter {
     bool twoSided = false;
     float area = 0;          // triangle area
     double power = 0;        // Φ, for the choice distribution
+    // A triangle whose material has an emissive texture: Le = radiance × the texture there.
+    const MaterialTextures* textures = nullptr;
+    const TriangleTexCoords* texCoords = nullptr;
 };
 
 struct EmitterSample {
     Vec3 p;
     Vec3 n;                  // surface normal (front face) of a triangle emitter; zero for a point light
     uint32_t emitter = 0;    // index into Emitters::all()
+    Vec2 bary;               // barycentrics of p on a triangle emitter (corners 1 and 2)
     float pdfA = 0;          // area-measure pdf of p (picking probability for a point light)
 };
 
 class Emitters {
 public:
     Emitters() = default;
-    // `triangles` must outlive this object's use of emitterOfTriangle.
+    // `triangles` must outlive this object's use of emitterOfTriangle; `textures` (the triangles'
+    // texture coordinates, null when none has any) and the materials' textures its use of Le.
+    // A triangle whose material has an emissive texture is weighed by its textured power, and is
+    // no emitter where that is 0.
     Emitters(const std::vector<Triangle>& triangles, const std::vector<Material>& materials,
-             const std::vector<Emitter>& pointLights);
+             const std::vector<Emitter>& pointLights, const SurfaceTextures* textures = nullptr);
 
     bool empty() const { return all_.empty(); }
     const std::vector<Emitter>& all() const { return all_; }
@@ -53,8 +63,9 @@ public:
     // Solid-angle pdf of sampleDirection producing ω.
     float directionPdf(int e, Vec3 frontNormal, Vec3 omega) const;
 
-    // Emitted radiance Le(x → ω) of emitter e leaving along unit ω (front face only unless two-sided).
-    Spectrum Le(int e, Vec3 frontNormal, Vec3 omega) const;
+    // Emitted radiance Le(x → ω) of emitter e leaving along unit ω (front face only unless
+    // two-sided), x at barycentrics `bary` of a triangle emitter.
+    Spectrum Le(int e, Vec3 frontNormal, Vec3 omega, Vec2 bary) const;
 
 private:
     std::vector<Emitter> all_;

@@ -87,7 +87,7 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
         e.radiance = l.intensity;
         points.push_back(e);
     }
-    emitters_ = Emitters(triangles_, materials_, points);
+    emitters_ = Emitters(triangles_, materials_, points, surfaceTextures_.get());
     if (emitters_.empty()) throw InputError(fmt::format("{}: the scene has no emitter (nothing emits light)", name_));
 
     const CameraDesc cam = desc.camera.present ? desc.camera : frameBounds(lo_, hi_);
@@ -102,7 +102,7 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
 Scene::Scene(const Scene& base, int width, int height)
     : name_(base.name_), materials_(base.materials_), triangles_(base.triangles_), lo_(base.lo_), hi_(base.hi_),
       cameraDesc_(base.cameraDesc_), camera_(base.cameraDesc_, width, height), emitters_(base.emitters_),
-      device_(base.device_), rtcScene_(base.rtcScene_) {
+      surfaceTextures_(base.surfaceTextures_), device_(base.device_), rtcScene_(base.rtcScene_) {
     rtcRetainDevice(device_);
     rtcRetainScene(rtcScene_);
 }
@@ -111,8 +111,12 @@ void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
     lo_ = Vec3(3e38f);
     hi_ = Vec3(-3e38f);
     size_t degenerate = 0;
+    auto surfaceTextures = std::make_shared<SurfaceTextures>();
     for (const MeshDesc& m : desc.meshes) {
         checkMesh(desc, m);
+        const MaterialTextures* textures = materials_[size_t(m.material)].textures.get();
+        const auto first = uint32_t(triangles_.size());
+        std::vector<TriangleTexCoords> texCoords;
         for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
             Triangle t;
             t.material = m.material;
@@ -133,10 +137,65 @@ void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
                 lo_ = min(lo_, t.p[k]);
                 hi_ = max(hi_, t.p[k]);
             }
+            if (textures) texCoords.push_back(triangleTexCoords(m, t, &m.indices[i]));
             triangles_.push_back(t);
         }
+        if (textures) surfaceTextures->add(first, textures, std::move(texCoords));
     }
+    surfaceTextures_ = std::move(surfaceTextures);
     if (degenerate > 0) warn(fmt::format("{}: dropped {} degenerate (zero-area) triangles", name_, degenerate));
+}
+
+TriangleTexCoords Scene::triangleTexCoords(const MeshDesc& m, const Triangle& t, const uint32_t corners[3]) const {
+    TriangleTexCoords r;
+    for (size_t set = 0; set < 2; ++set)
+        for (int k = 0; k < 3; ++k)
+            r.corner[k][set] = m.texCoords[set].size() == m.positions.size() ? m.texCoords[set][corners[k]] : Vec2{};
+    const MaterialTextures& textures = *materials_[size_t(m.material)].textures;
+    if (!textures.normal) return r;
+    const bool given = !m.tangents.empty() && m.tangents.size() == m.positions.size() &&
+                       m.tangentSigns.size() == m.tangents.size();
+    if (given) {
+        for (int k = 0; k < 3; ++k) r.tangent[k] = m.tangents[corners[k]];
+        r.bitangentSign = m.tangentSigns[corners[0]] < 0 ? -1.0f : 1.0f;
+        return r;
+    }
+    const Vec2 uv[3] = {r.corner[0][size_t(textures.normal.texCoord)], r.corner[1][size_t(textures.normal.texCoord)],
+                        r.corner[2][size_t(textures.normal.texCoord)]};
+    Vec3 tangent;
+    triangleTangent(t.p, uv, t.ng, tangent, r.bitangentSign);
+    for (Vec3& c : r.tangent) c = tangent;
+    return r;
+}
+
+TexCoords Scene::texCoords(uint32_t triangle, Vec2 b) const {
+    const TriangleTexCoords* r = surfaceTextures_->find(triangle);
+    return r ? r->at(b) : TexCoords{};
+}
+
+namespace {
+
+// Embree's filter for the triangles of alpha-masked materials, closest hits and shadow rays alike:
+// a hit where the material's alpha is below its cutoff is no hit (the ray goes on through).
+void alphaMaskFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* surfaces = static_cast<const SurfaceTextures*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const uint32_t triangle = RTCHitN_primID(args->hit, args->N, i);
+        const MaterialTextures* textures = surfaces->materialOf(triangle);
+        if (!textures || !textures->masks()) continue;
+        const Vec2 b{RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)};
+        if (textures->holeAt(surfaces->find(triangle)->at(b))) args->valid[i] = 0;
+    }
+}
+
+}  // namespace
+
+void Scene::setAlphaFilters(RTCGeometryTy* geom) const {
+    if (!surfaceTextures_->anyMasks()) return;  // no filter: opaque scenes trace as fast as ever
+    rtcSetGeometryUserData(geom, const_cast<SurfaceTextures*>(surfaceTextures_.get()));
+    rtcSetGeometryIntersectFilterFunction(geom, &alphaMaskFilter);
+    rtcSetGeometryOccludedFilterFunction(geom, &alphaMaskFilter);
 }
 
 void Scene::buildBvh() {
@@ -157,6 +216,7 @@ void Scene::buildBvh() {
             v[9 * i + 3 * k + 2] = triangles_[i].p[k].z;
             idx[3 * i + k] = static_cast<uint32_t>(3 * i + k);
         }
+    setAlphaFilters(geom);
     rtcCommitGeometry(geom);
     rtcAttachGeometry(rtcScene_, geom);
     rtcReleaseGeometry(geom);
@@ -171,10 +231,16 @@ Scene::~Scene() {
 Vec3 Scene::shadingNormal(uint32_t triangle, float u, float v) const {
     const Triangle& t = triangles_[triangle];
     const Vec3 ng = t.geometricNormal();
-    if (!t.smooth) return ng;
+    const MaterialTextures* textures = materials_[size_t(t.material)].textures.get();
+    const bool mapped = textures && textures->normal;
+    if (!t.smooth && !mapped) return ng;
     Vec3 n = t.n[0] * (1.0f - u - v) + t.n[1] * u + t.n[2] * v;
-    if (!(lengthSquared(n) > 0)) return ng;
-    n = normalize(n);
+    n = lengthSquared(n) > 0 ? normalize(n) : ng;
+    if (mapped) {
+        const TriangleTexCoords& r = *surfaceTextures_->find(triangle);
+        const Vec3 tangent = r.tangent[0] * (1.0f - u - v) + r.tangent[1] * u + r.tangent[2] * v;
+        n = perturbNormal(n, tangent, r.bitangentSign, textures->tangentNormalAt(r.at({u, v})));
+    }
     return dot(n, ng) < 0 ? -n : n;
 }
 
@@ -244,6 +310,7 @@ void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::o
 SurfacePoint Scene::surfacePoint(uint32_t triangle, float u, float v, float tHit) const {
     SurfacePoint sp;
     sp.triangle = triangle;
+    sp.bary = {u, v};
     sp.t = tHit;
     const Triangle& t = triangles_[triangle];
     // From barycentrics rather than origin + t·dir: the point lies on the triangle's plane to

@@ -10,11 +10,13 @@
 #include "geometry/camera.h"
 #include "geometry/emitters.h"
 #include "geometry/scene_desc.h"
+#include "geometry/surface_textures.h"
 #include "geometry/triangle.h"
 #include "core/warnings.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
+struct RTCGeometryTy;
 
 namespace tripath {
 
@@ -24,6 +26,7 @@ struct SurfacePoint {
     Vec3 ng;              // geometric normal, by winding (glTF: counter-clockwise is the front)
     Vec3 ns;              // shading normal, on the same side as ng
     uint32_t triangle = 0;
+    Vec2 bary;            // barycentrics of corners 1 and 2: where a textured material is read
     float t = 0;          // ray parameter of the hit
 };
 
@@ -63,11 +66,24 @@ public:
     // geometric normal given, to offset from) or a free point (a null normal: point light, sensor).
     bool unoccluded(Vec3 a, Vec3 aNormal, Vec3 b, Vec3 bNormal) const;
 
-    // Shading normal at barycentrics (u, v) of a triangle, on the side of the geometric normal.
+    // Shading normal at barycentrics (u, v) of a triangle, on the side of the geometric normal:
+    // the interpolated normal, bent by the material's normal texture if it has one.
     Vec3 shadingNormal(uint32_t triangle, float u, float v) const;
+
+    // The BSDF parameters of material m (a triangle's) at barycentrics b: the material itself when
+    // it has no textures, else its textured parameters there, written to `scratch`.
+    const BsdfParams& bsdfAt(const Material& m, uint32_t triangle, Vec2 b, BsdfParams& scratch) const {
+        if (!m.textures) return m;
+        return scratch = m.textures->at(m, texCoords(triangle, b));
+    }
+    // The texture coordinates at barycentrics b of a triangle (zero where the mesh has none).
+    TexCoords texCoords(uint32_t triangle, Vec2 b) const;
 
 private:
     void addMeshes(const SceneDesc& desc, const WarningSink& warn);
+    // The texture coordinates and tangents of one triangle of mesh m, corners `corners`.
+    TriangleTexCoords triangleTexCoords(const MeshDesc& m, const Triangle& t, const uint32_t corners[3]) const;
+    void setAlphaFilters(RTCGeometryTy* geom) const;
     // The hit record of a ray that hit triangle `triangle` at barycentrics (u, v), parameter t.
     SurfacePoint surfacePoint(uint32_t triangle, float u, float v, float t) const;
     void buildBvh();
@@ -79,6 +95,7 @@ private:
     CameraDesc cameraDesc_;  // the file's camera, or one framing the bounds: what reframing starts from
     Camera camera_;
     Emitters emitters_;
+    std::shared_ptr<const SurfaceTextures> surfaceTextures_;  // never null; empty without textures
     RTCDeviceTy* device_ = nullptr;
     RTCSceneTy* rtcScene_ = nullptr;
 };

@@ -54,6 +54,35 @@ std::vector<Vec3> Accessors::readVec3(int index, const std::string& what) const 
     return out;
 }
 
+std::vector<float> Accessors::readFloats(int index, int components, const std::string& what) const {
+    const tinygltf::Accessor& a = accessor(index, what);
+    const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC4;
+    size_t size = 0;
+    if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) size = 4;
+    if (a.normalized && a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) size = 1;
+    if (a.normalized && a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) size = 2;
+    if (size == 0 || a.type != type)
+        report_.fail(what + " accessor " + std::to_string(index) + " is not float or normalized unsigned VEC" +
+                     std::to_string(components));
+    const Bytes bytes = accessorBytes(index, size * size_t(components));
+    std::vector<float> out(bytes.count * size_t(components));
+    for (size_t i = 0; i < bytes.count; ++i)
+        for (size_t c = 0; c < size_t(components); ++c) {
+            const unsigned char* p = bytes.first + i * bytes.stride + c * size;
+            float& x = out[i * size_t(components) + c];
+            if (size == 4) {
+                std::memcpy(&x, p, 4);
+            } else if (size == 2) {
+                uint16_t v;
+                std::memcpy(&v, p, 2);
+                x = float(v) / 65535.0f;
+            } else {
+                x = float(p[0]) / 255.0f;
+            }
+        }
+    return out;
+}
+
 std::vector<uint32_t> Accessors::readIndices(int index, const std::string& what) const {
     const tinygltf::Accessor& a = accessor(index, what + " indices");
     size_t size = 0;

@@ -23,6 +23,9 @@ public:
 
     // The elements of float VEC3 accessor `index`; `what` names the attribute in messages.
     std::vector<Vec3> readVec3(int index, const std::string& what) const;
+    // The elements of accessor `index` of `components` components (VEC2: 2, VEC4: 4), flattened:
+    // float, or normalized unsigned byte or short (TEXCOORD_n's other types) scaled to [0, 1].
+    std::vector<float> readFloats(int index, int components, const std::string& what) const;
     // The elements of unsigned byte, short or int SCALAR accessor `index`, widened; `what` names
     // the primitive in messages.
     std::vector<uint32_t> readIndices(int index, const std::string& what) const;

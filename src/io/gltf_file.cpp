@@ -80,7 +80,7 @@ bool readApprovedFile(std::vector<unsigned char>* out, std::string* err, const s
     return false;
 }
 
-// Textures are not supported: accept every image without decoding it.
+// Images are read by gltf_textures.cpp, for the textures materials use: tinygltf decodes none.
 bool skipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
                        const unsigned char*, int, void*) {
     return true;
@@ -156,8 +156,8 @@ void approveBufferFiles(const nlohmann::json& doc, ApprovedFiles& approved, cons
     }
 }
 
-// tinygltf's own warnings, minus those about image files: textures are ignored anyway (and a
-// missing file only warns for images; a missing buffer is an error).
+// tinygltf's own warnings, minus those about image files, which it does not read (gltf_textures.cpp
+// does, and fails on a missing one that a material uses; a missing buffer is an error).
 void forwardLibraryWarnings(const std::string& text, Report& report) {
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);) {
@@ -180,9 +180,7 @@ tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
     checkAsset(doc, report);
     ApprovedFiles approved;
     approved.allowOutside = allowExternalFiles;
-    std::error_code ec;
-    approved.folder = std::filesystem::canonical(std::filesystem::absolute(path).parent_path(), ec);
-    if (ec) report.fail("cannot resolve the scene's folder (" + ec.message() + ")");
+    approved.folder = sceneFolder(report);
     approveBufferFiles(doc, approved, report);
 
     tinygltf::TinyGLTF parser;
@@ -202,6 +200,13 @@ tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
     forwardLibraryWarnings(warnings, report);
     if (!ok) report.fail("the glTF reader refused it: " + (err.empty() ? "no reason given" : libraryText(err)));
     return model;
+}
+
+std::filesystem::path sceneFolder(const Report& report) {
+    std::error_code ec;
+    auto folder = std::filesystem::canonical(std::filesystem::absolute(report.path()).parent_path(), ec);
+    if (ec) report.fail("cannot resolve the scene's folder (" + ec.message() + ")");
+    return folder;
 }
 
 }  // namespace tripath::gltf

@@ -16,14 +16,15 @@ namespace tripath {
 
 struct Vertex {
     enum class Kind : uint8_t { Sensor, Emitter, Surface };
-    // Widest fields first and the two bytes last: no padding inside (96 bytes; the light store
-    // holds millions and every walk step copies one).
+    // Widest fields first and the two bytes last: no padding inside (104 bytes, 6 of them the
+    // tail's padding; the light store holds millions and every walk step copies one).
     const Material* material = nullptr;
     Vec3 p;
     Vec3 ng;               // geometric normal; camera forward for the sensor; zero for a point light
     Vec3 ns;               // shading normal (surfaces)
     Vec3 arrival;          // unit direction back along the ray its walk reached it by (kernels.h: traced)
     Spectrum beta{0.0f};
+    Vec2 bary;             // barycentrics on `triangle` (corners 1, 2): where textures are read
     uint32_t triangle = 0;
     int emitter = -1;      // the emitter this vertex lies on, or -1
     float pdfFwd = 0;      // area pdf from the vertex before it in its own subpath
@@ -43,6 +44,6 @@ struct Vertex {
 // A subpath: vertex 0 is the emitter (light subpath) or the sensor (camera subpath).
 using Subpath = std::vector<Vertex>;
 
-static_assert(sizeof(Vertex) == 96, "Vertex gained padding or a field: see its layout");
+static_assert(sizeof(Vertex) == 104, "Vertex gained padding or a field: see its layout");
 
 }  // namespace tripath
