@@ -144,7 +144,7 @@ std::shared_ptr<const Texture> TextureReader::texture(int index, bool srgb, cons
     if (name.empty()) report_.fail(what + ": its image is not a PNG or JPEG file");
     OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
     auto input = OIIO::ImageInput::open(name, nullptr, &memory);
-    if (!input) report_.fail(what + ": cannot read its image (" + excerpt(OIIO::geterror()) + ")");
+    if (!input) report_.fail(what + ": cannot read its image: " + quoted(OIIO::geterror()));
     const OIIO::ImageSpec& spec = input->spec();
     const long long pixels = (long long)spec.width * spec.height;
     if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSide || spec.height > kMaxTextureSide ||
@@ -154,7 +154,7 @@ std::shared_ptr<const Texture> TextureReader::texture(int index, bool srgb, cons
     const int channels = std::min(spec.nchannels, 4);
     std::vector<float> raw(static_cast<size_t>(pixels) * static_cast<size_t>(channels));
     if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
-        report_.fail(what + ": cannot decode its image (" + excerpt(input->geterror()) + ")");
+        report_.fail(what + ": cannot decode its image: " + quoted(input->geterror()));
     std::vector<Texel> texels(static_cast<size_t>(pixels));
     for (size_t i = 0; i < texels.size(); ++i) {
         const float* p = &raw[i * size_t(channels)];
