@@ -13,7 +13,11 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 
@@ -32,6 +36,21 @@ float srgbToLinear(float c) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
+// RGBA texels of decoded values, `channels` a texel (grey, grey + alpha, RGB or RGBA), the colour
+// channels decoded from sRGB when `srgb`.
+std::vector<Texel> toTexels(const std::vector<float>& raw, int channels, bool srgb) {
+    std::vector<Texel> texels(raw.size() / size_t(channels));
+    for (size_t i = 0; i < texels.size(); ++i) {
+        const float* p = &raw[i * size_t(channels)];
+        const bool grey = channels < 3;
+        Texel t{p[0], grey ? p[0] : p[1], grey ? p[0] : p[2], channels == 2 ? p[1] : channels == 4 ? p[3] : 1.0f};
+        if (srgb)
+            for (size_t c = 0; c < 3; ++c) t[c] = srgbToLinear(t[c]);
+        texels[i] = t;
+    }
+    return texels;
+}
+
 TextureWrap wrapMode(int gl) {
     switch (gl) {
     case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::ClampToEdge;
@@ -43,6 +62,31 @@ TextureWrap wrapMode(int gl) {
 TextureFilter filterMode(int gl) {
     return gl == TINYGLTF_TEXTURE_FILTER_NEAREST ? TextureFilter::Nearest : TextureFilter::Linear;
 }
+
+// Keeps what libpng and libjpeg print on stderr (OpenImageIO lets them, then returns the same
+// message as its error) off the terminal while it lives: the error is reported once, as the
+// scene's one-line failure. Scenes load before any rendering thread starts, so nothing else is
+// writing to stderr meanwhile.
+class QuietStderr {
+public:
+    QuietStderr() {
+        std::fflush(stderr);
+        saved_ = dup(STDERR_FILENO);
+        const int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+        if (saved_ >= 0 && null >= 0) dup2(null, STDERR_FILENO);
+        if (null >= 0) close(null);
+    }
+    ~QuietStderr() {
+        if (saved_ < 0) return;
+        dup2(saved_, STDERR_FILENO);
+        close(saved_);
+    }
+    QuietStderr(const QuietStderr&) = delete;
+    QuietStderr& operator=(const QuietStderr&) = delete;
+
+private:
+    int saved_ = -1;
+};
 
 // The file name whose extension makes OpenImageIO pick the reader, from the magic bytes.
 std::string formatName(const std::string& bytes) {
@@ -133,15 +177,9 @@ std::string TextureReader::imageBytes(const tinygltf::Image& image, const std::s
     return bytes;
 }
 
-std::shared_ptr<const Texture> TextureReader::texture(int index, bool srgb, const std::string& what) {
-    if (index < 0 || size_t(index) >= model_.textures.size()) report_.fail(what + " does not exist");
-    if (auto it = cache_.find({index, srgb}); it != cache_.end()) return it->second;
-    const tinygltf::Texture& tex = model_.textures[size_t(index)];
-    if (tex.source < 0 || size_t(tex.source) >= model_.images.size())
-        report_.fail(what + " has no PNG or JPEG source image (extension images are not read)");
-    const std::string bytes = imageBytes(model_.images[size_t(tex.source)], what);
-    const std::string name = formatName(bytes);
-    if (name.empty()) report_.fail(what + ": its image is not a PNG or JPEG file");
+std::vector<float> TextureReader::decode(const std::string& bytes, const std::string& name, const std::string& what,
+                                         int& width, int& height, int& channels) const {
+    const QuietStderr quiet;
     OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
     auto input = OIIO::ImageInput::open(name, nullptr, &memory);
     if (!input) report_.fail(what + ": cannot read its image: " + quoted(OIIO::geterror()));
@@ -151,19 +189,27 @@ std::shared_ptr<const Texture> TextureReader::texture(int index, bool srgb, cons
         pixels > kMaxTexturePixels || spec.nchannels < 1)
         report_.fail(what + ": its image claims " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                      " texels (at most 16384 a side and 2^26 in all are read)");
-    const int channels = std::min(spec.nchannels, 4);
+    width = spec.width;
+    height = spec.height;
+    channels = std::min(spec.nchannels, 4);
     std::vector<float> raw(static_cast<size_t>(pixels) * static_cast<size_t>(channels));
     if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
         report_.fail(what + ": cannot decode its image: " + quoted(input->geterror()));
-    std::vector<Texel> texels(static_cast<size_t>(pixels));
-    for (size_t i = 0; i < texels.size(); ++i) {
-        const float* p = &raw[i * size_t(channels)];
-        const bool grey = channels < 3;
-        Texel t{p[0], grey ? p[0] : p[1], grey ? p[0] : p[2], channels == 2 ? p[1] : channels == 4 ? p[3] : 1.0f};
-        if (srgb)
-            for (int c = 0; c < 3; ++c) t[size_t(c)] = srgbToLinear(t[size_t(c)]);
-        texels[i] = t;
-    }
+    return raw;
+}
+
+std::shared_ptr<const Texture> TextureReader::texture(int index, bool srgb, const std::string& what) {
+    if (index < 0 || size_t(index) >= model_.textures.size()) report_.fail(what + " does not exist");
+    if (auto it = cache_.find({index, srgb}); it != cache_.end()) return it->second;
+    const tinygltf::Texture& tex = model_.textures[size_t(index)];
+    if (tex.source < 0 || size_t(tex.source) >= model_.images.size())
+        report_.fail(what + " has no PNG or JPEG source image (extension images are not read)");
+    const std::string bytes = imageBytes(model_.images[size_t(tex.source)], what);
+    const std::string name = formatName(bytes);
+    if (name.empty()) report_.fail(what + ": its image is not a PNG or JPEG file");
+    int width = 0, height = 0, channels = 0;
+    const std::vector<float> raw = decode(bytes, name, what, width, height, channels);
+    std::vector<Texel> texels = toTexels(raw, channels, srgb);
     TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
     TextureFilter filter = TextureFilter::Linear;
     if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size()) {
@@ -172,7 +218,7 @@ std::shared_ptr<const Texture> TextureReader::texture(int index, bool srgb, cons
         wrapV = wrapMode(sampler.wrapT);
         filter = filterMode(sampler.magFilter);
     }
-    auto texture = std::make_shared<const Texture>(spec.width, spec.height, std::move(texels), wrapU, wrapV, filter);
+    auto texture = std::make_shared<const Texture>(width, height, std::move(texels), wrapU, wrapV, filter);
     cache_[{index, srgb}] = texture;
     return texture;
 }

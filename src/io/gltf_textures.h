@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/texture.h"
 #include "io/gltf_checks.h"
@@ -32,6 +33,10 @@ public:
 private:
     std::shared_ptr<const Texture> texture(int index, bool srgb, const std::string& context);
     std::string imageBytes(const tinygltf::Image& image, const std::string& what) const;
+    // The texels of an image file's bytes as floats, `channels` (at most 4) a texel; its header
+    // checked against the size limits before any texel is allocated.
+    std::vector<float> decode(const std::string& bytes, const std::string& name, const std::string& what, int& width,
+                              int& height, int& channels) const;
 
     const tinygltf::Model& model_;
     std::filesystem::path folder_;
