@@ -273,8 +273,8 @@ TEST_F(Textures, ShadowRaysPassThroughMaskedHoles) {
     }
 }
 
-// A floor lit from one side by a small emitter, with a normal texture (or none): the scene of the
-// normal-map tests. `normalTexture`: the PNG's file name, or empty for none.
+// A floor lit from one side by a small emitter, with a normal texture (or none), seen from above:
+// the scene of the normal-map tests. `normalTexture`: the PNG's file name, or empty for none.
 std::unique_ptr<Scene> normalMappedFloor(TexturedScene& s, const std::string& normalTexture,
                                          const std::function<std::unique_ptr<Scene>(TexturedScene&)>& load) {
     nlohmann::json m = whiteMaterial(0, 1);
@@ -304,15 +304,24 @@ TEST_F(Textures, FlatNormalTextureChangesNothingATiltedOneDoes) {
     EXPECT_LT(blockMean(images[2], 0, 0, kSize, kSize), 0.9 * blockMean(images[0], 0, 0, kSize, kSize));
 }
 
-// Light tracing and path tracing agree on a normal-mapped floor: the mapped normal is a shading
-// normal like any other, so the adjoint BSDF (shadingCorrection) and the leak masks apply to it.
+// Light tracing and path tracing agree on the light a normal-mapped floor throws onto a ceiling
+// (lit by nothing else: the emitter faces the floor), seen from below: light paths scatter at the
+// floor in their walks, camera paths connect or arrive there, so the mapped normal must be a
+// shading normal like any other, with the adjoint BSDF (shadingCorrection toward the light side,
+// in either transport mode) and the leak masks.
 TEST_F(Textures, LightAndPathTracingAgreeOnANormalMappedFloor) {
     writePng(file("tilted.png"), 1, 1, 3, std::vector<uint8_t>{90, 170, 230});
     TexturedScene s;
-    const auto scene = normalMappedFloor(s, "tilted.png", [this](TexturedScene& t) { return load(t); });
+    nlohmann::json floor = whiteMaterial(0, 1);
+    floor["normalTexture"] = {{"index", s.addTexture("tilted.png", false)}};
+    s.addQuad({.h = 2, .material = s.addMaterial(floor)});
+    s.addQuad({.z = 1, .h = 0.3f, .material = s.addMaterial(emitterMaterial(20)), .facingDown = true, .x = -2.5f});
+    s.addQuad({.z = 1.6f, .h = 4, .material = s.addMaterial(whiteMaterial(0, 1)), .facingDown = true});
+    s.setCameraLookingUp(0.3f, 0.8f);
+    const auto scene = load(s);
     const std::vector<Block> blocks = blockGrid(kSize, kSize, 2, 2);
     RenderRequest pt = texelRequest("pt"), lt = texelRequest("lt");
-    pt.spp = lt.spp = 64;
+    pt.spp = lt.spp = 128;
     BlockAgreement agreement;
     agreement.compare(blockRuns(*scene, pt, 16, 300, blocks), blockRuns(*scene, lt, 16, 400, blocks), "pt vs lt");
     agreement.expectNoBias();

@@ -73,6 +73,12 @@ public:
         cameraZ_ = z;
         yfov_ = 2 * std::atan(h / z);
     }
+    // A perspective camera at (0, 0, z) looking up (+z, with +y down the image), of field yfov.
+    void setCameraLookingUp(float z, float yfov) {
+        cameraZ_ = z;
+        yfov_ = yfov;
+        lookingUp_ = true;
+    }
     // Writes the .gltf and its .bin beside it; returns the .gltf's path.
     std::string write(const std::filesystem::path& file) {
         std::vector<float> positions, uvs;
@@ -130,6 +136,7 @@ public:
         doc_["meshes"] = {{{"primitives", primitives}}};
         doc_["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", yfov_}, {"znear", 0.01}}}}};
         doc_["nodes"] = {{{"mesh", 0}}, {{"camera", 0}, {"translation", {0, 0, cameraZ_}}}};
+        if (lookingUp_) doc_["nodes"][1]["rotation"] = {1, 0, 0, 0};  // half a turn about x
         doc_["scenes"] = {{{"nodes", {0, 1}}}};
         doc_["scene"] = 0;
         std::ofstream(file) << doc_.dump();
@@ -150,6 +157,7 @@ private:
     std::vector<Box> boxes_;
     std::vector<std::pair<size_t, size_t>> ranges_;
     float cameraZ_ = 2, yfov_ = 1;
+    bool lookingUp_ = false;
 };
 
 }  // namespace tripath::test
