@@ -102,7 +102,8 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
 Scene::Scene(const Scene& base, int width, int height)
     : name_(base.name_), materials_(base.materials_), triangles_(base.triangles_), lo_(base.lo_), hi_(base.hi_),
       cameraDesc_(base.cameraDesc_), camera_(base.cameraDesc_, width, height), emitters_(base.emitters_),
-      surfaceTextures_(base.surfaceTextures_), device_(base.device_), rtcScene_(base.rtcScene_) {
+      surfaceTextures_(base.surfaceTextures_), anyNormalTexture_(base.anyNormalTexture_), device_(base.device_),
+      rtcScene_(base.rtcScene_) {
     rtcRetainDevice(device_);
     rtcRetainScene(rtcScene_);
 }
@@ -143,6 +144,8 @@ void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
         if (textures) surfaceTextures->add(first, textures, std::move(texCoords));
     }
     surfaceTextures_ = std::move(surfaceTextures);
+    anyNormalTexture_ = std::any_of(materials_.begin(), materials_.end(),
+                                    [](const Material& m) { return m.textures && m.textures->normal; });
     if (degenerate > 0) warn(fmt::format("{}: dropped {} degenerate (zero-area) triangles", name_, degenerate));
 }
 
@@ -231,6 +234,7 @@ Scene::~Scene() {
 Vec3 Scene::shadingNormal(uint32_t triangle, float u, float v) const {
     const Triangle& t = triangles_[triangle];
     const Vec3 ng = t.geometricNormal();
+    if (!t.smooth && !anyNormalTexture_) return ng;  // flat shading without a lookup of the material
     const MaterialTextures* textures = materials_[size_t(t.material)].textures.get();
     const bool mapped = textures && textures->normal;
     if (!t.smooth && !mapped) return ng;

@@ -96,6 +96,7 @@ private:
     Camera camera_;
     Emitters emitters_;
     std::shared_ptr<const SurfaceTextures> surfaceTextures_;  // never null; empty without textures
+    bool anyNormalTexture_ = false;
     RTCDeviceTy* device_ = nullptr;
     RTCSceneTy* rtcScene_ = nullptr;
 };

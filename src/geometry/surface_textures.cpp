@@ -70,7 +70,8 @@ Vec3 perturbNormal(Vec3 n, Vec3 tangent, float bitangentSign, Vec3 t) {
     return normalize(mapped);
 }
 
-double texturedEmitterPower(const MaterialTextures& textures, Spectrum factor, const TriangleTexCoords& uv, float area) {
+double texturedEmitterPower(const MaterialTextures& textures, Spectrum factor, const TriangleTexCoords& uv,
+                            float area) {
     constexpr int kGrid = 16;
     double sum = 0;
     for (int j = 0; j < kGrid; ++j)

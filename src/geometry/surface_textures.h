@@ -58,6 +58,7 @@ Vec3 perturbNormal(Vec3 n, Vec3 tangent, float bitangentSign, Vec3 t);
 // The power weight of a textured emitter triangle: its area times the average luminance of its
 // emission over it, from the emission at the centres of a 16 × 16 stratified grid of points
 // uniform by area (sampleUniformTriangle of the cell centres). 0 when every sample is dark.
-double texturedEmitterPower(const MaterialTextures& textures, Spectrum factor, const TriangleTexCoords& uv, float area);
+double texturedEmitterPower(const MaterialTextures& textures, Spectrum factor, const TriangleTexCoords& uv,
+                            float area);
 
 }  // namespace tripath

@@ -50,7 +50,8 @@ Texel Texture::texel(int x, int y) const { return texels_[size_t(y) * size_t(wid
 Texel Texture::lookup(Vec2 uv) const {
     const double x = texelCoordinate(uv.x, width_), y = texelCoordinate(uv.y, height_);
     if (filter_ == TextureFilter::Nearest)
-        return texel(wrapIndex(int64_t(std::floor(x)), width_, wrapU_), wrapIndex(int64_t(std::floor(y)), height_, wrapV_));
+        return texel(wrapIndex(int64_t(std::floor(x)), width_, wrapU_),
+                     wrapIndex(int64_t(std::floor(y)), height_, wrapV_));
     const double x0 = std::floor(x - 0.5), y0 = std::floor(y - 0.5);
     const float fx = float(x - 0.5 - x0), fy = float(y - 0.5 - y0);
     const int xa = wrapIndex(int64_t(x0), width_, wrapU_), xb = wrapIndex(int64_t(x0) + 1, width_, wrapU_);

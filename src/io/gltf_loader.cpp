@@ -2,14 +2,17 @@
 // walk over the default scene's node hierarchy and what its nodes carry (meshes, the camera,
 // point lights). The pieces it builds on have files of their own, one concept each: the scene
 // file and the buffer files it names (gltf_file.cpp), accessors (gltf_accessors.cpp), node
-// transforms (gltf_transforms.cpp), the material mapping (its table heads gltf_materials.cpp)
-// and the checks and messages they share (gltf_checks.h).
+// transforms (gltf_transforms.cpp), the material mapping (its table heads gltf_materials.cpp), the
+// textures (gltf_textures.cpp) and the checks and messages they share (gltf_checks.h).
 //
 // Geometry: TRIANGLES primitives (other modes are skipped with a warning), POSITION and NORMAL as
 // float VEC3, unsigned byte/short/int indices or none. Nodes of the default scene (else scene 0,
 // else every root node) are composed parent × child; positions take the full matrix, normals its
 // inverse transpose. Mirroring transforms (negative determinant) reverse the winding so the front
 // face stays where the file put it. Triangles that are degenerate in world space are dropped.
+// Primitives whose material has textures also keep TEXCOORD_0, TEXCOORD_1 and TANGENT (its xyz by
+// the full matrix's linear part, its sign flipped by a mirroring one); the textures themselves are
+// read with the materials (gltf_textures.cpp).
 // Lights: KHR_lights_punctual point lights; camera: the first perspective camera in depth-first order.
 #include "io/gltf_loader.h"
 

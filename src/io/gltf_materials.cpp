@@ -94,7 +94,8 @@ std::shared_ptr<const MaterialTextures> MaterialConverter::readTextures(const ti
     const auto& pbr = g.pbrMetallicRoughness;
     MaterialTextures t;
     auto read = [&](const auto& info, bool srgb) {
-        return info.index >= 0 ? textures_.slot(info.index, info.texCoord, info.extensions, srgb, context) : TextureSlot{};
+        if (info.index < 0) return TextureSlot{};
+        return textures_.slot(info.index, info.texCoord, info.extensions, srgb, context);
     };
     t.baseColor = read(pbr.baseColorTexture, true);
     t.metallicRoughness = read(pbr.metallicRoughnessTexture, false);

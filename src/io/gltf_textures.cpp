@@ -146,7 +146,8 @@ TextureSlot TextureReader::slot(int index, int texCoord, const tinygltf::Extensi
 
 std::string TextureReader::imageBytes(const tinygltf::Image& image, const std::string& what) const {
     if (image.bufferView >= 0) {
-        if (size_t(image.bufferView) >= model_.bufferViews.size()) report_.fail(what + ": its bufferView does not exist");
+        if (size_t(image.bufferView) >= model_.bufferViews.size())
+            report_.fail(what + ": its bufferView does not exist");
         const tinygltf::BufferView& view = model_.bufferViews[size_t(image.bufferView)];
         if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) report_.fail(what + ": its buffer does not exist");
         const std::vector<unsigned char>& data = model_.buffers[size_t(view.buffer)].data;
