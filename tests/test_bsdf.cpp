@@ -628,9 +628,10 @@ TEST(Bsdf, MetallicRoughnessEndsAreConductorAndPlastic) {
         const Material metal = makeMaterial(MaterialType::Conductor, base, 0.3f);
         const Material plastic = makeMaterial(MaterialType::Plastic, base, 0.3f);
         const Material m1 = metallicRoughness(base, 1.0f, 0.3f), m0 = metallicRoughness(base, 0.0f, 0.3f);
+        const TransportMode mode = TransportMode::Radiance;
         for (int c = 0; c < 3; ++c) {
-            EXPECT_FLOAT_EQ(evalBsdf(m1, wo, wi, TransportMode::Radiance)[c], evalBsdf(metal, wo, wi, TransportMode::Radiance)[c]);
-            EXPECT_FLOAT_EQ(evalBsdf(m0, wo, wi, TransportMode::Radiance)[c], evalBsdf(plastic, wo, wi, TransportMode::Radiance)[c]);
+            EXPECT_FLOAT_EQ(evalBsdf(m1, wo, wi, mode)[c], evalBsdf(metal, wo, wi, mode)[c]);
+            EXPECT_FLOAT_EQ(evalBsdf(m0, wo, wi, mode)[c], evalBsdf(plastic, wo, wi, mode)[c]);
         }
         EXPECT_FLOAT_EQ(pdfBsdf(m1, wo, wi), pdfBsdf(metal, wo, wi));
         EXPECT_FLOAT_EQ(pdfBsdf(m0, wo, wi), pdfBsdf(plastic, wo, wi));

@@ -9,6 +9,7 @@
 // (for a Lambertian one, its albedo times L).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -188,7 +189,8 @@ TEST_F(Textures, HalfMetallicLiesHalfwayUnderUniformRadiance) {
     }
     for (size_t k = 0; k < byMetallic[0].size(); ++k) {
         const MeanError &m0 = byMetallic[0][k], &half = byMetallic[1][k], &m1 = byMetallic[2][k];
-        const double sigma = std::sqrt(half.stderr_ * half.stderr_ + 0.25 * (m0.stderr_ * m0.stderr_ + m1.stderr_ * m1.stderr_));
+        const double sigma =
+            std::sqrt(half.stderr_ * half.stderr_ + 0.25 * (m0.stderr_ * m0.stderr_ + m1.stderr_ * m1.stderr_));
         EXPECT_NEAR(half.mean, 0.5 * (m0.mean + m1.mean), 5 * sigma) << "block " << k;
         EXPECT_GT(std::abs(m1.mean - m0.mean), 8 * sigma) << "block " << k << ": the ends do not differ";
     }
@@ -299,7 +301,8 @@ TEST_F(Textures, FlatNormalTextureChangesNothingATiltedOneDoes) {
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x)
             for (int c = 0; c < 3; ++c)
-                EXPECT_NEAR(images[1].at(x, y)[c], images[0].at(x, y)[c], 1e-3f * images[0].at(x, y)[c] + 1e-6f) << x << "," << y;
+                EXPECT_NEAR(images[1].at(x, y)[c], images[0].at(x, y)[c], 1e-3f * images[0].at(x, y)[c] + 1e-6f)
+                    << x << "," << y;
     // The emitter lies toward −x: a normal tilted toward +x turns the floor away from it.
     EXPECT_LT(blockMean(images[2], 0, 0, kSize, kSize), 0.9 * blockMean(images[0], 0, 0, kSize, kSize));
 }
@@ -325,6 +328,95 @@ TEST_F(Textures, LightAndPathTracingAgreeOnANormalMappedFloor) {
     BlockAgreement agreement;
     agreement.compare(blockRuns(*scene, pt, 16, 300, blocks), blockRuns(*scene, lt, 16, 400, blocks), "pt vs lt");
     agreement.expectNoBias();
+}
+
+// The holes of a masked emitter emit nothing, however a point in them is reached (next-event
+// estimation and light paths sample points by area): a floor lit by an emitter quad whose texture
+// is a hole but for its top-right quarter renders as one lit by that quarter alone.
+TEST_F(Textures, HolesInAMaskedEmitterEmitNothing) {
+    std::vector<uint8_t> texels(4 * 4, 255);
+    for (int texel : {0, 2, 3}) texels[size_t(4 * texel + 3)] = 0;  // row by row: texel 1 is the top right
+    writePng(file("quarter.png"), 2, 2, 4, texels);
+    std::vector<std::unique_ptr<Scene>> scenes;
+    for (bool masked : {true, false}) {
+        TexturedScene s;
+        s.addQuad({.h = 2, .material = s.addMaterial(whiteMaterial())});
+        nlohmann::json light = emitterMaterial(10);
+        if (masked) {
+            light["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", s.addTexture("quarter.png")}};
+            light["alphaMode"] = "MASK";
+            s.addQuad({.z = 1, .h = 1, .material = s.addMaterial(light), .facingDown = true});
+        } else {
+            s.addQuad({.z = 1, .h = 0.5f, .material = s.addMaterial(light), .facingDown = true, .x = 0.5f, .y = 0.5f});
+        }
+        s.setCamera(0.9f, 1);
+        scenes.push_back(load(s));
+    }
+    const std::vector<Block> blocks = blockGrid(kSize, kSize, 2, 2);
+    for (const char* integrator : {"pt", "lt"}) {
+        RenderRequest r = texelRequest(integrator);
+        r.spp = 64;
+        BlockAgreement agreement;
+        agreement.compare(blockRuns(*scenes[0], r, 16, 500, blocks), blockRuns(*scenes[1], r, 16, 600, blocks),
+                          std::string(integrator) + ": masked vs quarter");
+        agreement.expectNoBias();
+    }
+}
+
+// Images embedded in the buffer (a bufferView, as in a .glb) or in a data: URI read as a file's do.
+TEST_F(Textures, EmbeddedImagesReadAsFilesDo) {
+    const std::vector<uint8_t> texels = distinctTexels();
+    writePng(file("glow.png"), kTexels, kTexels, 4, texels);
+    std::vector<Image> images;
+    for (int source = 0; source < 3; ++source) {
+        TexturedScene s;
+        nlohmann::json m = blackMaterial();
+        m["emissiveFactor"] = {1, 1, 1};
+        const int texture = source == 0 ? s.addTexture("glow.png") : s.addEmbeddedTexture(file("glow.png"), source == 2);
+        m["emissiveTexture"] = {{"index", texture}};
+        s.addQuad({.material = s.addMaterial(m)});
+        s.setCamera(2);
+        images.push_back(renderScene(*load(s), texelRequest("pt")).image());
+    }
+    for (int source = 1; source < 3; ++source)
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                for (int c = 0; c < 3; ++c) EXPECT_EQ(images[size_t(source)].at(x, y)[c], images[0].at(x, y)[c]);
+    EXPECT_GT(blockMean(images[0], 0, 0, kSize, kSize), 0.1);
+}
+
+// KHR_texture_transform: the slot maps (u, v) as the extension's README composes it, translation
+// · rotation · scale with column-major R = mat3(cos, sin, 0, −sin, cos, 0, 0, 0, 1), multiplied out
+// here step by step, and reads the coordinate set the extension's texCoord names. The texture
+// (16 × 16, repeating, nearest, linear data) holds its texel's position in its red and green.
+TEST_F(Textures, TextureTransformIsTheExtensionsMatrix) {
+    std::vector<uint8_t> bytes;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) bytes.insert(bytes.end(), {uint8_t(16 * x), uint8_t(16 * y), 255});
+    writePng(file("where.png"), 16, 16, 3, bytes);
+    TexturedScene s;
+    const float ox = 0.25f, oy = 0.5f, r = 0.3926991f, sx = 1.5f, sy = 0.75f;
+    nlohmann::json m = whiteMaterial();
+    m["normalTexture"] = {{"index", s.addTexture("where.png", true, true)},
+                          {"extensions", {{"KHR_texture_transform",
+                                           {{"offset", {ox, oy}}, {"rotation", r}, {"scale", {sx, sy}}, {"texCoord", 1}}}}}};
+    s.addQuad({.material = s.addMaterial(m)});
+    s.addQuad({.z = 1, .material = s.addMaterial(emitterMaterial(1)), .facingDown = true});
+    const SceneDesc desc = loadGltf(s.write(file("scene.gltf")), [](const std::string&) {});
+    const TextureSlot& slot = desc.materials[0].textures->normal;
+    auto repeatIndex = [](float x) {
+        const int i = int(std::floor(16 * x));
+        return ((i % 16) + 16) % 16;
+    };
+    for (Vec2 uv : {Vec2{0.1f, 0.2f}, Vec2{0.33f, 0.71f}, Vec2{0.6f, 0.05f}, Vec2{0.9f, 0.45f}}) {
+        const Vec2 scaled{sx * uv.x, sy * uv.y};
+        const Vec2 rotated{scaled.x * std::cos(r) - scaled.y * std::sin(r),
+                           scaled.x * std::sin(r) + scaled.y * std::cos(r)};
+        const Vec2 expected{rotated.x + ox, rotated.y + oy};
+        const Texel t = slot.lookup({Vec2{0.97f, 0.97f}, uv});  // set 0 must not be read
+        EXPECT_EQ(std::lround(t[0] * 255 / 16), repeatIndex(expected.x)) << uv.x << "," << uv.y;
+        EXPECT_EQ(std::lround(t[1] * 255 / 16), repeatIndex(expected.y)) << uv.x << "," << uv.y;
+    }
 }
 
 }  // namespace

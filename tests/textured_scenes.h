@@ -5,10 +5,12 @@
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -40,7 +42,7 @@ struct Quad {
     float z = 0, h = 1;
     int material = 0;
     bool facingDown = false;  // front face toward −z instead (the same uv seen from +z)
-    float x = 0;              // centre's x
+    float x = 0, y = 0;       // centre's x and y
 };
 
 class TexturedScene {
@@ -49,14 +51,19 @@ public:
         doc_["materials"].push_back(std::move(m));
         return int(doc_["materials"].size()) - 1;
     }
-    // A texture of image file `uri` (next to the scene), its sampler nearest or linear, clamped.
-    int addTexture(const std::string& uri, bool nearest = true) {
-        doc_["images"].push_back({{"uri", uri}});
-        const int filter = nearest ? 9728 : 9729;
-        doc_["samplers"].push_back({{"magFilter", filter}, {"minFilter", filter}, {"wrapS", 33071}, {"wrapT", 33071}});
-        const int n = int(doc_["images"].size()) - 1;
-        doc_["textures"].push_back({{"source", n}, {"sampler", n}});
-        return n;
+    // A texture of image file `uri` (next to the scene), its sampler nearest or linear, clamped or
+    // repeating.
+    int addTexture(const std::string& uri, bool nearest = true, bool repeat = false) {
+        return addImageTexture({{"uri", uri}}, nearest, repeat);
+    }
+    // A texture whose PNG file `png` is copied into the scene: into the buffer (a bufferView, as in
+    // a .glb) or into a base64 data: URI.
+    int addEmbeddedTexture(const std::filesystem::path& png, bool dataUri) {
+        std::ifstream in(png, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (dataUri) return addImageTexture({{"uri", "data:image/png;base64," + base64(bytes)}}, true, false);
+        embedded_.push_back({int(doc_["images"].size()), bytes});
+        return addImageTexture({{"mimeType", "image/png"}}, true, false);
     }
     void addQuad(const Quad& q) { quads_.push_back(q); }
     // An emissive box [−h, h]³ (albedo 0, emitting `radiance` from both faces) around everything.
@@ -90,10 +97,10 @@ public:
         nlohmann::json primitives = nlohmann::json::array();
         for (const Quad& q : quads_) {
             const auto base = uint32_t(positions.size() / 3);
-            corner({q.x - q.h, -q.h, q.z}, {0, 1});
-            corner({q.x + q.h, -q.h, q.z}, {1, 1});
-            corner({q.x + q.h, q.h, q.z}, {1, 0});
-            corner({q.x - q.h, q.h, q.z}, {0, 0});
+            corner({q.x - q.h, q.y - q.h, q.z}, {0, 1});
+            corner({q.x + q.h, q.y - q.h, q.z}, {1, 1});
+            corner({q.x + q.h, q.y + q.h, q.z}, {1, 0});
+            corner({q.x - q.h, q.y + q.h, q.z}, {0, 0});
             const size_t first = indices.size();
             if (q.facingDown) indices.insert(indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
             else indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
@@ -121,12 +128,19 @@ public:
         const size_t pOffset = append(positions.data(), positions.size() * 4);
         const size_t uvOffset = append(uvs.data(), uvs.size() * 4);
         const size_t iOffset = append(indices.data(), indices.size() * 4);
+        std::vector<std::pair<size_t, size_t>> imageViews;  // offset and length of each embedded image
+        for (const auto& [image, png] : embedded_) imageViews.push_back({append(png.data(), png.size()), png.size()});
         std::ofstream(file.string() + ".bin", std::ios::binary) << bytes;
         doc_["asset"] = {{"version", "2.0"}};
         doc_["buffers"] = {{{"uri", file.filename().string() + ".bin"}, {"byteLength", bytes.size()}}};
         doc_["bufferViews"] = {{{"buffer", 0}, {"byteOffset", pOffset}, {"byteLength", positions.size() * 4}},
                                {{"buffer", 0}, {"byteOffset", uvOffset}, {"byteLength", uvs.size() * 4}},
                                {{"buffer", 0}, {"byteOffset", iOffset}, {"byteLength", indices.size() * 4}}};
+        for (size_t k = 0; k < embedded_.size(); ++k) {
+            doc_["images"][size_t(embedded_[k].first)]["bufferView"] = doc_["bufferViews"].size();
+            doc_["bufferViews"].push_back(
+                {{"buffer", 0}, {"byteOffset", imageViews[k].first}, {"byteLength", imageViews[k].second}});
+        }
         doc_["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", vertices}, {"type", "VEC3"}},
                              {{"bufferView", 1}, {"componentType", 5126}, {"count", vertices}, {"type", "VEC2"}}};
         for (const auto& [first, count] : ranges_)
@@ -144,6 +158,25 @@ public:
     }
 
 private:
+    int addImageTexture(nlohmann::json image, bool nearest, bool repeat) {
+        doc_["images"].push_back(std::move(image));
+        const int filter = nearest ? 9728 : 9729, wrap = repeat ? 10497 : 33071;
+        doc_["samplers"].push_back({{"magFilter", filter}, {"minFilter", filter}, {"wrapS", wrap}, {"wrapT", wrap}});
+        const int n = int(doc_["images"].size()) - 1;
+        doc_["textures"].push_back({{"source", n}, {"sampler", n}});
+        return n;
+    }
+    static std::string base64(const std::string& bytes) {
+        static const char* const kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        std::string out;
+        for (size_t i = 0; i < bytes.size(); i += 3) {
+            const size_t n = std::min<size_t>(3, bytes.size() - i);  // bytes in this group of three
+            uint32_t group = 0;
+            for (size_t k = 0; k < n; ++k) group |= uint32_t(uint8_t(bytes[i + k])) << (16 - 8 * k);
+            for (size_t k = 0; k < 4; ++k) out += k <= n ? kDigits[(group >> (18 - 6 * k)) & 63] : '=';
+        }
+        return out;
+    }
     struct Box {
         float h;
         int material;
@@ -156,6 +189,7 @@ private:
     std::vector<Quad> quads_;
     std::vector<Box> boxes_;
     std::vector<std::pair<size_t, size_t>> ranges_;
+    std::vector<std::pair<int, std::string>> embedded_;  // image index, PNG bytes
     float cameraZ_ = 2, yfov_ = 1;
     bool lookingUp_ = false;
 };

@@ -25,7 +25,7 @@ Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Mat
         e.area = triangles[i].area();
         // Φ = π · A · L for a Lambertian emitter, per emitting face (L averaged over the triangle).
         double areaTimesL = double(e.area) * luminance(e.radiance);
-        if (m.textures && m.textures->emissive) {
+        if (m.textures && m.textures->variesEmission()) {
             e.textures = m.textures.get();
             e.texCoords = textures ? textures->find(i) : nullptr;
             if (!e.texCoords) continue;  // unreachable: a textured material's triangles have records

@@ -24,7 +24,8 @@ struct Emitter {
     bool twoSided = false;
     float area = 0;          // triangle area
     double power = 0;        // Φ, for the choice distribution
-    // A triangle whose material has an emissive texture: Le = radiance × the texture there.
+    // A triangle whose material has an emissive texture or alpha holes: Le = radiance × the
+    // texture there, 0 in a hole.
     const MaterialTextures* textures = nullptr;
     const TriangleTexCoords* texCoords = nullptr;
 };
@@ -42,8 +43,8 @@ public:
     Emitters() = default;
     // `triangles` must outlive this object's use of emitterOfTriangle; `textures` (the triangles'
     // texture coordinates, null when none has any) and the materials' textures its use of Le.
-    // A triangle whose material has an emissive texture is weighed by its textured power, and is
-    // no emitter where that is 0.
+    // A triangle whose material has an emissive texture or alpha holes is weighed by its textured
+    // power, and is no emitter where that is 0.
     Emitters(const std::vector<Triangle>& triangles, const std::vector<Material>& materials,
              const std::vector<Emitter>& pointLights, const SurfaceTextures* textures = nullptr);
 

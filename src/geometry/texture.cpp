@@ -80,6 +80,7 @@ BsdfParams MaterialTextures::at(const BsdfParams& factors, const TexCoords& uv) 
 }
 
 Spectrum MaterialTextures::emissionAt(Spectrum factor, const TexCoords& uv) const {
+    if (holeAt(uv)) return Spectrum(0.0f);
     if (!emissive) return factor;
     const Texel t = emissive.lookup(uv);
     return factor * Spectrum(t[0], t[1], t[2]);

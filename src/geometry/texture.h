@@ -66,7 +66,9 @@ struct MaterialTextures {
     bool masks() const { return alphaCutoff >= 0; }
     // The BSDF parameters at a point of coordinates uv, the material's factors being `factors`.
     BsdfParams at(const BsdfParams& factors, const TexCoords& uv) const;
-    // The emitted radiance at a point, the material's emission being `factor`.
+    // Whether the emission varies over the surface: an emissive texture, or holes that emit nothing.
+    bool variesEmission() const { return emissive || masks(); }
+    // The emitted radiance at a point, the material's emission being `factor`: 0 in a hole.
     Spectrum emissionAt(Spectrum factor, const TexCoords& uv) const;
     // Whether the surface is a hole at a point (alpha below the cutoff); false unless masking.
     bool holeAt(const TexCoords& uv) const;

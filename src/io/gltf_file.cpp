@@ -80,9 +80,12 @@ bool readApprovedFile(std::vector<unsigned char>* out, std::string* err, const s
     return false;
 }
 
-// Images are read by gltf_textures.cpp, for the textures materials use: tinygltf decodes none.
-bool skipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                       const unsigned char*, int, void*) {
+// Images are decoded by gltf_textures.cpp, for the textures materials use: tinygltf decodes none.
+// It keeps no data: URI, though, so the bytes it decoded from one are kept as they are, in
+// Image::image (a bufferView image is read from its buffer, a file from the disk, there).
+bool keepDataUriImages(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                       const unsigned char* bytes, int size, void*) {
+    if (image->bufferView < 0 && size > 0) image->image.assign(bytes, bytes + size);
     return true;
 }
 
@@ -184,7 +187,7 @@ tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
     approveBufferFiles(doc, approved, report);
 
     tinygltf::TinyGLTF parser;
-    parser.SetImageLoader(&skipImageDecoding, nullptr);
+    parser.SetImageLoader(&keepDataUriImages, nullptr);
     parser.SetFsCallbacks({&approvedFileExists, &keepPath, &readApprovedFile, nullptr, &approved});
     tinygltf::Model model;
     std::string err, warnings;

@@ -149,21 +149,19 @@ std::string TextureReader::imageBytes(const tinygltf::Image& image, const std::s
         if (size_t(image.bufferView) >= model_.bufferViews.size())
             report_.fail(what + ": its bufferView does not exist");
         const tinygltf::BufferView& view = model_.bufferViews[size_t(image.bufferView)];
-        if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) report_.fail(what + ": its buffer does not exist");
+        if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
+            report_.fail(what + ": its buffer does not exist");
         const std::vector<unsigned char>& data = model_.buffers[size_t(view.buffer)].data;
         if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
             report_.fail(what + ": its bufferView runs past the end of its buffer");
         return std::string(reinterpret_cast<const char*>(data.data()) + view.byteOffset, view.byteLength);
     }
-    if (image.uri.empty()) report_.fail(what + ": it has neither a bufferView nor a uri");
-    if (tinygltf::IsDataURI(image.uri)) {
-        std::vector<unsigned char> data;
-        std::string mime;
-        if (!tinygltf::DecodeDataURI(&data, mime, image.uri, 0, false)) report_.fail(what + ": its data: URI holds no base64 data");
-        return std::string(data.begin(), data.end());
-    }
+    if (!image.image.empty())  // a data: URI's bytes (gltf_file.cpp)
+        return std::string(image.image.begin(), image.image.end());
+    if (image.uri.empty()) report_.fail(what + ": its image has no data");
     if (!uriScheme(image.uri).empty())
-        report_.fail(what + ": uri " + quoted(image.uri) + " has a URI scheme (only data: URIs and file paths are read)");
+        report_.fail(what + ": uri " + quoted(image.uri) +
+                     " has a URI scheme (only data: URIs and file paths are read)");
     const ExternalFile file = resolveExternalFile(folder_, decodeUriPath(image.uri), allowOutside_);
     if (!file.problem.empty())  // as a buffer's refusal says it (gltf_file.cpp)
         report_.fail(what + ": uri " + quoted(image.uri) + " names " +

@@ -116,7 +116,8 @@ public:
             const Frame frame(v.ns);
             lightLocal_ = frame.toLocal(*towardLight);
             cameraLocal_ = frame.toLocal(*towardCamera);
-            if (v.material->textures) textured_ = v.material->textures->at(*v.material, scene.texCoords(v.triangle, v.bary));
+            if (v.material->textures)
+                textured_ = v.material->textures->at(*v.material, scene.texCoords(v.triangle, v.bary));
         }
     }
     // What v contributes besides cosines: Le toward the camera side at an emitter end, f_r ×

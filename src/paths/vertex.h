@@ -16,8 +16,8 @@ namespace tripath {
 
 struct Vertex {
     enum class Kind : uint8_t { Sensor, Emitter, Surface };
-    // Widest fields first and the two bytes last: no padding inside (104 bytes, 6 of them the
-    // tail's padding; the light store holds millions and every walk step copies one).
+    // Widest fields first and the two bytes last: no padding inside (104 bytes; the light store
+    // holds millions and every walk step copies one).
     const Material* material = nullptr;
     Vec3 p;
     Vec3 ng;               // geometric normal; camera forward for the sensor; zero for a point light

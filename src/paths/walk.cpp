@@ -110,7 +110,8 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, f
         const Vec2 u = uniform2(rng);
         const float uc = rng.uniform();
         BsdfParams textured;
-        const auto bs = sampleBsdf(scene.bsdfAt(*v.material, v.triangle, v.bary, textured), frame.toLocal(wo), u, uc, mode);
+        const BsdfParams& bsdf = scene.bsdfAt(*v.material, v.triangle, v.bary, textured);
+        const auto bs = sampleBsdf(bsdf, frame.toLocal(wo), u, uc, mode);
         if (!bs || !(bs->pdf > 0) || isBlack(bs->f)) return;
         const Vec3 wi = frame.toWorld(bs->wi);
         if (!sidesAgree(v, wi)) return;
