@@ -25,6 +25,7 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     v.ng = hit.ng;
     v.ns = hit.ns;
     v.triangle = hit.triangle;
+    v.bary = hit.bary;
     v.material = &scene.materialOf(hit.triangle);
     v.emitter = scene.emitters().emitterOfTriangle(hit.triangle);
     v.delta = isDelta(*v.material);
@@ -139,7 +140,9 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, f
         // the image a seed gives must not depend on the compiler.
         const Vec2 u = uniform2(rng);
         const float uc = rng.uniform();
-        const auto bs = sampleBsdf(*v.material, frame.toLocal(wo), u, uc, mode);
+        BsdfParams textured;
+        const BsdfParams& bsdf = scene.bsdfAt(*v.material, v.triangle, v.bary, textured);
+        const auto bs = sampleBsdf(bsdf, frame.toLocal(wo), u, uc, mode);
         if (!bs || !(bs->pdf > 0) || isBlack(bs->f)) return;
         const Vec3 wi = frame.toWorld(bs->wi);
         if (!sidesAgree(v, wi)) return;
@@ -183,6 +186,7 @@ Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
     y0.delta = e.delta();
     y0.emitter = static_cast<int>(es.emitter);
     y0.triangle = e.triangle;
+    y0.bary = es.bary;
     y0.pdfFwd = es.pdfA;
     y0.beta = Spectrum(1.0f / es.pdfA);
     return y0;
@@ -215,7 +219,7 @@ void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Wa
     const Vec3 dir = y0.atInfinity ? -y0.ns : emitters.sampleDirection(y0.emitter, y0.ng, u, uc);
     const float pdfDir = emitters.directionPdf(y0.emitter, y0.ng, dir);
     if (!(pdfDir > 0)) return;
-    const Spectrum Le = emitters.Le(y0.emitter, y0.ng, dir);
+    const Spectrum Le = emitters.Le(y0.emitter, y0.ng, dir, y0.bary);
     if (isBlack(Le)) return;
     randomWalk(scene, rng, y0.beta, Le, pdfDir, dir, TransportMode::Importance, settings, pdfs, kNoSensor,
                static_cast<size_t>(settings.maxDepth), path);
