@@ -37,8 +37,10 @@ protected:
     void TearDown() override { fs::remove_all(dir_); }
     fs::path file(const std::string& name) const { return dir_ / name; }
 
-    std::unique_ptr<Scene> load(TexturedScene& s) {
-        const SceneDesc desc = loadGltf(s.write(file("scene.gltf")), [](const std::string&) {});
+    // The scene s describes, under `sky` if given (as --environment gives one).
+    std::unique_ptr<Scene> load(TexturedScene& s, const EnvironmentDesc& sky = {}) {
+        SceneDesc desc = loadGltf(s.write(file("scene.gltf")), [](const std::string&) {});
+        desc.environment = sky;
         return std::make_unique<Scene>(desc, kSize, kSize);
     }
     fs::path dir_;
@@ -151,6 +153,28 @@ TEST_F(Textures, BaseColourTextureUnderUniformRadiance) {
     s.setCamera(2);
     const auto scene = load(s);
     for (const char* integrator : {"pt", "bdpt"})
+        expectTexelMeans(*scene, texelRequest(integrator),
+                         [&](int x, int y, int c) { return decodedTexel(texels, x, y)[c] * L; });
+}
+
+// The same under a constant sky L alone: the quad's front sees the sky over its whole hemisphere,
+// so each texel reads decoded base colour × L, in the integrators whose estimate stays within a
+// texel (light tracing's splats and bdpt's too; the merging ones blur across texel edges).
+TEST_F(Textures, BaseColourTextureUnderAConstantSky) {
+    const std::vector<uint8_t> texels = distinctTexels();
+    writePng(file("base.png"), kTexels, kTexels, 4, texels);
+    TexturedScene s;
+    nlohmann::json m = blackMaterial();
+    m["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 1};
+    m["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", s.addTexture("base.png")}};
+    s.addQuad({.material = s.addMaterial(m)});
+    s.setCamera(2);
+    EnvironmentDesc sky;
+    sky.width = sky.height = 1;
+    const float L = 1.5f;
+    sky.texels = {Spectrum(L)};
+    const auto scene = load(s, sky);
+    for (const char* integrator : {"pt", "lt", "bdpt"})
         expectTexelMeans(*scene, texelRequest(integrator),
                          [&](int x, int y, int c) { return decodedTexel(texels, x, y)[c] * L; });
 }

@@ -141,8 +141,6 @@ Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::siz
 
 }  // namespace
 
-float srgbDecode(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
-
 void writeExr(const std::string& path, const Image& img, const Metadata& meta) {
     checkImage(path, img);
     for (const auto& [key, value] : meta)

@@ -8,7 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/atomic_file.h"  // checkWritable, which callers of the writers below ask first
+#include "core/atomic_file.h"
+#include "core/srgb.h"  // checkWritable, which callers of the writers below ask first
 
 namespace tripath {
 
@@ -58,8 +59,7 @@ Image readExr(const std::string& path, Metadata* meta = nullptr);
 // `maxPixels` pixels is refused before anything is allocated.
 Image readImage(const std::string& path, std::size_t maxPixels = SIZE_MAX);
 
-// The sRGB EOTF: the linear value of an encoded one in [0, 1]. Of an 8-bit code c (as in CSS
-// "#rrggbb") it is srgbDecode(c / 255.0f), which writePng writes back as c.
-float srgbDecode(float encoded);
+// srgbDecode (core/srgb.h) of an 8-bit code c (as in CSS "#rrggbb") is srgbDecode(c / 255.0f),
+// which writePng writes back as c.
 
 }  // namespace tripath

@@ -21,6 +21,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "core/srgb.h"
 #include "io/external_files.h"
 
 namespace tripath::gltf {
@@ -31,11 +32,6 @@ namespace {
 // size, compressed, is far smaller).
 constexpr uintmax_t kMaxImageFileBytes = uintmax_t(1) << 30;
 
-// The sRGB transfer function's inverse (IEC 61966-2-1): encoded value → linear.
-float srgbToLinear(float c) {
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
 // RGBA texels of decoded values, `channels` a texel (grey, grey + alpha, RGB or RGBA), the colour
 // channels decoded from sRGB when `srgb`.
 std::vector<Texel> toTexels(const std::vector<float>& raw, int channels, bool srgb) {
@@ -45,7 +41,7 @@ std::vector<Texel> toTexels(const std::vector<float>& raw, int channels, bool sr
         const bool grey = channels < 3;
         Texel t{p[0], grey ? p[0] : p[1], grey ? p[0] : p[2], channels == 2 ? p[1] : channels == 4 ? p[3] : 1.0f};
         if (srgb)
-            for (size_t c = 0; c < 3; ++c) t[c] = srgbToLinear(t[c]);
+            for (size_t c = 0; c < 3; ++c) t[c] = srgbDecode(t[c]);
         texels[i] = t;
     }
     return texels;
