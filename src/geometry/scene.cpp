@@ -495,7 +495,7 @@ SurfacePoint Scene::surfacePoint(uint32_t triangle, float u, float v, float tHit
     // within rounding of its own coordinates, whatever the ray's length.
     sp.p = t.p[0] * (1.0f - u - v) + t.p[1] * u + t.p[2] * v;
     sp.ng = t.geometricNormal();
-    sp.ns = shadingNormal(triangle, u, v);
+    sp.ns = t.smooth || anyNormalTexture_ ? shadingNormal(triangle, u, v) : sp.ng;  // flat shading without a call
     return sp;
 }
 

@@ -83,9 +83,9 @@ public:
 
     // The BSDF parameters of material m (a triangle's) at barycentrics b: the material itself when
     // it has no textures, else its textured parameters there, written to `scratch`.
-    const BsdfParams& bsdfAt(const Material& m, uint32_t triangle, Vec2 b, BsdfParams& scratch) const {
+    const BsdfParams& bsdfAt(const Material& m, uint32_t triangle, Vec2 b, std::optional<BsdfParams>& scratch) const {
         if (!m.textures) return m;
-        return scratch = m.textures->at(m, texCoords(triangle, b));
+        return scratch.emplace(m.textures->at(m, texCoords(triangle, b)));
     }
     // The texture coordinates at barycentrics b of a triangle (zero where the mesh has none).
     TexCoords texCoords(uint32_t triangle, Vec2 b) const;

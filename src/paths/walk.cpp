@@ -140,7 +140,7 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, f
         // the image a seed gives must not depend on the compiler.
         const Vec2 u = uniform2(rng);
         const float uc = rng.uniform();
-        BsdfParams textured;
+        std::optional<BsdfParams> textured;
         const BsdfParams& bsdf = scene.bsdfAt(*v.material, v.triangle, v.bary, textured);
         const auto bs = sampleBsdf(bsdf, frame.toLocal(wo), u, uc, mode);
         if (!bs || !(bs->pdf > 0) || isBlack(bs->f)) return;
