@@ -29,7 +29,7 @@ tripath="${3:-$here/../build/tripath}"
 seconds="${SECONDS_PER_MODEL:-4}"
 timeout="${TIMEOUT:-120}"
 sheet_out="${SHEET_OUT:-$here/../docs/images/khronos-sheet.png}"
-read -r -a sheet <<< "${SHEET:-Avocado BarramundiFish BoomBox Corset Lantern SciFiHelmet Suzanne WaterBottle}"
+read -r -a sheet <<< "${SHEET:-Avocado BoomBoxWithAxes WaterBottle Suzanne NormalTangentTest TextureCoordinateTest TextureSettingsTest Cube}"
 
 [ -d "$models_dir" ] || { echo "error: $models_dir is not a folder" >&2; exit 1; }
 [ -x "$tripath" ] || { echo "error: $tripath not found: build it (scripts/build.sh) or pass TRIPATH" >&2; exit 1; }
@@ -54,7 +54,7 @@ cell() {
 # One table row from a finished render: $1 model, $2 file, $3 exit status, $4 log.
 row() {
     local model="$1" file="$2" rc="$3" log="$4" loads renders samples ignored error
-    error="$(grep -m1 '^error: ' "$log" | sed "s|^error: ||; s|$file: ||" || true)"
+    error="$(grep -m1 '^error: ' "$log" | sed "s|^error: ||; s|$file: ||; s|$models_dir/||g" || true)"
     ignored="$(grep '^warning: ' "$log" | sed "s|^warning: ||; s|$file: ||" | paste -sd ';' | sed 's/;/; /g' || true)"
     samples="$(grep -o '[0-9]* spp in [0-9.]* s\|[0-9]* NaN/Inf samples dropped' "$log" | paste -sd ',' | sed 's/,/, /' || true)"
     loads=yes renders=yes
