@@ -19,8 +19,8 @@ namespace tripath::app {
 void addSceneOptions(CLI::App& cmd, std::string& scene, GltfOptions& gltf) {
     cmd.add_option("--scene", scene, "Built-in scene name (see `tripath scenes`) or a .gltf/.glb file")->required();
     cmd.add_flag("--allow-external-files", gltf.allowExternalFiles,
-                 "Let a glTF file's buffer URIs name files outside its folder (absolute paths, '..', symlinks "
-                 "leading out); by default only regular files in the folder and its subfolders are read");
+                 "Let a glTF file's buffer and image URIs name files outside its folder (absolute paths, '..', "
+                 "symlinks leading out); by default only regular files in the folder and its subfolders are read");
 }
 
 CLI::Option* inRange(CLI::Option* option, const IntRange& range) {

@@ -120,7 +120,7 @@ py::dict compareScene(const py::object& sceneArgument, double seconds, const std
     const SceneArgument argument(sceneArgument);
     PyScene& scene = *argument;
     evaluation::CompareRequest r;
-    r.render = requestOf(scene.name(), scene.gltf(), integrators.empty() ? "bdpt" : integrators.front(), width, height,
+    r.render = requestOf(scene.where(), integrators.empty() ? "bdpt" : integrators.front(), width, height,
                          seed, maxDepth, mis, threads, options);
     r.render.seconds = seconds;
     r.render.timeGiven = true;
@@ -164,10 +164,14 @@ py::list benchmarkScenes(const std::vector<std::string>& scenes, double seconds,
                          const std::vector<std::string>& integrators, int runs, const std::string& referenceIntegrator,
                          std::optional<double> referenceSeconds, const std::string& biasReference,
                          double biasLevel, const std::optional<std::string>& baseline, int width, int height, uint64_t seed, int maxDepth,
-                         const std::string& mis, int threads, const Progress& progress, bool verbose,
+                         const std::string& mis, int threads, const std::optional<std::string>& environment,
+                         std::optional<float> environmentScale, const Progress& progress, bool verbose,
                          const py::kwargs& options) {
     evaluation::BenchmarkRequest b;
-    b.render = requestOf("", {}, integrators.empty() ? "bdpt" : integrators.front(), width, height, seed, maxDepth, mis,
+    RenderRequest where;
+    if (environment) where.environment = *environment;
+    if (environmentScale) where.environmentScale = *environmentScale, where.environmentScaleGiven = true;
+    b.render = requestOf(where, integrators.empty() ? "bdpt" : integrators.front(), width, height, seed, maxDepth, mis,
                          threads, options);
     b.render.seconds = seconds;
     b.render.timeGiven = true;
@@ -232,9 +236,10 @@ void defineEvaluation(py::module_& m) {
           py::arg("integrators") = benchmarked, py::arg("runs") = 4, py::arg("reference_integrator") = "vcm",
           py::arg("reference_seconds") = py::none(), py::arg("bias_reference") = "bdpt",
           py::arg("bias_level") = 0.01, py::arg("baseline") = py::none(), py::arg("width") = 512, py::arg("height") = 512, py::arg("seed") = 1,
-          py::arg("max_depth") = 16, py::arg("mis") = "power", py::arg("threads") = 0, py::arg("progress") = py::none(),
-          py::arg("verbose") = false,
-          "Every integrator on every scene (built-in names or glTF files) for seconds each, runs independent runs "
+          py::arg("max_depth") = 16, py::arg("mis") = "power", py::arg("threads") = 0, py::arg("environment") = py::none(),
+          py::arg("environment_scale") = py::none(), py::arg("progress") = py::none(), py::arg("verbose") = false,
+          "Every integrator on every scene (built-in names or glTF files, each under environment if given, as load() "
+          "takes it) for seconds each, runs independent runs "
           "(at least 2), against a reference per scene cached in out/references (rendered with reference_integrator "
           "when missing), with a per-block bias test against bias_reference at family-wise level bias_level, as `tripath benchmark` does; the report "
           "goes to out. Returns the rows of results.csv as a list of dicts: scene, integrator, relmse, relmse_sd, "

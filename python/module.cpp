@@ -38,11 +38,16 @@ Image fromArray(const ArrayIn& a, const char* what) {
     return img;
 }
 
-std::unique_ptr<PyScene> loadPyScene(const std::string& nameOrPath, bool allowExternalFiles) {
+std::unique_ptr<PyScene> loadPyScene(const std::string& nameOrPath, bool allowExternalFiles,
+                                     const std::optional<std::string>& environment, std::optional<float> environmentScale) {
     Warnings warnings;
-    GltfOptions gltf;
-    gltf.allowExternalFiles = allowExternalFiles;
-    auto scene = std::make_unique<PyScene>(nameOrPath, gltf, warnings);
+    RenderRequest where;
+    where.scene = nameOrPath;
+    where.gltf.allowExternalFiles = allowExternalFiles;
+    if (environment) where.environment = *environment;
+    if (environmentScale) where.environmentScale = *environmentScale, where.environmentScaleGiven = true;
+    validateValues(where, Spelling::Python);
+    auto scene = std::make_unique<PyScene>(where, warnings);
     warnings.raise();
     return scene;
 }
@@ -82,12 +87,15 @@ void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
 
 }  // namespace
 
-RenderRequest requestOf(const std::string& scene, const GltfOptions& gltf, const std::string& integrator, int width,
+RenderRequest requestOf(const RenderRequest& where, const std::string& integrator, int width,
                         int height, uint64_t seed, int maxDepth, const std::string& mis, int threads,
                         const py::kwargs& options) {
     RenderRequest request;
-    request.scene = scene;
-    request.gltf = gltf;
+    request.scene = where.scene;
+    request.gltf = where.gltf;
+    request.environment = where.environment;
+    request.environmentScale = where.environmentScale;
+    request.environmentScaleGiven = where.environmentScaleGiven;
     request.integrator = integrator;
     request.width = width;
     request.height = height;
@@ -120,7 +128,7 @@ py::dict renderScene(const py::object& sceneArgument, const std::string& integra
     const SceneArgument argument(sceneArgument);
     PyScene& scene = *argument;
     RenderRequest request =
-        requestOf(scene.name(), scene.gltf(), integrator, width, height, seed, maxDepth, mis, threads, options);
+        requestOf(scene.where(), integrator, width, height, seed, maxDepth, mis, threads, options);
     if (spp) request.spp = *spp, request.sppGiven = true;
     if (seconds) request.seconds = *seconds, request.timeGiven = true;
     request.depthImages = depthImages;
@@ -224,9 +232,14 @@ PYBIND11_MODULE(tripath, m) {
         .def("__repr__", [](const PyScene& s) { return "<tripath.Scene '" + s.name() + "'>"; });
 
     m.def("load", &loadPyScene, py::arg("path_or_builtin"), py::arg("allow_external_files") = false,
+        py::arg("environment") = py::none(), py::arg("environment_scale") = py::none(),
         "Loads a built-in scene by name (see scenes()) or a .gltf/.glb file. ValueError for an unknown name or a bad "
         "file, with the command line's one-line message; what the loader ignored or dropped comes as UserWarning. "
-        "allow_external_files lets a glTF file's buffers name files outside its folder.");
+        "allow_external_files lets a glTF file's buffers name files outside its folder. environment lights the scene "
+        "from infinitely far away, as `tripath render --environment`: an equirectangular map's path (.exr, .hdr, ...; "
+        "linear radiance) or 'R,G,B' for a constant; a direction d = (x, y, z) toward the sky (glTF world space, +Y "
+        "up) reads column u = 0.5 + atan2(x, -z) / (2 pi) and row v = acos(y) / pi (row 0 at the top); "
+        "environment_scale multiplies it. Renders of the scene record both in their metadata.");
 
     m.def("scenes", [] {
         py::dict d;

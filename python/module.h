@@ -42,13 +42,11 @@ struct Warnings {
 // renders: another thread may ask for another size meanwhile (the GIL is released).
 class PyScene {
 public:
-    PyScene(std::string name, GltfOptions gltf, Warnings& warnings)
-        : name_(std::move(name)), gltf_(gltf),
-          base_(std::make_shared<const Scene>(loadSceneDesc(name_, gltf_, warnings.sink()), RenderRequest{}.width,
-                                              RenderRequest{}.height, warnings.sink())),
-          framed_(base_) {}
-    const std::string& name() const { return name_; }
-    const GltfOptions& gltf() const { return gltf_; }
+    // `where`: the request's scene, glTF options and environment (the rest is unread).
+    PyScene(const RenderRequest& where, Warnings& warnings) : where_(where), base_(loadScene(where_, warnings.sink())), framed_(base_) {}
+    const std::string& name() const { return where_.scene; }
+    // A request for this scene: its name, glTF options and environment set, the rest defaults.
+    const RenderRequest& where() const { return where_; }
     std::shared_ptr<const Scene> at(int width, int height) {
         if (framed_->camera().width() != width || framed_->camera().height() != height)
             framed_ = std::make_shared<const Scene>(*base_, width, height);
@@ -57,14 +55,16 @@ public:
     size_t triangles() const { return base_->triangles().size(); }
 
 private:
-    std::string name_;
-    GltfOptions gltf_;
+    RenderRequest where_;
     std::shared_ptr<const Scene> base_, framed_;
 };
 
-// load(): the built-in scene or glTF file `nameOrPath` names, what the loader ignored or dropped
-// raised as UserWarning.
-std::unique_ptr<PyScene> loadPyScene(const std::string& nameOrPath, bool allowExternalFiles);
+// load(): the built-in scene or glTF file `nameOrPath` names, under the environment `environment`
+// names (requests/environment_spec.h; none if empty), what the loader ignored or dropped raised as
+// UserWarning.
+std::unique_ptr<PyScene> loadPyScene(const std::string& nameOrPath, bool allowExternalFiles,
+                                     const std::optional<std::string>& environment = std::nullopt,
+                                     std::optional<float> environmentScale = std::nullopt);
 
 // The scene argument of render() and compare(): a Scene from load(), or a built-in scene's name or
 // a glTF file's path (str or os.PathLike), loaded here as load() loads it. Any other type is a
@@ -120,9 +120,10 @@ py::array_t<float> toArray(Image image);
 using ArrayIn = py::array_t<float, py::array::c_style | py::array::forcecast>;
 // An H×W×3 array (any float type) as an Image; ValueError naming `what` for another shape.
 Image fromArray(const ArrayIn& a, const char* what);
-// The request every function fills from its keywords: the scene, the common settings and the
-// integrator options (rr_depth, radius, radius_factor, radius_pixels, alpha).
-RenderRequest requestOf(const std::string& scene, const GltfOptions& gltf, const std::string& integrator, int width,
+// The request every function fills from its keywords: the scene (`where`: its name, glTF options and
+// environment), the common settings and the integrator options (rr_depth, radius, radius_factor,
+// radius_pixels, alpha).
+RenderRequest requestOf(const RenderRequest& where, const std::string& integrator, int width,
                         int height, uint64_t seed, int maxDepth, const std::string& mis, int threads,
                         const py::kwargs& options);
 // Every event counter of core/stats.h by its key: a render's counts, or (benchmark) means over runs.

@@ -35,6 +35,14 @@ Material makeMaterial(MaterialType type, Spectrum albedo, float roughness = 0.5f
     return m;
 }
 
+// glTF's metallic-roughness mix at the given metallic, ior 1.5 (glTF's dielectric).
+Material metallicRoughness(Spectrum base, float metallic, float roughness) {
+    Material m = makeMaterial(MaterialType::MetallicRoughness, base, roughness);
+    m.metallic = metallic;
+    m.name += " metallic=" + std::to_string(metallic);
+    return m;
+}
+
 Rng testRng(uint64_t k) { return Rng(1234, static_cast<uint64_t>(StreamDomain::Test), k); }
 Vec2 uniform2(Rng& rng) { return {rng.uniform(), rng.uniform()}; }
 
@@ -74,6 +82,9 @@ std::vector<Material> nonDeltaMaterials() {
         makeMaterial(MaterialType::Plastic, {0.8f, 0.3f, 0.1f}, 0.3f, 1.5f),
         makeMaterial(MaterialType::Plastic, {0.2f, 0.6f, 0.9f}, 0.7f, 2.2f),
         makeMaterial(MaterialType::Plastic, {1.0f, 1.0f, 1.0f}, 1.0f, 1.33f),
+        metallicRoughness({0.9f, 0.6f, 0.3f}, 0.5f, 0.0f),
+        metallicRoughness({0.9f, 0.6f, 0.3f}, 0.25f, 0.4f),
+        metallicRoughness({1.0f, 1.0f, 1.0f}, 0.8f, 1.0f),
     };
 }
 
@@ -264,6 +275,8 @@ std::vector<SamplingCase> samplingCases() {
         makeMaterial(MaterialType::Conductor, Spectrum(0.9f), 1.0f),
         makeMaterial(MaterialType::Plastic, Spectrum(0.5f), 0.3f),
         makeMaterial(MaterialType::Plastic, {0.9f, 0.2f, 0.1f}, 0.8f, 2.0f),
+        metallicRoughness({0.9f, 0.5f, 0.2f}, 0.5f, 0.3f),
+        metallicRoughness(Spectrum(0.7f), 0.2f, 0.7f),
     };
     // Normal, oblique, near-grazing, and the back side (two-sided shading).
     for (const Material& m : materials)
@@ -577,6 +590,54 @@ TEST(Bsdf, PlasticWhiteFurnaceAndCoat) {
     EXPECT_NEAR(coat.mean.x, f0, 4 * coat.sigma.x + 1e-3f);
 }
 
+// Metallic-roughness is linear in metallic: its directional albedo at metallic m is m times the
+// conductor's plus 1 − m times the plastic's, each estimated with its own sampler. A mixture pdf
+// that disagreed with the sampler's lobe choice, or a mix weighted the wrong way round, would
+// move the estimate off that line.
+TEST(Bsdf, MetallicRoughnessMixesConductorAndPlasticLinearly) {
+    int k = 0;
+    const Spectrum base(0.9f, 0.5f, 0.2f);
+    for (float roughness : {0.1f, 0.5f, 1.0f})
+        for (float metallic : {0.25f, 0.5f, 0.9f})
+            for (float theta : {0.0f, 60.0f, 85.0f}) {
+                const Vec3 wo = directionAtAngle(theta);
+                const int n = 40000;
+                Rng r1 = testRng(1000 + k), r2 = testRng(2000 + k), r3 = testRng(3000 + k);
+                ++k;
+                const Material mixed = metallicRoughness(base, metallic, roughness);
+                const Estimate e = directionalAlbedo(mixed, wo, TransportMode::Radiance, n, r1);
+                const Estimate metal = directionalAlbedo(makeMaterial(MaterialType::Conductor, base, roughness), wo,
+                                                         TransportMode::Radiance, n, r2);
+                const Estimate plastic = directionalAlbedo(makeMaterial(MaterialType::Plastic, base, roughness), wo,
+                                                           TransportMode::Radiance, n, r3);
+                for (int c = 0; c < 3; ++c) {
+                    const float expected = metallic * metal.mean[c] + (1 - metallic) * plastic.mean[c];
+                    const float sigma = std::sqrt(e.sigma[c] * e.sigma[c] + std::pow(metallic * metal.sigma[c], 2.0f) +
+                                                  std::pow((1 - metallic) * plastic.sigma[c], 2.0f));
+                    EXPECT_NEAR(e.mean[c], expected, 4 * sigma + 1e-4f) << mixed.name << " θo=" << theta << " c=" << c;
+                }
+            }
+}
+
+// The end points of the mix are exactly the conductor and the plastic, value and pdf.
+TEST(Bsdf, MetallicRoughnessEndsAreConductorAndPlastic) {
+    Rng rng = testRng(4000);
+    const Spectrum base(0.8f, 0.4f, 0.3f);
+    for (int i = 0; i < 2000; ++i) {
+        const auto [wo, wi] = randomPair(rng, i);
+        const Material metal = makeMaterial(MaterialType::Conductor, base, 0.3f);
+        const Material plastic = makeMaterial(MaterialType::Plastic, base, 0.3f);
+        const Material m1 = metallicRoughness(base, 1.0f, 0.3f), m0 = metallicRoughness(base, 0.0f, 0.3f);
+        const TransportMode mode = TransportMode::Radiance;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_FLOAT_EQ(evalBsdf(m1, wo, wi, mode)[c], evalBsdf(metal, wo, wi, mode)[c]);
+            EXPECT_FLOAT_EQ(evalBsdf(m0, wo, wi, mode)[c], evalBsdf(plastic, wo, wi, mode)[c]);
+        }
+        EXPECT_FLOAT_EQ(pdfBsdf(m1, wo, wi), pdfBsdf(metal, wo, wi));
+        EXPECT_FLOAT_EQ(pdfBsdf(m0, wo, wi), pdfBsdf(plastic, wo, wi));
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Robustness: finite, non-negative values for degenerate inputs
 
@@ -601,6 +662,7 @@ TEST(Bsdf, FiniteForDegenerateDirections) {
     materials.push_back(makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, 1.0f));
     materials.push_back(makeMaterial(MaterialType::Plastic, Spectrum(1.0f), 0.5f, 1.0f));
     materials.push_back(makeMaterial(MaterialType::Plastic, Spectrum(1.0f), 0.5f, 1e4f));
+    materials.push_back(metallicRoughness(Spectrum(1.0f), 0.5f, 0.0f));
     const std::vector<Vec2> us = {
         {0, 0}, {0.99999994f, 0.99999994f}, {0.5f, 0.25f}, {0.99999994f, 0}, {0, 0.5f}};
     for (const Material& m : materials)
@@ -644,7 +706,7 @@ TEST(Bsdf, ValidateRejectsBadParameters) {
         EXPECT_EQ(msg.find('\n'), std::string::npos) << why;
     };
     for (MaterialType t : {MaterialType::Lambertian, MaterialType::Mirror, MaterialType::Dielectric,
-                           MaterialType::Conductor, MaterialType::Plastic}) {
+                           MaterialType::Conductor, MaterialType::Plastic, MaterialType::MetallicRoughness}) {
         const Material ok = makeMaterial(t, Spectrum(0.5f), 0.5f, 1.5f);
         Material m = ok;
         m.albedo.y = nan;
@@ -666,11 +728,16 @@ TEST(Bsdf, ValidateRejectsBadParameters) {
             m.roughness = r;
             rejects(m, "roughness " + std::to_string(r));
         }
+        for (float metallic : {nan, -0.1f, 1.5f}) {
+            m = ok;
+            m.metallic = metallic;
+            rejects(m, "metallic " + std::to_string(metallic));
+        }
         m = ok;
         m.ior = nan;
         rejects(m, "NaN ior");
     }
-    for (MaterialType t : {MaterialType::Dielectric, MaterialType::Plastic})
+    for (MaterialType t : {MaterialType::Dielectric, MaterialType::Plastic, MaterialType::MetallicRoughness})
         for (float ior : {0.5f, 0.0f, -1.5f, std::numeric_limits<float>::infinity()})
             rejects(makeMaterial(t, Spectrum(0.5f), 0.5f, ior), "ior " + std::to_string(ior));
     EXPECT_NE(validateMaterial(makeMaterial(MaterialType::Lambertian, Spectrum(-1.0f))).find("negative"),

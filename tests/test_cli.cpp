@@ -20,6 +20,7 @@
 #include "scenes/builtin_scenes.h"
 #include "io/gltf_writer.h"
 #include "image/image.h"
+#include "textured_scenes.h"
 
 namespace tripath {
 namespace {
@@ -208,6 +209,46 @@ TEST_F(Cli, HugeResolutionsAreRefused) {
     expectRefused(render("--height 100000 " + out()), "--height");
     // Each side within limits, but 16384² pixels would need a film of 6 GiB.
     expectRefused(render("--width 16384 --height 16384 " + out()), "--width");
+}
+
+// A PNG file whose header (signature, IHDR with its CRC, IEND) claims width × height 8-bit RGB
+// texels and that holds none (an empty IDAT): a decoder that allocated before looking would ask
+// for 30 GB.
+std::string pngHeaderClaiming(uint32_t width, uint32_t height) {
+    auto crc32 = [](const std::string& bytes) {
+        uint32_t crc = 0xffffffffu;
+        for (unsigned char b : bytes) {
+            crc ^= b;
+            for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+        }
+        return ~crc;
+    };
+    auto be32 = [](uint32_t v) {
+        return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+    };
+    auto chunk = [&](const std::string& type, const std::string& data) {
+        return be32(uint32_t(data.size())) + type + data + be32(crc32(type + data));
+    };
+    const std::string ihdr = be32(width) + be32(height) + std::string{8, 2, 0, 0, 0};
+    const std::string emptyDeflate("\x78\x9c\x03\x00\x00\x00\x00\x01", 8);
+    return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", emptyDeflate) + chunk("IEND", "");
+}
+
+// A scene whose quad's base colour is the texture in file `uri` (next to it).
+std::string sceneWithTexture(const fs::path& file, const std::string& uri) {
+    test::TexturedScene s;
+    s.addQuad({.material = s.addMaterial({{"emissiveFactor", {1, 1, 1}},
+                                          {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", s.addTexture(uri)}}}}}})});
+    return s.write(file);
+}
+
+TEST_F(Cli, OversizedAndUnreadableTexturesAreRefused) {
+    std::ofstream(path("huge.png"), std::ios::binary) << pngHeaderClaiming(100000, 100000);
+    expectRefused("render --scene '" + sceneWithTexture(path("huge.gltf"), "huge.png") + "' --spp 1 " + out(),
+                  "its image claims 100000 x 100000 texels");
+    std::ofstream(path("broken.png"), std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8) << "not a PNG after all";
+    expectRefused("render --scene '" + sceneWithTexture(path("broken.gltf"), "broken.png") + "' --spp 1 " + out(),
+                  "texture 0: cannot read its image");
 }
 
 TEST_F(Cli, ZeroAndNegativeSizesAreRefused) {

@@ -136,12 +136,13 @@ TEST_F(Distributed, TheFilmsExactTotalsAgreeWordForWord) {
     }
 }
 
-// The same on a glTF scene, with depth images (every film layer goes through the reduction).
-TEST_F(Distributed, AGltfSceneAndItsDepthImagesToo) {
+// The same on a glTF scene under a sky given on the command line, with depth images (every film
+// layer goes through the reduction).
+TEST_F(Distributed, AGltfSceneUnderASkyAndItsDepthImagesToo) {
     ASSERT_EQ(tripath("export --scene cornell --out " + path("box.gltf")).exitCode, 0);
     for (const std::string integrator : {"pt", "lt", "bdpt"}) {
         const std::string args = "render --scene " + path("box.gltf") + " --integrator " + integrator +
-                                 " --width 20 --height 20 --spp 9 --max-depth 4 --depth-images --threads 1 --out ";
+                                 " --environment 0.3,0.4,0.5 --width 20 --height 20 --spp 9 --max-depth 4 --depth-images --threads 1 --out ";
         ASSERT_EQ(tripath(args + path("one.exr")).exitCode, 0) << integrator;
         ASSERT_EQ(tripath(args + path("two.exr"), 2).exitCode, 0) << integrator;
         expectSameRender(load(path("one.exr")), load(path("two.exr")), 2, integrator);

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -682,13 +683,17 @@ TEST_F(GltfTest, BufferUriWithANulCharacterIsRefused) {
 
 // Textures are ignored, so image files are never opened: not the folder (which tinygltf read as
 // a file of 2^63 bytes), not a file elsewhere on the machine.
-TEST_F(GltfTest, ImageFilesAreNeverOpened) {
-    for (const std::string uri : {"%2E", "/proc/self/environ", "/dev/zero"}) {
+// Image files obey the buffers' rules: nothing outside the scene's folder, no directory or device.
+TEST_F(GltfTest, ImageFilesOutsideTheRulesAreRefused) {
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"%2E", "is a directory"}, {"/proc/self/environ", "absolute"}, {"/dev/zero", "absolute"},
+        {"../outside.png", "outside"}, {"missing.png", "does not exist"}};
+    for (const auto& [uri, why] : cases) {
         GltfBuilder b;
         b.addTriangleMesh(b.addVec3(kTriangle));
         addTexturedMaterial(b.model, uri);
         b.addRoot({.mesh = 0});
-        EXPECT_EQ(triangles(load(b.write(file("image.gltf")))).size(), 1u) << uri;
+        expectInputError(b.write(file("image.gltf")), "texture 0: uri");
     }
 }
 
@@ -717,6 +722,8 @@ TEST_F(GltfTest, IgnoredFeaturesWarnOnceEach) {
     b.addMesh({primitive(p, -1, -1, -1, TINYGLTF_MODE_LINE), primitive(p, -1, -1, -1, TINYGLTF_MODE_LINE),
                primitive(p)});
     addTexturedMaterial(b.model, "missing.png");
+    auto& material = b.model.materials[0];
+    material.occlusionTexture.index = std::exchange(material.pbrMetallicRoughness.baseColorTexture.index, -1);
     b.model.materials.push_back(b.model.materials[0]);
     setExtension(b.model.materials[0].extensions, "KHR_materials_specular", "specularFactor", tinygltf::Value(0.5));
     setExtension(b.model.materials[1].extensions, "KHR_materials_specular", "specularFactor", tinygltf::Value(0.2));
@@ -727,7 +734,8 @@ TEST_F(GltfTest, IgnoredFeaturesWarnOnceEach) {
     EXPECT_EQ(triangles(scene).size(), 2u);
     EXPECT_EQ(warningsContaining("LINES primitives are skipped"), 1u);
     EXPECT_EQ(warnings.size(), 3u);
-    EXPECT_EQ(warningsContaining("textures are ignored"), 1u);
+    EXPECT_EQ(warningsContaining("occlusionTexture is ignored (path tracing computes what it stands in for): "
+                                 "materials 'material 0', 'material 1'"), 1u);
     EXPECT_EQ(warningsContaining("KHR_materials_specular is ignored"), 1u);
     for (const std::string& w : warnings) EXPECT_EQ(w.find(file("ignored.gltf").string()), 0u) << w;
 }

@@ -298,7 +298,8 @@ TEST(Determinism, SameSeedSameImageWhateverTheThreadCount) {
         {"cornell", builtinScene("cornell")},
         {"contact", builtinScene("contact")},
         {"contact tessellated", test::tessellated(builtinScene("contact"), 10)},
-        {"cornell-spheres", builtinScene("cornell-spheres")}};
+        {"cornell-spheres", builtinScene("cornell-spheres")},
+        {"sky", builtinScene("sky")}};
     // (build threads, render threads): the reference, then the others.
     const std::pair<int, int> reference{1, 1};
     const std::pair<int, int> others[] = {{2, 1}, {1, 2}, {2, 2}, {4, 3}};

@@ -554,12 +554,14 @@ void expectSameMaterial(const Material& a, const Material& b, const std::string&
     EXPECT_TRUE(a.albedo == b.albedo) << what;
     EXPECT_TRUE(a.emission == b.emission) << what;
     EXPECT_EQ(a.twoSidedEmission, b.twoSidedEmission) << what;
-    if (a.type == MaterialType::Conductor || a.type == MaterialType::Plastic) {
+    const bool metallicRoughness = a.type == MaterialType::MetallicRoughness;
+    if (a.type == MaterialType::Conductor || a.type == MaterialType::Plastic || metallicRoughness) {
         EXPECT_EQ(a.roughness, b.roughness) << what;
     }
-    if (a.type == MaterialType::Dielectric || a.type == MaterialType::Plastic) {
+    if (a.type == MaterialType::Dielectric || a.type == MaterialType::Plastic || metallicRoughness) {
         EXPECT_EQ(a.ior, b.ior) << what;
     }
+    EXPECT_EQ(a.metallic, b.metallic) << what;
 }
 
 // Compares what rendering sees: the Scene's triangles (after both sides dropped degenerate ones),
@@ -603,8 +605,15 @@ TEST(GltfExport, EveryBuiltinRoundTrips) {
         const std::string path = (dir / (info.name + ".gltf")).string();
         std::vector<std::string> warnings;
         writeGltf(original, path, [&](const std::string& w) { warnings.push_back(w); });
+        SceneDesc loaded = loadGltf(path, silent);
+        if (original.environment.present()) {  // glTF has no environment: the export says so, --environment gives it back
+            ASSERT_EQ(warnings.size(), 1u) << info.name;
+            EXPECT_NE(warnings[0].find("environment is left out"), std::string::npos) << warnings[0];
+            warnings.clear();
+            loaded.environment = original.environment;
+        }
         EXPECT_TRUE(warnings.empty()) << info.name << ": " << (warnings.empty() ? "" : warnings.front());
-        expectSameScene(original, loadGltf(path, silent), info.name);
+        expectSameScene(original, loaded, info.name);
     }
     fs::remove_all(dir);
 }
@@ -622,8 +631,10 @@ TEST(GltfExport, ShippedCopiesMatchTheBuiltins) {
 TEST(GltfExport, MaterialsMapBackThroughTheLoadersTable) {
     SceneDesc d;
     d.name = "materials";
-    auto add = [&](MaterialType type, float roughness, float ior, Spectrum emission, bool twoSided) {
+    auto add = [&](MaterialType type, float roughness, float ior, Spectrum emission, bool twoSided,
+                   float metallic = 0) {
         Material m;
+        m.metallic = metallic;
         m.name = "m" + std::to_string(d.materials.size());
         m.type = type;
         m.albedo = Spectrum(0.25f, 0.5f, 0.75f);
@@ -638,6 +649,8 @@ TEST(GltfExport, MaterialsMapBackThroughTheLoadersTable) {
     add(MaterialType::Conductor, 0.3f, 1.5f, Spectrum(0.0f), false);
     add(MaterialType::Plastic, 0.4f, 1.7f, Spectrum(0.0f), false);
     add(MaterialType::Dielectric, 0.0f, 1.33f, Spectrum(0.0f), false);
+    add(MaterialType::MetallicRoughness, 0.6f, 1.5f, Spectrum(0.0f), false, 0.3f);
+    add(MaterialType::MetallicRoughness, 0.2f, 1.45f, Spectrum(0.0f), false, 0.75f);
     add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(17.0f, 12.0f, 4.0f), true);  // strength 32
     add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(0.3f, 0.2f, 0.1f), false);   // no strength needed
     add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(1e6f, 3.3f, 0.0f), false);

@@ -130,6 +130,26 @@ def test_python_and_the_command_line_give_the_same_bits(tmp_path):
     assert not np.array_equal(other, cli)
 
 
+def test_an_environment_gives_the_command_lines_bits_and_is_recorded(tmp_path):
+    # The Cornell box is open toward the camera: rays that leave it read the sky, and the sky lights
+    # the box through the opening, so the environment changes the image (the comparison can fail).
+    out = tmp_path / "cli.exr"
+    args = ["--scene", "cornell", "--integrator", "bdpt", "--spp", "2", "--width", "24", "--height", "16",
+            "--environment", "0.5,1,2", "--environment-scale", "3"]
+    subprocess.run([TRIPATH, "render", *args, "--out", str(out)], check=True, capture_output=True)
+    cli, meta = tripath.read_exr(str(out))
+    scene = tripath.load("cornell", environment="0.5,1,2", environment_scale=3)
+    r = tripath.render(scene, "bdpt", spp=2, width=24, height=16)
+    assert np.array_equal(r["image"], cli)
+    assert meta["tripath:environment"] == "0.5,1,2" and meta["tripath:environment-scale"] == "3"
+    assert r["metadata"]["tripath:environment"] == "0.5,1,2"
+    plain = tripath.render(tripath.load("cornell"), "bdpt", spp=2, width=24, height=16)
+    assert not np.array_equal(plain["image"], cli)
+    assert "tripath:environment" not in plain["metadata"]
+    with pytest.raises(ValueError, match="environment_scale"):
+        tripath.load("cornell", environment_scale=2)
+
+
 def test_light_paths_give_the_command_lines_bits_and_are_recorded(tmp_path):
     out = tmp_path / "cli.exr"
     args = ["--scene", "cornell-spheres", "--integrator", "vcm", "--spp", "2", "--width", "24", "--height", "16",

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "geometry/surface_textures.h"
 #include "geometry/triangle.h"
 #include "core/stats.h"
 
@@ -22,7 +23,8 @@ float spotFalloff(const Emitter& e, float cosTheta) {
 }  // namespace
 
 Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Material>& materials,
-                   const std::vector<Emitter>& lights, std::shared_ptr<const Environment> environment, BoundingSphere bounds)
+                   const std::vector<Emitter>& lights, std::shared_ptr<const Environment> environment, BoundingSphere bounds,
+                   const SurfaceTextures* textures)
     : byTriangle_(triangles.size(), -1), environmentMap_(std::move(environment)), bounds_(bounds) {
     for (uint32_t i = 0; i < triangles.size(); ++i) {
         const Material& m = materials[triangles[i].material];
@@ -33,19 +35,33 @@ Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Mat
         e.radiance = m.emission;
         e.twoSided = m.twoSidedEmission;
         e.area = triangles[i].area();
+        // Φ = π · A · L for a Lambertian emitter, per emitting face (L averaged over the triangle).
+        double areaTimesL = double(e.area) * luminance(e.radiance);
+        if (m.textures && m.textures->variesEmission()) {
+            e.textures = m.textures.get();
+            e.texCoords = textures ? textures->find(i) : nullptr;
+            if (!e.texCoords) continue;  // unreachable: a textured material's triangles have records
+            areaTimesL = texturedEmitterPower(*e.textures, e.radiance, *e.texCoords, e.area);
+            if (!(areaTimesL > 0)) continue;
+        }
+        e.power = kPi * areaTimesL * (e.twoSided ? 2.0 : 1.0);
         byTriangle_[i] = static_cast<int>(all_.size());
         all_.push_back(e);
     }
-    all_.insert(all_.end(), lights.begin(), lights.end());
+    for (Emitter e : lights) {
+        e.power = lightPower(e);
+        all_.push_back(e);
+    }
     if (environmentMap_ && environmentMap_->luminanceIntegral() > 0) {
         Emitter e;
         e.kind = Emitter::Kind::Environment;
         e.radiance = Spectrum(1.0f);
+        e.power = lightPower(e);
         environment_ = static_cast<int>(all_.size());
         all_.push_back(e);
     }
     std::vector<double> power;
-    for (Emitter& e : all_) power.push_back(e.power = powerOf(e));
+    for (const Emitter& e : all_) power.push_back(e.power);
     choice_ = Distribution1D(power);
     for (size_t i = 0; i < all_.size(); ++i) {
         const float pick = choice_.probability(i);
@@ -53,10 +69,10 @@ Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Mat
     }
 }
 
-double Emitters::powerOf(const Emitter& e) const {
+double Emitters::lightPower(const Emitter& e) const {
     const double disc = kPi * double(bounds_.radius) * bounds_.radius;
     switch (e.kind) {
-        case Emitter::Kind::Triangle: return kPi * double(e.area) * luminance(e.radiance) * (e.twoSided ? 2.0 : 1.0);
+        case Emitter::Kind::Triangle: break;
         case Emitter::Kind::Point: return 4.0 * kPi * luminance(e.radiance);
         case Emitter::Kind::Spot: {
             // ∫ t² dω over the cone: the inner cone whole, and the falloff ring at its mean value,
@@ -82,6 +98,7 @@ EmitterSample Emitters::sample(float uc, Vec2 u, const std::vector<Triangle>& tr
             const Triangle& tri = triangles[e.triangle];
             const Vec2 b = sampleUniformTriangle(u);
             s.p = tri.p[0] * (1.0f - b.x - b.y) + tri.p[1] * b.x + tri.p[2] * b.y;
+            s.bary = b;
             s.n = tri.geometricNormal();
             break;
         }
@@ -127,16 +144,15 @@ float Emitters::directionPdf(int e, Vec3 frontNormal, Vec3 omega) const {
     return cosineHemispherePdf(c);
 }
 
-Spectrum Emitters::Le(int e, Vec3 frontNormal, Vec3 omega) const {
+Spectrum Emitters::Le(int e, Vec3 frontNormal, Vec3 omega, Vec2 bary) const {
     const Emitter& em = all_[size_t(e)];
-    switch (em.kind) {
-        case Emitter::Kind::Triangle: return em.twoSided || dot(frontNormal, omega) > 0 ? em.radiance : Spectrum(0.0f);
-        case Emitter::Kind::Point:
-        case Emitter::Kind::Directional: return em.radiance;
-        case Emitter::Kind::Spot: return em.radiance * spotFalloff(em, dot(omega, em.axis));
-        case Emitter::Kind::Environment: return environmentMap_->radiance(-omega);
+    if (em.kind == Emitter::Kind::Triangle) {
+        if (!em.twoSided && !(dot(frontNormal, omega) > 0)) return Spectrum(0.0f);
+        return em.textures ? em.textures->emissionAt(em.radiance, em.texCoords->at(bary)) : em.radiance;
     }
-    return Spectrum(0.0f);
+    if (em.kind == Emitter::Kind::Point || em.kind == Emitter::Kind::Directional) return em.radiance;
+    if (em.kind == Emitter::Kind::Spot) return em.radiance * spotFalloff(em, dot(omega, em.axis));
+    return environmentMap_->radiance(-omega);
 }
 
 }  // namespace tripath

@@ -2,6 +2,7 @@
 // lights (deltas in position), directional lights (deltas in direction) and the environment
 // (radiance from every direction, environment.h). One is chosen in proportion to its power Φ:
 //     triangle     Φ = π A Le (per emitting face)     point        Φ = 4π I
+//     (Le textured: its mean over the triangle)
 //     spot         Φ = I ∫ t² dω over its cone         directional  Φ = π R² E
 //     environment  Φ = π R² ∫ L(ω) dω
 // (luminance of each; R the radius of the scene's bounding sphere, whose disc of area π R² every
@@ -27,6 +28,9 @@
 namespace tripath {
 
 struct Triangle;
+class SurfaceTextures;
+struct MaterialTextures;
+struct TriangleTexCoords;
 
 struct Emitter {
     enum class Kind { Triangle, Point, Spot, Directional, Environment } kind = Kind::Triangle;
@@ -38,6 +42,10 @@ struct Emitter {
     bool twoSided = false;
     float area = 0;          // Triangle
     double power = 0;        // Φ, for the choice distribution
+    // A triangle whose material has an emissive texture or alpha holes: Le = radiance × the
+    // texture there, 0 in a hole.
+    const MaterialTextures* textures = nullptr;
+    const TriangleTexCoords* texCoords = nullptr;
     bool atInfinity() const { return kind == Kind::Directional || kind == Kind::Environment; }
     bool delta() const { return kind == Kind::Point || kind == Kind::Spot || kind == Kind::Directional; }
 };
@@ -47,6 +55,7 @@ struct EmitterSample {
     Vec3 n;                  // surface normal (front face) of a triangle emitter; zero for the others
     Vec3 towardLight;        // unit direction toward an emitter at infinity; zero for the others
     uint32_t emitter = 0;    // index into Emitters::all()
+    Vec2 bary;               // barycentrics of p on a triangle emitter (corners 1 and 2)
     float pdfA = 0;          // its pdf in the emitter's measure (area, or solid angle at infinity)
 };
 
@@ -59,9 +68,13 @@ struct BoundingSphere {
 class Emitters {
 public:
     Emitters() = default;
-    // `triangles` must outlive this object's use of emitterOfTriangle.
+    // `triangles` must outlive this object's use of emitterOfTriangle; `textures` (the triangles'
+    // texture coordinates, null when none has any) and the materials' textures its use of Le.
+    // A triangle whose material has an emissive texture or alpha holes is weighed by its textured
+    // power, and is no emitter where that is 0.
     Emitters(const std::vector<Triangle>& triangles, const std::vector<Material>& materials,
-             const std::vector<Emitter>& lights, std::shared_ptr<const Environment> environment, BoundingSphere bounds);
+             const std::vector<Emitter>& lights, std::shared_ptr<const Environment> environment, BoundingSphere bounds,
+             const SurfaceTextures* textures = nullptr);
 
     bool empty() const { return all_.empty(); }
     const std::vector<Emitter>& all() const { return all_; }
@@ -91,11 +104,13 @@ public:
     float directionPdf(int e, Vec3 frontNormal, Vec3 omega) const;
 
     // Emitted radiance Le(x → ω) of emitter e leaving along unit ω (front face only unless
-    // two-sided); I(ω) for point and spot lights, E for a directional light.
-    Spectrum Le(int e, Vec3 frontNormal, Vec3 omega) const;
+    // two-sided), x at barycentrics `bary` of a triangle emitter; I(ω) for point and spot lights, E
+    // for a directional light.
+    Spectrum Le(int e, Vec3 frontNormal, Vec3 omega, Vec2 bary) const;
 
 private:
-    double powerOf(const Emitter& e) const;
+    // Φ of a light that is not a triangle (the table above).
+    double lightPower(const Emitter& e) const;
 
     std::vector<Emitter> all_;
     std::vector<int> byTriangle_;

@@ -1,5 +1,6 @@
 // BSDFs of the scene model (DESIGN.md §3): Lambertian, ideal mirror, smooth dielectric, rough GGX
-// conductor and a rough plastic (GGX coat over a diffuse base), and the dispatch over the
+// conductor, a rough plastic (GGX coat over a diffuse base) and glTF's metallic-roughness mix of
+// the last two, and the dispatch over the
 // material types behind evalBsdf, pdfBsdf and sampleBsdf. What the rough lobes share lives
 // beside it: the GGX distribution in microfacet.cpp, the plastic coat's albedo table in
 // coat_albedo.cpp; this file holds each lobe's own formula and the switch over the types.
@@ -68,7 +69,7 @@ float dielectricF0(float ior) {
 // ---------------------------------------------------------------------------------------------
 // Lambertian: f = albedo / π, cosine-weighted sampling (pdf = cos θi / π). Upper side only.
 
-Spectrum evalLambertian(const Material& m) { return m.albedo * kInvPi; }
+Spectrum evalLambertian(const BsdfParams& m) { return m.albedo * kInvPi; }
 float pdfLambertian(Vec3 wi) { return wi.z * kInvPi; }
 
 // ---------------------------------------------------------------------------------------------
@@ -81,7 +82,7 @@ std::optional<BsdfSample> finiteDelta(BsdfSample s) {
     return s;
 }
 
-std::optional<BsdfSample> sampleMirror(const Material& m, Vec3 wo) {
+std::optional<BsdfSample> sampleMirror(const BsdfParams& m, Vec3 wo) {
     if (wo.z == 0) return std::nullopt;
     const Vec3 wi = reflectAboutNormal(wo);
     return finiteDelta({wi, m.albedo / std::abs(wi.z), 1.0f, true});
@@ -103,7 +104,7 @@ Vec3 refractThroughNormal(Vec3 wo, float eta, float cosT) {
     return normalize(wi);
 }
 
-std::optional<BsdfSample> sampleDielectric(const Material& m, Vec3 wo, float uc, TransportMode mode) {
+std::optional<BsdfSample> sampleDielectric(const BsdfParams& m, Vec3 wo, float uc, TransportMode mode) {
     if (wo.z == 0) return std::nullopt;
     // η = η(wi side) / η(wo side): entering the glass when wo is outside (z > 0).
     const float eta = wo.z > 0 ? m.ior : 1.0f / m.ior;
@@ -124,7 +125,7 @@ std::optional<BsdfSample> sampleDielectric(const Material& m, Vec3 wo, float uc,
 // Rough conductor: Cook-Torrance f = F(wo·h) D(h) G2 / (4 cos θo cos θi) with Schlick Fresnel
 // (F0 = albedo). Arguments are already on the upper side.
 
-Spectrum evalConductor(const Material& m, Vec3 wo, Vec3 wi) {
+Spectrum evalConductor(const BsdfParams& m, Vec3 wo, Vec3 wi) {
     const float alpha = ggxAlpha(m.roughness);
     const float dv = ggxD(wo + wi, alpha) * ggxVisibility(wo, wi, alpha);
     return fresnelSchlick(m.albedo, halfVectorCos(wo, wi)) * dv;
@@ -139,9 +140,9 @@ Spectrum evalConductor(const Material& m, Vec3 wo, Vec3 wi) {
 // directional albedo is E_true(μo) + albedo · (1 − E(μo)) ≤ 1: a white base reflects 1 minus the
 // table's small conservative margin.
 
-float plasticCoatF0(const Material& m) { return dielectricF0(m.ior); }
+float plasticCoatF0(const BsdfParams& m) { return dielectricF0(m.ior); }
 
-Spectrum evalPlasticDiffuse(const Material& m, Vec3 wo, Vec3 wi) {
+Spectrum evalPlasticDiffuse(const BsdfParams& m, Vec3 wo, Vec3 wi) {
     const float f0 = plasticCoatF0(m);
     const float norm = 1.0f - coatAlbedoAverage(m.roughness, f0);
     if (!(norm > 1e-6f)) return Spectrum(0.0f);
@@ -150,7 +151,7 @@ Spectrum evalPlasticDiffuse(const Material& m, Vec3 wo, Vec3 wi) {
     return m.albedo * (kInvPi * to * ti / norm);
 }
 
-Spectrum evalPlastic(const Material& m, Vec3 wo, Vec3 wi) {
+Spectrum evalPlastic(const BsdfParams& m, Vec3 wo, Vec3 wi) {
     const float alpha = ggxAlpha(m.roughness);
     const float f0 = plasticCoatF0(m);
     const float fresnel = f0 + (1.0f - f0) * schlickWeight(halfVectorCos(wo, wi));
@@ -160,49 +161,78 @@ Spectrum evalPlastic(const Material& m, Vec3 wo, Vec3 wi) {
 
 // Probability of sampling the coat lobe: proportional to the lobes' albedos at wo, kept within
 // [0.1, 0.9] so neither lobe is starved (depends on wo only, so the mixture pdf is exact).
-float plasticSpecularProbability(const Material& m, Vec3 wo) {
+float plasticSpecularProbability(const BsdfParams& m, Vec3 wo) {
     const float e = coatAlbedo(wo.z, m.roughness, plasticCoatF0(m));
     const float diffuse = std::max(average(m.albedo), 0.0f) * (1.0f - e);
     const float total = e + diffuse;
     return total > 0 ? std::clamp(e / total, 0.1f, 0.9f) : 0.5f;
 }
 
-float pdfPlastic(const Material& m, Vec3 wo, Vec3 wi) {
+float pdfPlastic(const BsdfParams& m, Vec3 wo, Vec3 wi) {
     const float ps = plasticSpecularProbability(m, wo);
     return ps * ggxReflectionPdf(wo, wi, ggxAlpha(m.roughness)) + (1.0f - ps) * wi.z * kInvPi;
 }
 
-std::optional<Vec3> samplePlastic(const Material& m, Vec3 wo, Vec2 u, float uc) {
+std::optional<Vec3> samplePlastic(const BsdfParams& m, Vec3 wo, Vec2 u, float uc) {
     if (uc < plasticSpecularProbability(m, wo)) return sampleGgxReflection(wo, ggxAlpha(m.roughness), u);
+    return sampleCosineHemisphere(u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// glTF metallic-roughness (glTF 2.0 spec, Appendix B): f = m · conductor + (1 − m) · plastic, the
+// conductor's F0 and the plastic's diffuse albedo both the base colour, one GGX roughness. Each
+// lobe reflects at most 1, so the mix does. Sampling picks the conductor's sampler with
+// probability m and the plastic's otherwise, so the pdf is the mixture of theirs; both draw the
+// same GGX reflection, so it reads as one GGX lobe of probability m + (1 − m) p_coat and the
+// cosine lobe with the rest.
+
+Spectrum evalMetallicRoughness(const BsdfParams& m, Vec3 wo, Vec3 wi) {
+    return evalConductor(m, wo, wi) * m.metallic + evalPlastic(m, wo, wi) * (1.0f - m.metallic);
+}
+
+float metallicSpecularProbability(const BsdfParams& m, Vec3 wo) {
+    return m.metallic + (1.0f - m.metallic) * plasticSpecularProbability(m, wo);
+}
+
+float pdfMetallicRoughness(const BsdfParams& m, Vec3 wo, Vec3 wi) {
+    const float ps = metallicSpecularProbability(m, wo);
+    return ps * ggxReflectionPdf(wo, wi, ggxAlpha(m.roughness)) + (1.0f - ps) * wi.z * kInvPi;
+}
+
+std::optional<Vec3> sampleMetallicRoughness(const BsdfParams& m, Vec3 wo, Vec2 u, float uc) {
+    if (uc < metallicSpecularProbability(m, wo)) return sampleGgxReflection(wo, ggxAlpha(m.roughness), u);
     return sampleCosineHemisphere(u);
 }
 
 // ---------------------------------------------------------------------------------------------
 // Dispatch for the two-sided non-delta materials, in the frame mirrored so that wo.z > 0.
 
-Spectrum evalUpper(const Material& m, Vec3 wo, Vec3 wi) {
+Spectrum evalUpper(const BsdfParams& m, Vec3 wo, Vec3 wi) {
     switch (m.type) {
     case MaterialType::Lambertian: return evalLambertian(m);
     case MaterialType::Conductor: return evalConductor(m, wo, wi);
     case MaterialType::Plastic: return evalPlastic(m, wo, wi);
+    case MaterialType::MetallicRoughness: return evalMetallicRoughness(m, wo, wi);
     default: return Spectrum(0.0f);
     }
 }
 
-float pdfUpper(const Material& m, Vec3 wo, Vec3 wi) {
+float pdfUpper(const BsdfParams& m, Vec3 wo, Vec3 wi) {
     switch (m.type) {
     case MaterialType::Lambertian: return pdfLambertian(wi);
     case MaterialType::Conductor: return ggxReflectionPdf(wo, wi, ggxAlpha(m.roughness));
     case MaterialType::Plastic: return pdfPlastic(m, wo, wi);
+    case MaterialType::MetallicRoughness: return pdfMetallicRoughness(m, wo, wi);
     default: return 0.0f;
     }
 }
 
-std::optional<Vec3> sampleUpper(const Material& m, Vec3 wo, Vec2 u, float uc) {
+std::optional<Vec3> sampleUpper(const BsdfParams& m, Vec3 wo, Vec2 u, float uc) {
     switch (m.type) {
     case MaterialType::Lambertian: return sampleCosineHemisphere(u);
     case MaterialType::Conductor: return sampleGgxReflection(wo, ggxAlpha(m.roughness), u);
     case MaterialType::Plastic: return samplePlastic(m, wo, u, uc);
+    case MaterialType::MetallicRoughness: return sampleMetallicRoughness(m, wo, u, uc);
     default: return std::nullopt;
     }
 }
@@ -210,7 +240,7 @@ std::optional<Vec3> sampleUpper(const Material& m, Vec3 wo, Vec2 u, float uc) {
 Spectrum finiteOrZero(Spectrum s) { return isFinite(s) ? max(s, Spectrum(0.0f)) : Spectrum(0.0f); }
 float finiteOrZero(float x) { return std::isfinite(x) ? std::max(x, 0.0f) : 0.0f; }
 
-std::optional<BsdfSample> sampleNonDelta(const Material& m, Vec3 wo, Vec2 u, float uc, TransportMode mode) {
+std::optional<BsdfSample> sampleNonDelta(const BsdfParams& m, Vec3 wo, Vec2 u, float uc, TransportMode mode) {
     if (wo.z == 0) return std::nullopt;
     const std::optional<Vec3> wiUp = sampleUpper(m, toSideOf(wo, wo), u, uc);
     if (!wiUp) return std::nullopt;
@@ -233,29 +263,30 @@ const char* materialTypeName(MaterialType t) {
     case MaterialType::Dielectric: return "dielectric";
     case MaterialType::Conductor: return "conductor";
     case MaterialType::Plastic: return "plastic";
+    case MaterialType::MetallicRoughness: return "metallic-roughness";
     }
     return "unknown";
 }
 
-bool isDelta(const Material& m) {
+bool isDelta(const BsdfParams& m) {
     return m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric;
 }
 
 // Non-delta lobes are reflection only: both directions strictly on the same side of the shading
 // plane (so grazing z = 0 gives 0); TransportMode only matters for refraction.
-Spectrum evalBsdf(const Material& m, Vec3 wo, Vec3 wi, TransportMode /*mode*/) {
+Spectrum evalBsdf(const BsdfParams& m, Vec3 wo, Vec3 wi, TransportMode /*mode*/) {
     kBsdfEvaluations.add();
     if (isDelta(m) || !(wo.z * wi.z > 0)) return Spectrum(0.0f);
     return finiteOrZero(evalUpper(m, toSideOf(wo, wo), toSideOf(wo, wi)));
 }
 
-float pdfBsdf(const Material& m, Vec3 wo, Vec3 wi) {
+float pdfBsdf(const BsdfParams& m, Vec3 wo, Vec3 wi) {
     kBsdfPdfs.add();
     if (isDelta(m) || !(wo.z * wi.z > 0)) return 0.0f;
     return finiteOrZero(pdfUpper(m, toSideOf(wo, wo), toSideOf(wo, wi)));
 }
 
-std::optional<BsdfSample> sampleBsdf(const Material& m, Vec3 wo, Vec2 u, float uc, TransportMode mode) {
+std::optional<BsdfSample> sampleBsdf(const BsdfParams& m, Vec3 wo, Vec2 u, float uc, TransportMode mode) {
     kBsdfSamples.add();
     switch (m.type) {
     case MaterialType::Mirror: return sampleMirror(m, wo);
@@ -286,8 +317,10 @@ std::string validateMaterial(const Material& m) {
     if (auto e = checkSpectrum("emission", m.emission, std::numeric_limits<float>::infinity()); !e.empty())
         return e;
     if (!(m.roughness >= 0.0f && m.roughness <= 1.0f)) return "roughness must be a number in [0, 1]";
+    if (!(m.metallic >= 0.0f && m.metallic <= 1.0f)) return "metallic must be a number in [0, 1]";
     if (!std::isfinite(m.ior)) return "ior is not finite";
-    const bool usesIor = m.type == MaterialType::Dielectric || m.type == MaterialType::Plastic;
+    const bool usesIor = m.type == MaterialType::Dielectric || m.type == MaterialType::Plastic ||
+                         m.type == MaterialType::MetallicRoughness;
     if (usesIor && m.ior < 1.0f) return "ior must be at least 1";
     return {};
 }

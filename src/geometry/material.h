@@ -6,6 +6,7 @@
 // the distinction moot except for refraction, where `TransportMode` says whether radiance (camera
 // subpaths) or importance (light subpaths) is carried (Veach's thesis §5.2: the 1/η² factor).
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -19,18 +20,31 @@ enum class MaterialType {
     Dielectric,  // ideal smooth glass: Fresnel-weighted reflection and refraction, ior
     Conductor,   // rough GGX microfacet metal (Cook-Torrance), F0 = albedo (Schlick Fresnel)
     Plastic,     // diffuse albedo under a rough GGX dielectric coat of index ior
+    // glTF 2.0's metallic-roughness BRDF (spec Appendix B): metallic × Conductor + (1 − metallic)
+    // × Plastic, both with the base colour as albedo, one roughness, the coat of index ior
+    MetallicRoughness,
 };
 
 const char* materialTypeName(MaterialType t);
 
-struct Material {
-    std::string name;
+// What the BSDF formulas read. A textured material's parameters at one point of a surface are one
+// of these, made on the stack (MaterialTextures::at), with no copy of the material's name.
+struct BsdfParams {
     MaterialType type = MaterialType::Lambertian;
     Spectrum albedo{0.8f};    // base colour: diffuse albedo, mirror reflectance or metal F0
     float roughness = 0.5f;   // perceptual roughness in [0,1]; GGX alpha = roughness²
+    float metallic = 0.0f;    // MetallicRoughness: the conductor's weight in [0,1]
     float ior = 1.5f;         // dielectric / plastic coat index of refraction
+};
+
+struct MaterialTextures;  // geometry/texture.h: what varies over a textured material's surfaces
+
+struct Material : BsdfParams {
+    std::string name;
     Spectrum emission{0.0f};  // emitted radiance Le (W / m² sr); zero for non-emitters
     bool twoSidedEmission = false;  // glTF doubleSided: emits from both faces
+    // Null for a material uniform over its surfaces, whose BsdfParams are the ones evaluated.
+    std::shared_ptr<const MaterialTextures> textures;
 };
 
 enum class TransportMode { Radiance, Importance };
@@ -43,14 +57,14 @@ struct BsdfSample {
 };
 
 // True when the material has only delta lobes (mirror, glass): connections to it are impossible.
-bool isDelta(const Material& m);
+bool isDelta(const BsdfParams& m);
 
 // f(wo, wi) for the non-delta part; zero for delta materials.
-Spectrum evalBsdf(const Material& m, Vec3 wo, Vec3 wi, TransportMode mode);
+Spectrum evalBsdf(const BsdfParams& m, Vec3 wo, Vec3 wi, TransportMode mode);
 // Solid-angle pdf that sampleBsdf generates wi from wo with; zero for delta materials.
-float pdfBsdf(const Material& m, Vec3 wo, Vec3 wi);
+float pdfBsdf(const BsdfParams& m, Vec3 wo, Vec3 wi);
 // Sample wi given wo with u in [0,1)² and uc in [0,1) (lobe choice). Empty when no direction.
-std::optional<BsdfSample> sampleBsdf(const Material& m, Vec3 wo, Vec2 u, float uc, TransportMode mode);
+std::optional<BsdfSample> sampleBsdf(const BsdfParams& m, Vec3 wo, Vec2 u, float uc, TransportMode mode);
 
 // Checks a material's parameters; returns an error message naming the problem, or empty.
 std::string validateMaterial(const Material& m);

@@ -157,10 +157,11 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
     std::vector<Emitter> lights;
     for (const LightDesc& l : desc.lights)
         if (auto e = punctualEmitter(l, name_)) lights.push_back(*e);
-    emitters_ = Emitters(triangles_, materials_, lights, environment(desc.environment, name_), sphere);
+    emitters_ = Emitters(triangles_, materials_, lights, environment(desc.environment, name_), sphere,
+                         surfaceTextures_.get());
     if (emitters_.empty())
         throw InputError(fmt::format("{}: the scene has no emitter: add an emissive material, a KHR_lights_punctual light, "
-                                     "or an environment (--environment)", name_));
+                                     "or an environment (--environment; environment= in Python)", name_));
 
     const CameraDesc cam = desc.camera.present ? desc.camera : frameBounds(lo_, hi_);
     if (!isFinite(cam.position) || !isFinite(cam.forward) || !isFinite(cam.up) || !(lengthSquared(cam.forward) > 0) ||
@@ -175,7 +176,9 @@ Scene::Scene(const Scene& base, int width, int height)
     : name_(base.name_), materials_(base.materials_), triangles_(base.triangles_),
       worldTriangles_(base.worldTriangles_), instances_(base.instances_), lo_(base.lo_), hi_(base.hi_),
       cameraDesc_(base.cameraDesc_), camera_(base.cameraDesc_, width, height), emitters_(base.emitters_),
-      device_(base.device_), rtcScene_(base.rtcScene_) {
+      surfaceTextures_(base.surfaceTextures_), anyNormalTexture_(base.anyNormalTexture_), alphaMasks_(base.alphaMasks_),
+      device_(base.device_),
+      rtcScene_(base.rtcScene_) {
     rtcRetainDevice(device_);
     rtcRetainScene(rtcScene_);
 }
@@ -186,30 +189,38 @@ void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
     const std::vector<std::optional<std::vector<Affine>>> placement = placements(desc);
     std::vector<size_t> prototypes;
     size_t degenerate = 0;
+    auto surfaceTextures = std::make_shared<SurfaceTextures>();
     for (size_t i = 0; i < desc.meshes.size(); ++i) {
         const MeshDesc& m = desc.meshes[i];
         checkMesh(desc, m);
         if (!placement[i])
-            degenerate += addTriangles(m);
+            degenerate += addTriangles(m, *surfaceTextures);
         else if (!isBlack(desc.materials[size_t(m.material)].emission))
-            for (const Affine& a : *placement[i]) degenerate += addTriangles(placed(m, a));
+            for (const Affine& a : *placement[i]) degenerate += addTriangles(placed(m, a), *surfaceTextures);
         else if (!placement[i]->empty())
             prototypes.push_back(i);
     }
     worldTriangles_ = uint32_t(triangles_.size());
     for (size_t i : prototypes) {
         const auto first = uint32_t(triangles_.size());
-        degenerate += addTriangles(desc.meshes[i]);
+        degenerate += addTriangles(desc.meshes[i], *surfaceTextures);
         const auto count = uint32_t(triangles_.size() - first);
         if (count == 0) continue;
         for (const Affine& a : *placement[i]) instances_.push_back({a, normalTransform(a), first, count});
     }
+    surfaceTextures_ = std::move(surfaceTextures);
+    anyNormalTexture_ = std::any_of(materials_.begin(), materials_.end(),
+                                    [](const Material& m) { return m.textures && m.textures->normal; });
     if (degenerate > 0) warn(fmt::format("{}: dropped {} degenerate (zero-area) triangles", name_, degenerate));
     findBounds();
 }
 
-// Appends the mesh's triangles as they are; returns how many were degenerate and left out.
-size_t Scene::addTriangles(const MeshDesc& m) {
+// Appends the mesh's triangles as they are, and their texture coordinates to `surfaces` if its
+// material has textures; returns how many were degenerate and left out.
+size_t Scene::addTriangles(const MeshDesc& m, SurfaceTextures& surfaces) {
+    const MaterialTextures* textures = materials_[size_t(m.material)].textures.get();
+    const auto first = uint32_t(triangles_.size());
+    std::vector<TriangleTexCoords> texCoords;
     size_t degenerate = 0;
     for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
         Triangle t;
@@ -229,8 +240,10 @@ size_t Scene::addTriangles(const MeshDesc& m) {
             if (!isFinite(n) || !(lengthSquared(n) > 0)) n = ng;
             t.n[k] = normalize(n);
         }
+        if (textures) texCoords.push_back(triangleTexCoords(m, t, &m.indices[i]));
         triangles_.push_back(t);
     }
+    if (textures) surfaces.add(first, textures, std::move(texCoords));
     return degenerate;
 }
 
@@ -251,11 +264,38 @@ void Scene::findBounds() {
             for (const Vec3& p : triangles_[i].p) include(transformPoint(in.toWorld, p));
 }
 
+TriangleTexCoords Scene::triangleTexCoords(const MeshDesc& m, const Triangle& t, const uint32_t corners[3]) const {
+    TriangleTexCoords r;
+    for (size_t set = 0; set < 2; ++set)
+        for (int k = 0; k < 3; ++k)
+            r.corner[k][set] = m.texCoords[set].size() == m.positions.size() ? m.texCoords[set][corners[k]] : Vec2{};
+    const MaterialTextures& textures = *materials_[size_t(m.material)].textures;
+    if (!textures.normal) return r;
+    const bool given = !m.tangents.empty() && m.tangents.size() == m.positions.size() &&
+                       m.tangentSigns.size() == m.tangents.size();
+    if (given) {
+        for (int k = 0; k < 3; ++k) r.tangent[k] = m.tangents[corners[k]];
+        r.bitangentSign = m.tangentSigns[corners[0]] < 0 ? -1.0f : 1.0f;
+        return r;
+    }
+    const Vec2 uv[3] = {r.corner[0][size_t(textures.normal.texCoord)], r.corner[1][size_t(textures.normal.texCoord)],
+                        r.corner[2][size_t(textures.normal.texCoord)]};
+    Vec3 tangent;
+    triangleTangent(t.p, uv, t.ng, tangent, r.bitangentSign);
+    for (Vec3& c : r.tangent) c = tangent;
+    return r;
+}
+
+TexCoords Scene::texCoords(uint32_t triangle, Vec2 b) const {
+    const TriangleTexCoords* r = surfaceTextures_->find(triangle);
+    return r ? r->at(b) : TexCoords{};
+}
+
 namespace {
 
 static_assert(sizeof(Affine) == 12 * sizeof(float), "Affine must be Embree's packed 3x4 column-major matrix");
 
-// Triangles [first, first + count) as an Embree geometry, committed.
+// Triangles [first, first + count) as an Embree geometry, to be committed.
 RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Triangle>& triangles, size_t first, size_t count) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* v = static_cast<float*>(
@@ -270,11 +310,34 @@ RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Triangle>& tria
             v[9 * i + 3 * k + 2] = p.z;
             idx[3 * i + k] = static_cast<uint32_t>(3 * i + k);
         }
-    rtcCommitGeometry(geom);
     return geom;
 }
 
+// Embree's filter for the triangles of alpha-masked materials, closest hits and shadow rays alike:
+// a hit where the material's alpha is below its cutoff is no hit (the ray goes on through). Its
+// user data is the geometry's AlphaMask: a primitive's triangle is `first` on from the geometry's.
+void alphaMaskFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* mask = static_cast<const Scene::AlphaMask*>(args->geometryUserPtr);
+    const SurfaceTextures* surfaces = mask->surfaces;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const uint32_t triangle = mask->first + RTCHitN_primID(args->hit, args->N, i);
+        const MaterialTextures* textures = surfaces->materialOf(triangle);
+        if (!textures || !textures->masks()) continue;
+        const Vec2 b{RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)};
+        if (textures->holeAt(surfaces->find(triangle)->at(b))) args->valid[i] = 0;
+    }
+}
+
 }  // namespace
+
+void Scene::setAlphaFilters(RTCGeometryTy* geom, uint32_t first) {
+    if (!surfaceTextures_->anyMasks()) return;  // no filter: opaque scenes trace as fast as ever
+    alphaMasks_->push_back({surfaceTextures_.get(), first});
+    rtcSetGeometryUserData(geom, &alphaMasks_->back());
+    rtcSetGeometryIntersectFilterFunction(geom, &alphaMaskFilter);
+    rtcSetGeometryOccludedFilterFunction(geom, &alphaMaskFilter);
+}
 
 // Geometry 0 holds the world-space triangles; geometry 1 + i is instance i, over an Embree scene
 // per instanced mesh (the instances hold the references to it).
@@ -284,8 +347,13 @@ void Scene::buildBvh() {
     if (!device_) throw std::runtime_error("Embree: could not create a device");
     rtcScene_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(rtcScene_, RTC_BUILD_QUALITY_HIGH);
+    // One mask per geometry at most, at addresses that stay put: Embree keeps pointers to them.
+    alphaMasks_ = std::make_shared<std::vector<AlphaMask>>();
+    alphaMasks_->reserve(1 + instances_.size());
     if (worldTriangles_ > 0) {
         RTCGeometry geom = triangleGeometry(device_, triangles_, 0, worldTriangles_);
+        setAlphaFilters(geom, 0);
+        rtcCommitGeometry(geom);
         rtcAttachGeometryByID(rtcScene_, geom, 0);
         rtcReleaseGeometry(geom);
     }
@@ -297,6 +365,8 @@ void Scene::buildBvh() {
             mesh = rtcNewScene(device_);
             rtcSetSceneBuildQuality(mesh, RTC_BUILD_QUALITY_HIGH);
             RTCGeometry geom = triangleGeometry(device_, triangles_, in.firstTriangle, in.triangleCount);
+            setAlphaFilters(geom, in.firstTriangle);
+            rtcCommitGeometry(geom);
             rtcAttachGeometry(mesh, geom);
             rtcReleaseGeometry(geom);
             rtcCommitScene(mesh);
@@ -319,21 +389,34 @@ Scene::~Scene() {
 
 namespace {
 
+// n, or −n: the one on the side of ng.
+Vec3 orient(Vec3 n, Vec3 ng) { return dot(n, ng) < 0 ? -n : n; }
+
 // The corners' normals n0, n1, n2 blended at barycentrics (u, v), unit, on the side of ng.
 Vec3 blendNormals(Vec3 n0, Vec3 n1, Vec3 n2, float u, float v, Vec3 ng) {
-    Vec3 n = n0 * (1.0f - u - v) + n1 * u + n2 * v;
-    if (!(lengthSquared(n) > 0)) return ng;
-    n = normalize(n);
-    return dot(n, ng) < 0 ? -n : n;
+    const Vec3 n = n0 * (1.0f - u - v) + n1 * u + n2 * v;
+    return lengthSquared(n) > 0 ? orient(normalize(n), ng) : ng;
 }
 
 }  // namespace
 
+bool Scene::hasNormalTexture(const Triangle& t) const {
+    if (!anyNormalTexture_) return false;  // no lookup of the material in scenes without one
+    const MaterialTextures* textures = materials_[size_t(t.material)].textures.get();
+    return textures && textures->normal;
+}
+
 Vec3 Scene::shadingNormal(uint32_t triangle, float u, float v) const {
     const Triangle& t = triangles_[triangle];
     const Vec3 ng = t.geometricNormal();
-    if (!t.smooth) return ng;
-    return blendNormals(t.n[0], t.n[1], t.n[2], u, v, ng);
+    const bool mapped = hasNormalTexture(t);
+    if (!t.smooth && !mapped) return ng;
+    const Vec3 n = blendNormals(t.n[0], t.n[1], t.n[2], u, v, ng);
+    if (!mapped) return n;
+    const TriangleTexCoords& r = *surfaceTextures_->find(triangle);
+    const Vec3 tangent = r.tangent[0] * (1.0f - u - v) + r.tangent[1] * u + r.tangent[2] * v;
+    const MaterialTextures& textures = *materials_[size_t(t.material)].textures;
+    return orient(perturbNormal(n, tangent, r.bitangentSign, textures.tangentNormalAt(r.at({u, v}))), ng);
 }
 
 std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) const {
@@ -405,6 +488,7 @@ void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::o
 SurfacePoint Scene::surfacePoint(uint32_t triangle, float u, float v, float tHit) const {
     SurfacePoint sp;
     sp.triangle = triangle;
+    sp.bary = {u, v};
     sp.t = tHit;
     const Triangle& t = triangles_[triangle];
     // From barycentrics rather than origin + t·dir: the point lies on the triangle's plane to
@@ -426,7 +510,10 @@ SurfacePoint Scene::hitPoint(uint32_t instance, uint32_t primitive, float u, flo
     auto normal = [&](Vec3 n) { return normalize(transformVector(in.normalToWorld, n)); };
     sp.p = transformPoint(in.toWorld, sp.p);
     sp.ng = normal(t.ng);
-    sp.ns = t.smooth ? blendNormals(normal(t.n[0]), normal(t.n[1]), normal(t.n[2]), u, v, sp.ng) : sp.ng;
+    if (hasNormalTexture(t))  // perturbed in the mesh's space, then carried to the world's
+        sp.ns = orient(normal(sp.ns), sp.ng);
+    else
+        sp.ns = t.smooth ? blendNormals(normal(t.n[0]), normal(t.n[1]), normal(t.n[2]), u, v, sp.ng) : sp.ng;
     return sp;
 }
 

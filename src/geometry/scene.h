@@ -16,11 +16,13 @@
 #include "geometry/camera.h"
 #include "geometry/emitters.h"
 #include "geometry/scene_desc.h"
+#include "geometry/surface_textures.h"
 #include "geometry/triangle.h"
 #include "core/warnings.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
+struct RTCGeometryTy;
 
 namespace tripath {
 
@@ -30,6 +32,7 @@ struct SurfacePoint {
     Vec3 ng;              // geometric normal, by winding (glTF: counter-clockwise is the front)
     Vec3 ns;              // shading normal, on the same side as ng
     uint32_t triangle = 0;
+    Vec2 bary;            // barycentrics of corners 1 and 2: where a textured material is read
     float t = 0;          // ray parameter of the hit
 };
 
@@ -74,8 +77,25 @@ public:
     // free point: a null normal) along unit `dir` out of the scene: toward an emitter at infinity.
     bool unoccludedToward(Vec3 p, Vec3 normal, Vec3 dir) const;
 
-    // Shading normal at barycentrics (u, v) of a triangle, on the side of the geometric normal.
+    // Shading normal at barycentrics (u, v) of a triangle, on the side of the geometric normal:
+    // the interpolated normal, bent by the material's normal texture if it has one.
     Vec3 shadingNormal(uint32_t triangle, float u, float v) const;
+
+    // The BSDF parameters of material m (a triangle's) at barycentrics b: the material itself when
+    // it has no textures, else its textured parameters there, written to `scratch`.
+    const BsdfParams& bsdfAt(const Material& m, uint32_t triangle, Vec2 b, BsdfParams& scratch) const {
+        if (!m.textures) return m;
+        return scratch = m.textures->at(m, texCoords(triangle, b));
+    }
+    // The texture coordinates at barycentrics b of a triangle (zero where the mesh has none).
+    TexCoords texCoords(uint32_t triangle, Vec2 b) const;
+
+    // What the alpha-mask filter of one Embree geometry reads: the scene's textures, and the index
+    // of the geometry's first triangle in triangles().
+    struct AlphaMask {
+        const SurfaceTextures* surfaces;
+        uint32_t first;
+    };
 
 private:
     // One copy of an instanced mesh: its triangles from firstTriangle on (object space), placed by
@@ -87,8 +107,17 @@ private:
     };
 
     void addMeshes(const SceneDesc& desc, const WarningSink& warn);
-    size_t addTriangles(const MeshDesc& m);
+    // Appends mesh m's triangles as they are (and their texture coordinates to `surfaces`); returns
+    // how many were degenerate and left out.
+    size_t addTriangles(const MeshDesc& m, SurfaceTextures& surfaces);
     void findBounds();
+    // The texture coordinates and tangents of one triangle of mesh m, corners `corners`.
+    TriangleTexCoords triangleTexCoords(const MeshDesc& m, const Triangle& t, const uint32_t corners[3]) const;
+    // Installs the alpha-mask filter on an Embree geometry of the triangles from `first` on, if
+    // any material masks.
+    void setAlphaFilters(RTCGeometryTy* geom, uint32_t first);
+    // Whether triangle t's material has a normal texture.
+    bool hasNormalTexture(const Triangle& t) const;
     // The hit record of a ray that hit triangle `triangle` at barycentrics (u, v), parameter t.
     SurfacePoint surfacePoint(uint32_t triangle, float u, float v, float t) const;
     // The hit record of Embree's hit on primitive `primitive` of instance geometry `instance`
@@ -105,6 +134,9 @@ private:
     CameraDesc cameraDesc_;  // the file's camera, or one framing the bounds: what reframing starts from
     Camera camera_;
     Emitters emitters_;
+    std::shared_ptr<const SurfaceTextures> surfaceTextures_;  // never null; empty without textures
+    bool anyNormalTexture_ = false;
+    std::shared_ptr<std::vector<AlphaMask>> alphaMasks_;  // what the masked geometries' filters read
     RTCDeviceTy* device_ = nullptr;
     RTCSceneTy* rtcScene_ = nullptr;
 };

@@ -18,6 +18,9 @@ struct MeshDesc {
     std::vector<Vec3> normals;         // world space shading normals; empty or one per position
     std::vector<uint32_t> indices;     // three per triangle
     int material = 0;                  // index into SceneDesc::materials
+    std::vector<Vec2> texCoords[2]{};  // TEXCOORD_0 and _1: empty or one per position
+    std::vector<Vec3> tangents{};      // world space TANGENT xyz: empty or one per position
+    std::vector<float> tangentSigns{}; // TANGENT w (±1, the bitangent's sign), one per tangent
 };
 
 // A KHR_lights_punctual light. Point and spot: radiant intensity I = colour × intensity (W/sr),

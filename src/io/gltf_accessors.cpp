@@ -40,22 +40,39 @@ Accessors::Bytes Accessors::accessorBytes(int index, size_t elementSize) const {
     return {data.data() + view.byteOffset + a.byteOffset, stride, a.count};
 }
 
-std::vector<float> Accessors::readFloats(int index, int type, const std::string& what) const {
-    const tinygltf::Accessor& a = accessor(index, what);
-    const int components = type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
-    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != type)
-        report_.fail(what + " accessor " + std::to_string(index) + " is not float VEC" + std::to_string(components));
-    const size_t elementSize = size_t(components) * sizeof(float);
-    const Bytes bytes = accessorBytes(index, elementSize);
-    std::vector<float> out(bytes.count * size_t(components));
-    for (size_t i = 0; i < bytes.count; ++i) std::memcpy(&out[i * size_t(components)], bytes.first + i * bytes.stride, elementSize);
+std::vector<Vec3> Accessors::readVec3(int index, const std::string& what) const {
+    const std::vector<float> v = readFloats(index, 3, what);
+    std::vector<Vec3> out(v.size() / 3);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
     return out;
 }
 
-std::vector<Vec3> Accessors::readVec3(int index, const std::string& what) const {
-    const std::vector<float> v = readFloats(index, TINYGLTF_TYPE_VEC3, what);
-    std::vector<Vec3> out(v.size() / 3);
-    for (size_t i = 0; i < out.size(); ++i) out[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+std::vector<float> Accessors::readFloats(int index, int components, const std::string& what, bool normalizedToo) const {
+    const tinygltf::Accessor& a = accessor(index, what);
+    const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+    size_t size = 0;
+    if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) size = 4;
+    if (normalizedToo && a.normalized && a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) size = 1;
+    if (normalizedToo && a.normalized && a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) size = 2;
+    if (size == 0 || a.type != type)
+        report_.fail(what + " accessor " + std::to_string(index) + " is not float" +
+                     (normalizedToo ? " or normalized unsigned" : "") + " VEC" + std::to_string(components));
+    const Bytes bytes = accessorBytes(index, size * size_t(components));
+    std::vector<float> out(bytes.count * size_t(components));
+    for (size_t i = 0; i < bytes.count; ++i)
+        for (size_t c = 0; c < size_t(components); ++c) {
+            const unsigned char* p = bytes.first + i * bytes.stride + c * size;
+            float& x = out[i * size_t(components) + c];
+            if (size == 4) {
+                std::memcpy(&x, p, 4);
+            } else if (size == 2) {
+                uint16_t v;
+                std::memcpy(&v, p, 2);
+                x = float(v) / 65535.0f;
+            } else {
+                x = float(p[0]) / 255.0f;
+            }
+        }
     return out;
 }
 

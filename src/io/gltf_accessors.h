@@ -23,9 +23,10 @@ public:
 
     // The elements of float VEC3 accessor `index`; `what` names the attribute in messages.
     std::vector<Vec3> readVec3(int index, const std::string& what) const;
-    // The components of float accessor `index` of TINYGLTF_TYPE_* `type` (VEC3, VEC4), element
-    // after element.
-    std::vector<float> readFloats(int index, int type, const std::string& what) const;
+    // The elements of accessor `index`, `components` components each (VEC2, VEC3 or VEC4),
+    // flattened: float, or where `normalizedToo` also normalized unsigned byte or short scaled to
+    // [0, 1] (TEXCOORD_n's other types).
+    std::vector<float> readFloats(int index, int components, const std::string& what, bool normalizedToo = false) const;
     // The elements of unsigned byte, short or int SCALAR accessor `index`, widened; `what` names
     // the primitive in messages.
     std::vector<uint32_t> readIndices(int index, const std::string& what) const;

@@ -80,9 +80,12 @@ bool readApprovedFile(std::vector<unsigned char>* out, std::string* err, const s
     return false;
 }
 
-// Textures are not supported: accept every image without decoding it.
-bool skipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                       const unsigned char*, int, void*) {
+// Images are decoded by gltf_textures.cpp, for the textures materials use: tinygltf decodes none.
+// It keeps no data: URI, though, so the bytes it decoded from one are kept as they are, in
+// Image::image (a bufferView image is read from its buffer, a file from the disk, there).
+bool keepDataUriImages(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                       const unsigned char* bytes, int size, void*) {
+    if (image->bufferView < 0 && size > 0) image->image.assign(bytes, bytes + size);
     return true;
 }
 
@@ -156,8 +159,8 @@ void approveBufferFiles(const nlohmann::json& doc, ApprovedFiles& approved, cons
     }
 }
 
-// tinygltf's own warnings, minus those about image files: textures are ignored anyway (and a
-// missing file only warns for images; a missing buffer is an error).
+// tinygltf's own warnings, minus those about image files, which it does not read (gltf_textures.cpp
+// does, and fails on a missing one that a material uses; a missing buffer is an error).
 void forwardLibraryWarnings(const std::string& text, Report& report) {
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);) {
@@ -180,13 +183,11 @@ tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
     checkAsset(doc, report);
     ApprovedFiles approved;
     approved.allowOutside = allowExternalFiles;
-    std::error_code ec;
-    approved.folder = std::filesystem::canonical(std::filesystem::absolute(path).parent_path(), ec);
-    if (ec) report.fail("cannot resolve the scene's folder (" + ec.message() + ")");
+    approved.folder = sceneFolder(report);
     approveBufferFiles(doc, approved, report);
 
     tinygltf::TinyGLTF parser;
-    parser.SetImageLoader(&skipImageDecoding, nullptr);
+    parser.SetImageLoader(&keepDataUriImages, nullptr);
     parser.SetFsCallbacks({&approvedFileExists, &keepPath, &readApprovedFile, nullptr, &approved});
     tinygltf::Model model;
     std::string err, warnings;
@@ -202,6 +203,13 @@ tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
     forwardLibraryWarnings(warnings, report);
     if (!ok) report.fail("the glTF reader refused it: " + (err.empty() ? "no reason given" : libraryText(err)));
     return model;
+}
+
+std::filesystem::path sceneFolder(const Report& report) {
+    std::error_code ec;
+    auto folder = std::filesystem::canonical(std::filesystem::absolute(report.path()).parent_path(), ec);
+    if (ec) report.fail("cannot resolve the scene's folder (" + ec.message() + ")");
+    return folder;
 }
 
 }  // namespace tripath::gltf

@@ -15,12 +15,12 @@ namespace tripath::gltf {
 namespace {
 
 // One attribute's floats, `components` per instance; empty when the extension does not name it.
-std::vector<float> readAttribute(const tinygltf::Value& attributes, const char* name, int type, const std::string& what,
+std::vector<float> readAttribute(const tinygltf::Value& attributes, const char* name, int components, const std::string& what,
                                  const Accessors& accessors, const Report& report) {
     if (!attributes.Has(name)) return {};
     const tinygltf::Value& index = attributes.Get(name);
     if (!index.IsInt()) report.fail(what + " " + name + " is not an accessor index");
-    return accessors.readFloats(index.GetNumberAsInt(), type, what + " " + name);
+    return accessors.readFloats(index.GetNumberAsInt(), components, what + " " + name);
 }
 
 bool allFinite(const std::vector<float>& values) {
@@ -39,9 +39,9 @@ std::optional<std::vector<TrsDesc>> readInstances(const tinygltf::Node& node, in
     if (!ext->second.IsObject() || !ext->second.Get("attributes").IsObject())
         report.fail(what + " has no attributes object");
     const tinygltf::Value& attributes = ext->second.Get("attributes");
-    const std::vector<float> t = readAttribute(attributes, "TRANSLATION", TINYGLTF_TYPE_VEC3, what, accessors, report);
-    const std::vector<float> r = readAttribute(attributes, "ROTATION", TINYGLTF_TYPE_VEC4, what, accessors, report);
-    const std::vector<float> s = readAttribute(attributes, "SCALE", TINYGLTF_TYPE_VEC3, what, accessors, report);
+    const std::vector<float> t = readAttribute(attributes, "TRANSLATION", 3, what, accessors, report);
+    const std::vector<float> r = readAttribute(attributes, "ROTATION", 4, what, accessors, report);
+    const std::vector<float> s = readAttribute(attributes, "SCALE", 3, what, accessors, report);
     const size_t count = std::max({t.size() / 3, r.size() / 4, s.size() / 3});
     if (count == 0) report.fail(what + " has no TRANSLATION, ROTATION or SCALE instances");
     for (const auto& [values, components, name] : {std::tuple{&t, 3u, "TRANSLATION"}, std::tuple{&r, 4u, "ROTATION"},

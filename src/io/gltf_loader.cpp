@@ -2,8 +2,8 @@
 // walk over the default scene's node hierarchy and what its nodes carry (meshes, the camera,
 // point lights). The pieces it builds on have files of their own, one concept each: the scene
 // file and the buffer files it names (gltf_file.cpp), accessors (gltf_accessors.cpp), node
-// transforms (gltf_transforms.cpp), the material mapping (its table heads gltf_materials.cpp)
-// and the checks and messages they share (gltf_checks.h).
+// transforms (gltf_transforms.cpp), the material mapping (its table heads gltf_materials.cpp), the
+// textures (gltf_textures.cpp) and the checks and messages they share (gltf_checks.h).
 //
 // Geometry: TRIANGLES primitives (other modes are skipped with a warning), POSITION and NORMAL as
 // float VEC3, unsigned byte/short/int indices or none. Nodes of the default scene (else scene 0,
@@ -13,6 +13,9 @@
 // Instancing: a mesh placed more than once (by several nodes, or by a node's
 // EXT_mesh_gpu_instancing, gltf_instancing.h) is kept once in its own space, its triangles
 // degenerate there dropped, with a transform per copy (SceneDesc::instances).
+// Primitives whose material has textures also keep TEXCOORD_0, TEXCOORD_1 and TANGENT (its xyz by
+// the full matrix's linear part, its sign flipped by a mirroring one); the textures themselves are
+// read with the materials (gltf_textures.cpp).
 // Lights: KHR_lights_punctual point, spot and directional lights; camera: the first perspective camera in depth-first order.
 #include "io/gltf_loader.h"
 
@@ -33,6 +36,7 @@
 #include "io/gltf_file.h"
 #include "io/gltf_instancing.h"
 #include "io/gltf_materials.h"
+#include "io/gltf_textures.h"
 #include "io/gltf_transforms.h"
 
 namespace tripath::gltf {
@@ -46,7 +50,7 @@ constexpr double kDegenerateSine = 1e-6;
 const std::set<std::string> kIgnorableExtensions = {
     "KHR_materials_specular",   "KHR_materials_clearcoat", "KHR_materials_sheen",
     "KHR_materials_volume",     "KHR_materials_iridescence", "KHR_materials_anisotropy",
-    "KHR_materials_dispersion", "KHR_materials_variants",  "KHR_texture_transform",
+    "KHR_materials_dispersion", "KHR_materials_variants",
     "KHR_texture_basisu",       "EXT_texture_webp",        "EXT_texture_avif"};
 
 // True when the float arithmetic the renderer does on a triangle stays finite: its edges, their
@@ -110,8 +114,11 @@ private:
     void addPrimitive(const tinygltf::Primitive& prim, const std::string& name, const glm::dmat4& world);
     std::vector<Vec3> worldNormals(const tinygltf::Primitive& prim, size_t vertexCount,
                                    const glm::dmat4& world, const std::string& what);
+    MeshDesc textureAttributes(const tinygltf::Primitive& prim, size_t vertexCount, const glm::dmat4& world,
+                               const std::string& what);
     MeshDesc keepGoodTriangles(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
-                               const std::vector<uint32_t>& indices, bool flipWinding, const std::string& what);
+                               const MeshDesc& textured, const std::vector<uint32_t>& indices, bool flipWinding,
+                               const std::string& what);
 
     void addCamera(int cameraIndex, const glm::dmat4& world, int nodeIndex);
     void addLight(const tinygltf::Node& node, const glm::dmat4& world, int nodeIndex);
@@ -131,7 +138,8 @@ SceneDesc Loader::load() {
     model_ = readModel(allowExternalFiles_, report_);
     checkExtensions();
     warnIgnoredModelFeatures();
-    scene_.materials = convertMaterials(model_, report_);
+    TextureReader textures(model_, sceneFolder(report_), allowExternalFiles_, report_);
+    scene_.materials = convertMaterials(model_, textures, report_);
     traverseScene();
     addMeshes();
     if (droppedTriangles_ > 0)
@@ -154,8 +162,6 @@ void Loader::checkExtensions() {
 }
 
 void Loader::warnIgnoredModelFeatures() {
-    if (!model_.textures.empty() || !model_.images.empty())
-        report_.warnOnce("textures are ignored (material factors are used)");
     if (!model_.animations.empty()) report_.warnOnce("animations are ignored (the static pose is used)");
     if (!model_.skins.empty()) report_.warnOnce("skins are ignored (meshes use their node transforms)");
 }
@@ -317,6 +323,9 @@ void Loader::addPrimitive(const tinygltf::Primitive& prim, const std::string& na
     for (const Vec3& p : positions)
         if (!isFinite(p)) report_.fail(name + " has non-finite vertex positions");
     const std::vector<Vec3> normals = worldNormals(prim, positions.size(), world, name);
+    const int material = materialIndex(prim.material, name);
+    const MeshDesc textured = scene_.materials[size_t(material)].textures
+                                  ? textureAttributes(prim, positions.size(), world, name) : MeshDesc{};
 
     std::vector<uint32_t> indices;
     if (prim.indices >= 0) {
@@ -332,10 +341,10 @@ void Loader::addPrimitive(const tinygltf::Primitive& prim, const std::string& na
             report_.fail(name + " index " + std::to_string(i) + " is out of range (" +
                          std::to_string(positions.size()) + " vertices)");
 
-    MeshDesc mesh = keepGoodTriangles(positions, normals, indices, mirrors(world), name);
+    MeshDesc mesh = keepGoodTriangles(positions, normals, textured, indices, mirrors(world), name);
     if (mesh.indices.empty()) return;
     mesh.name = name;
-    mesh.material = materialIndex(prim.material, name);
+    mesh.material = material;
     scene_.meshes.push_back(std::move(mesh));
 }
 
@@ -359,10 +368,53 @@ std::vector<Vec3> Loader::worldNormals(const tinygltf::Primitive& prim, size_t v
     return normals;
 }
 
-// Copies the non-degenerate triangles and the vertices they use; counts the dropped ones. Fails
-// on a triangle too large for float.
+// TEXCOORD_0, TEXCOORD_1 and TANGENT (world space; its sign flipped by a mirroring transform,
+// which turns the bitangent's handedness) of a primitive whose material has textures, per vertex;
+// an attribute the primitive lacks stays empty (TEXCOORD: read as (0, 0); TANGENT: derived from
+// the texture coordinates, geometry/surface_textures.h).
+MeshDesc Loader::textureAttributes(const tinygltf::Primitive& prim, size_t vertexCount, const glm::dmat4& world,
+                                   const std::string& what) {
+    MeshDesc m;
+    auto read = [&](const char* attribute, int components) -> std::vector<float> {
+        const auto it = prim.attributes.find(attribute);
+        if (it == prim.attributes.end()) return {};
+        const bool texCoord = components == 2;  // TEXCOORD_n may be normalized integers; TANGENT is float
+        std::vector<float> values = accessors_.readFloats(it->second, components, what + " " + attribute, texCoord);
+        if (values.size() != vertexCount * size_t(components))
+            report_.fail(what + " has " + std::to_string(values.size() / size_t(components)) + " " + attribute +
+                         " for " + std::to_string(vertexCount) + " positions");
+        if (!allFinite(std::vector<double>(values.begin(), values.end())))
+            report_.fail(what + " " + attribute + " is not finite");
+        return values;
+    };
+    for (int set = 0; set < 2; ++set) {
+        const std::vector<float> uv = read(set == 0 ? "TEXCOORD_0" : "TEXCOORD_1", 2);
+        for (size_t i = 0; i < uv.size(); i += 2) m.texCoords[set].push_back({uv[i], uv[i + 1]});
+    }
+    const std::vector<float> tangents = read("TANGENT", 4);
+    const glm::dmat3 linear = linearPart(world);
+    const float handedness = mirrors(world) ? -1.0f : 1.0f;
+    for (size_t i = 0; i < tangents.size(); i += 4) {
+        m.tangents.push_back(transformDirection(linear, {tangents[i], tangents[i + 1], tangents[i + 2]}));
+        m.tangentSigns.push_back(tangents[i + 3] < 0 ? -handedness : handedness);
+    }
+    return m;
+}
+
+// Copies vertex v's texture attributes (those `from` has) onto the end of `to`'s.
+void copyTextureAttributes(const MeshDesc& from, uint32_t v, MeshDesc& to) {
+    for (int set = 0; set < 2; ++set)
+        if (!from.texCoords[set].empty()) to.texCoords[set].push_back(from.texCoords[set][v]);
+    if (from.tangents.empty()) return;
+    to.tangents.push_back(from.tangents[v]);
+    to.tangentSigns.push_back(from.tangentSigns[v]);
+}
+
+// Copies the non-degenerate triangles and the vertices they use, with their attributes (normals,
+// and the texture attributes `textured` holds); counts the dropped ones. Fails on a triangle too
+// large for float.
 MeshDesc Loader::keepGoodTriangles(const std::vector<Vec3>& positions,
-                                   const std::vector<Vec3>& normals,
+                                   const std::vector<Vec3>& normals, const MeshDesc& textured,
                                    const std::vector<uint32_t>& indices, bool flipWinding, const std::string& what) {
     constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
     std::vector<uint32_t> remap(positions.size(), kUnused);
@@ -384,6 +436,7 @@ MeshDesc Loader::keepGoodTriangles(const std::vector<Vec3>& positions,
                 remap[v] = uint32_t(mesh.positions.size());
                 mesh.positions.push_back(positions[v]);
                 if (!normals.empty()) mesh.normals.push_back(normals[v]);
+                copyTextureAttributes(textured, v, mesh);
             }
             mesh.indices.push_back(remap[v]);
         }

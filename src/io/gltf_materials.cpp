@@ -1,55 +1,67 @@
 // glTF 2.0 materials → Material (gltf_materials.h; the user-facing table is in docs/gltf.md).
 //
-// Material mapping, from pbrMetallicRoughness factors (textures are ignored), tested in this order:
+// Material mapping, from pbrMetallicRoughness, tested in this order:
 //   KHR_materials_transmission.transmissionFactor > 0   → Dielectric (smooth glass), albedo = baseColor,
 //                                                          ior = KHR_materials_ior.ior (default 1.5)
-//   metallicFactor ≥ 0.5 and roughnessFactor < 0.01     → Mirror, reflectance = baseColor
-//   metallicFactor ≥ 0.5                                → Conductor (GGX), F0 = baseColor, roughness
-//   metallicFactor < 0.5 and roughnessFactor ≥ 0.99     → Lambertian, albedo = baseColor
-//   otherwise                                           → Plastic: diffuse baseColor under a GGX coat
+//   a metallicRoughnessTexture                          → MetallicRoughness (glTF's BRDF, Appendix B)
+//   metallicFactor 1 and roughnessFactor 0              → Mirror, reflectance = baseColor (the BRDF's limit)
+//   metallicFactor 1                                    → Conductor (GGX), F0 = baseColor, roughness
+//   metallicFactor 0 and roughnessFactor ≥ 0.99         → Lambertian, albedo = baseColor (an approximation:
+//                                                          the BRDF keeps a rough coat; scene files
+//                                                          write Lambertian surfaces so)
+//   metallicFactor 0                                    → Plastic: diffuse baseColor under a GGX coat
 //                                                          of roughnessFactor, ior 1.5 (or KHR_materials_ior)
+//   otherwise                                           → MetallicRoughness: metallic × Conductor +
+//                                                          (1 − metallic) × Plastic
 //   emission         = emissiveFactor × KHR_materials_emissive_strength.emissiveStrength (default 1)
 //   twoSidedEmission = doubleSided
 //   no material      → Lambertian, albedo 0.8
+// Textures (gltf_textures.h) multiply the factors where they are read: baseColorTexture (sRGB) the
+// base colour and, with alphaMode MASK, its alpha; metallicRoughnessTexture (linear: B metallic,
+// G roughness); emissiveTexture (sRGB) the emission; normalTexture bends the shading normal.
+// alphaMode BLEND is read as MASK with cutoff 0.5; occlusionTexture is ignored (ambient occlusion
+// is a rasteriser's stand-in for what a path tracer computes).
 //
 // Its own file so that the mapping, its validation and the warnings about what it drops read in
 // one place; gltf_writer.h writes materials so that this mapping gives them back.
 #include "io/gltf_materials.h"
 
 #include <cmath>
+#include <map>
+#include <memory>
 
 namespace tripath::gltf {
 
 namespace {
 
-MaterialType classifyMaterial(float metallic, float roughness, float transmission) {
+MaterialType classifyMaterial(float metallic, float roughness, float transmission, bool metallicRoughnessTexture) {
     if (transmission > 0) return MaterialType::Dielectric;
-    if (metallic >= 0.5f) return roughness < 0.01f ? MaterialType::Mirror : MaterialType::Conductor;
-    return roughness >= 0.99f ? MaterialType::Lambertian : MaterialType::Plastic;
-}
-
-bool hasTexture(const tinygltf::Material& g) {
-    return g.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
-           g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ||
-           g.normalTexture.index >= 0 || g.occlusionTexture.index >= 0 ||
-           g.emissiveTexture.index >= 0;
+    if (metallicRoughnessTexture) return MaterialType::MetallicRoughness;
+    if (metallic == 1) return roughness == 0 ? MaterialType::Mirror : MaterialType::Conductor;
+    if (metallic == 0) return roughness >= 0.99f ? MaterialType::Lambertian : MaterialType::Plastic;
+    return MaterialType::MetallicRoughness;
 }
 
 // Converts one model's materials, failing and warning through the report.
 class MaterialConverter {
 public:
-    explicit MaterialConverter(Report& report) : report_(report) {}
+    MaterialConverter(TextureReader& textures, Report& report) : textures_(textures), report_(report) {}
     Material convertMaterial(const tinygltf::Material& g, int index);
+    // One warning per kind of feature some materials lose, naming them.
+    void warnIgnored();
 
 private:
-    void warnIgnoredMaterialFeatures(const tinygltf::Material& g, float metallic, float roughness,
-                                     float transmission);
+    void noteIgnoredMaterialFeatures(const tinygltf::Material& g, const std::string& name, float transmission,
+                                     float roughness);
+    std::shared_ptr<const MaterialTextures> readTextures(const tinygltf::Material& g, const std::string& context);
     Spectrum emission(const tinygltf::Material& g, const std::string& context) const;
     double extensionNumber(const tinygltf::ExtensionMap& extensions, const std::string& extension,
                            const std::string& key, double fallback, const std::string& context) const;
     float unitFactor(double value, const std::string& what) const;
 
+    TextureReader& textures_;
     Report& report_;
+    std::map<std::string, std::vector<std::string>> ignored_;  // what is lost → the materials losing it
 };
 
 Material MaterialConverter::convertMaterial(const tinygltf::Material& g, int index) {
@@ -64,27 +76,62 @@ Material MaterialConverter::convertMaterial(const tinygltf::Material& g, int ind
         extensionNumber(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, context),
         context + "transmissionFactor");
     m.ior = float(extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5, context));
-    m.type = classifyMaterial(metallic, roughness, transmission);
+    m.type = classifyMaterial(metallic, roughness, transmission, pbr.metallicRoughnessTexture.index >= 0);
     m.roughness = (m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric) ? 0.0f : roughness;
+    m.metallic = m.type == MaterialType::MetallicRoughness ? metallic : 0.0f;
     m.emission = emission(g, context);
     m.twoSidedEmission = g.doubleSided;
-    warnIgnoredMaterialFeatures(g, metallic, roughness, transmission);
+    m.textures = readTextures(g, context);
+    noteIgnoredMaterialFeatures(g, m.name, transmission, roughness);
     const std::string problem = validateMaterial(m);
     if (!problem.empty()) report_.fail(context + problem);
     return m;
 }
 
-void MaterialConverter::warnIgnoredMaterialFeatures(const tinygltf::Material& g, float metallic,
-                                                    float roughness, float transmission) {
-    if (hasTexture(g)) report_.warnOnce("textures are ignored (material factors are used)");
-    if (g.alphaMode != "OPAQUE")
-        report_.warnOnce("alphaMode " + excerpt(g.alphaMode) + " is ignored (surfaces are opaque)");
-    if (metallic > 0 && metallic < 1)
-        report_.warnOnce("metallicFactor between 0 and 1 is rounded to dielectric or metal at 0.5");
-    if (transmission > 0 && transmission < 1) report_.warnOnce("transmissionFactor below 1 is treated as 1");
-    if (transmission > 0 && roughness > 0) report_.warnOnce("rough transmission is rendered as smooth glass");
-    for (const auto& [name, value] : g.extensions)
-        if (!isHandledExtension(name)) report_.warnOnce("extension " + excerpt(name) + " is ignored");
+// The textures of a material, or null when it has none that is read (an occlusionTexture alone).
+std::shared_ptr<const MaterialTextures> MaterialConverter::readTextures(const tinygltf::Material& g,
+                                                                        const std::string& context) {
+    const auto& pbr = g.pbrMetallicRoughness;
+    MaterialTextures t;
+    auto read = [&](const auto& info, bool srgb) {
+        if (info.index < 0) return TextureSlot{};
+        return textures_.slot(info.index, info.texCoord, info.extensions, srgb, context);
+    };
+    t.baseColor = read(pbr.baseColorTexture, true);
+    t.metallicRoughness = read(pbr.metallicRoughnessTexture, false);
+    t.normal = read(g.normalTexture, false);
+    t.emissive = read(g.emissiveTexture, true);
+    t.normalScale = float(g.normalTexture.scale);
+    if (!std::isfinite(t.normalScale)) report_.fail(context + "normalTexture.scale is not finite");
+    t.baseAlpha = pbr.baseColorFactor.size() == 4 ? float(pbr.baseColorFactor[3]) : 1.0f;
+    if (!(t.baseAlpha >= 0 && t.baseAlpha <= 1)) report_.fail(context + "baseColorFactor's alpha is outside [0, 1]");
+    if (g.alphaMode == "MASK" || g.alphaMode == "BLEND") {
+        t.alphaCutoff = g.alphaMode == "MASK" ? float(g.alphaCutoff) : 0.5f;
+        if (!(t.alphaCutoff >= 0)) report_.fail(context + "alphaCutoff must be a number ≥ 0");
+    }
+    if (!t.baseColor && !t.metallicRoughness && !t.normal && !t.emissive && !t.masks()) return nullptr;
+    return std::make_shared<const MaterialTextures>(std::move(t));
+}
+
+void MaterialConverter::noteIgnoredMaterialFeatures(const tinygltf::Material& g, const std::string& name,
+                                                    float transmission, float roughness) {
+    auto note = [&](const std::string& what) { ignored_[what].push_back(name); };
+    if (g.occlusionTexture.index >= 0)
+        note("occlusionTexture is ignored (path tracing computes what it stands in for)");
+    if (g.alphaMode == "BLEND") note("alphaMode BLEND is rendered as MASK with alphaCutoff 0.5");
+    if (transmission > 0 && transmission < 1) note("transmissionFactor below 1 is treated as 1");
+    if (transmission > 0 && roughness > 0) note("rough transmission is rendered as smooth glass");
+    for (const auto& [extension, value] : g.extensions)  // as the file's extensionsUsed say it (gltf_loader.cpp)
+        if (!isHandledExtension(extension)) report_.warnOnce("extension " + excerpt(extension) + " is ignored");
+}
+
+void MaterialConverter::warnIgnored() {
+    for (const auto& [what, names] : ignored_) {
+        std::string list;
+        for (size_t i = 0; i < names.size() && i < 3; ++i) list += (i ? ", '" : "'") + excerpt(names[i], 24) + "'";
+        if (names.size() > 3) list += " and " + std::to_string(names.size() - 3) + " more";
+        report_.warnOnce(what + ": material" + (names.size() > 1 ? "s " : " ") + list);
+    }
 }
 
 Spectrum MaterialConverter::emission(const tinygltf::Material& g, const std::string& context) const {
@@ -118,11 +165,12 @@ float MaterialConverter::unitFactor(double value, const std::string& what) const
 
 }  // namespace
 
-std::vector<Material> convertMaterials(const tinygltf::Model& model, Report& report) {
-    MaterialConverter converter(report);
+std::vector<Material> convertMaterials(const tinygltf::Model& model, TextureReader& textures, Report& report) {
+    MaterialConverter converter(textures, report);
     std::vector<Material> materials;
     for (size_t i = 0; i < model.materials.size(); ++i)
         materials.push_back(converter.convertMaterial(model.materials[i], int(i)));
+    converter.warnIgnored();
     return materials;
 }
 

@@ -120,15 +120,17 @@ tinygltf::Material ModelBuilder::material(const Material& m) {
         case MaterialType::Mirror: metallic = 1, roughness = 0; break;
         case MaterialType::Conductor:
             metallic = 1, roughness = m.roughness;
-            if (roughness < 0.01f)
-                warn(fmt::format("material '{}': a metal of roughness {} loads back as a mirror", m.name, roughness));
+            if (roughness == 0)
+                warn(fmt::format("material '{}': a metal of roughness 0 loads back as a mirror", m.name));
             break;
         case MaterialType::Dielectric:
             roughness = 0;
             setExtension(g.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(1.0));
             break;
+        case MaterialType::MetallicRoughness: metallic = m.metallic, roughness = m.roughness; break;
     }
-    const bool usesIor = m.type == MaterialType::Dielectric || m.type == MaterialType::Plastic;
+    const bool usesIor = m.type == MaterialType::Dielectric || m.type == MaterialType::Plastic ||
+                         m.type == MaterialType::MetallicRoughness;
     if (usesIor && (m.type == MaterialType::Dielectric || m.ior != 1.5f))
         setExtension(g.extensions, "KHR_materials_ior", "ior", tinygltf::Value(number(m.ior)));
     const Scaled e = splitScale(m.emission);
@@ -143,6 +145,7 @@ tinygltf::Material ModelBuilder::material(const Material& m) {
     g.pbrMetallicRoughness.roughnessFactor = number(roughness);
     g.emissiveFactor = numbers(e.factor);
     g.doubleSided = m.twoSidedEmission;
+    if (m.textures) warn(fmt::format("material '{}': its textures are left out (its factors are written)", m.name));
     return g;
 }
 
@@ -312,6 +315,8 @@ tinygltf::Model ModelBuilder::build() {
     addMeshes();
     addCamera();
     addLights();
+    if (scene_.environment.present())
+        warn("its environment is left out (glTF has none): render the file with --environment to light it");
     model_.extensionsUsed.assign(extensions_.begin(), extensions_.end());
     return std::move(model_);
 }

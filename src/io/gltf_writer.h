@@ -6,8 +6,10 @@
 //   Lambertian  metallic 0, roughness 1
 //   Plastic     metallic 0, roughness r (< 0.99), KHR_materials_ior when ior ≠ 1.5
 //   Mirror      metallic 1, roughness 0
-//   Conductor   metallic 1, roughness r (≥ 0.01)
+//   Conductor   metallic 1, roughness r (> 0)
 //   Dielectric  metallic 0, roughness 0, KHR_materials_transmission 1, KHR_materials_ior
+//   MetallicRoughness  metallic m, roughness r, KHR_materials_ior when ior ≠ 1.5
+// Textures are not written (a warning names each textured material): its factors are.
 // Emission is emissiveFactor × KHR_materials_emissive_strength with the strength a power of two,
 // so the factor (≤ 1, as glTF requires) times the strength gives the radiance back exactly; point
 // lights likewise split into KHR_lights_punctual colour × intensity. Positions and normals go into

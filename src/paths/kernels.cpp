@@ -14,15 +14,15 @@ bool LocalScattering::emits() const {
 
 Spectrum LocalScattering::value() const {
     if (v_.kind == Vertex::Kind::Sensor) return Spectrum(hasLight_ ? scene_.camera().importance(light_) : 0.0f);
-    if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, camera_);
+    if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, camera_, v_.bary);
     if (!sidesAgree(v_, light_) || !sidesAgree(v_, camera_)) return Spectrum(0.0f);
-    return evalBsdf(*v_.material, cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, light_);
+    return evalBsdf(bsdf(), cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, light_);
 }
 
 float LocalScattering::pdfTowardCamera() const {
     if (v_.kind == Vertex::Kind::Sensor) return 0.0f;  // the path's end: nothing lies beyond it
     if (emits()) return scene_.emitters().directionPdf(v_.emitter, v_.ng, camera_);
-    return pdfBsdf(*v_.material, lightLocal_, cameraLocal_);
+    return pdfBsdf(bsdf(), lightLocal_, cameraLocal_);
 }
 
 float LocalScattering::pdfTowardLight(double lightPaths) const {
@@ -37,7 +37,7 @@ float LocalScattering::pdfTowardLight(double lightPaths) const {
         return cam.pixelDensity(light_) / static_cast<float>(lightPaths);
     }
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
-    return pdfBsdf(*v_.material, cameraLocal_, lightLocal_);
+    return pdfBsdf(bsdf(), cameraLocal_, lightLocal_);
 }
 
 float g(const Scene& scene, const Vertex& x, const Vertex& xp) { return visible(scene, x, xp) ? g(Segment(x, xp)) : 0.0f; }

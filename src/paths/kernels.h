@@ -24,6 +24,7 @@
 // automatically, so light tracing and path tracing agree on smooth-normal meshes.
 #pragma once
 #include <cmath>
+#include <optional>
 
 #include "paths/vertex.h"
 
@@ -127,6 +128,8 @@ public:
             const Frame frame(v.ns);
             lightLocal_ = frame.toLocal(*towardLight);
             cameraLocal_ = frame.toLocal(*towardCamera);
+            if (v.material->textures)
+                textured_ = v.material->textures->at(*v.material, scene.texCoords(v.triangle, v.bary));
         }
     }
     // What v contributes besides cosines: Le toward the camera side at an emitter end, f_r ×
@@ -145,11 +148,14 @@ public:
 
 private:
     bool emits() const;  // an emitter end: no light side
+    // The BSDF at v: its material's, or a textured material's parameters at v.
+    const BsdfParams& bsdf() const { return textured_ ? *textured_ : *v_.material; }
     const Scene& scene_;
     const Vertex& v_;
     bool hasLight_, hasCamera_;
     Vec3 light_, camera_;
     Vec3 lightLocal_, cameraLocal_;  // in v's shading frame (surfaces between two neighbours)
+    std::optional<BsdfParams> textured_;
 };
 
 // The segment from a camera or light subpath's vertex v back to its predecessor, along the

@@ -45,9 +45,9 @@ void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, std::
     }
 }
 
-// Calls sink(strategy, merge) for each merge of a non-delta camera vertex z_{t−1} (t ≥ 2) on a surface with a
-// light vertex the search finds within its radius, with k = s + t − 2 ≤ maxDepth and a non-zero
-// contribution, in a fixed order.
+// Calls sink(strategy, merge) for each merge of a non-delta camera vertex z_{t−1} (t ≥ 2) on a
+// surface with a light vertex the search finds within its radius, with k = s + t − 2 ≤ maxDepth and
+// a non-zero contribution, in a fixed order.
 template <class Sink>
 void evaluateMerges(const Scene& scene, const LightVertexSearch& search, const Subpath& camera, int maxDepth,
                     const MisContext& mis, Sink&& sink) {

@@ -16,7 +16,7 @@ namespace tripath {
 
 struct Vertex {
     enum class Kind : uint8_t { Sensor, Emitter, Surface };
-    // Widest fields first and the bytes last: no padding inside (96 bytes; the light store holds
+    // Widest fields first and the bytes last: no padding inside (104 bytes; the light store holds
     // millions and every walk step copies one).
     const Material* material = nullptr;
     Vec3 p;
@@ -24,6 +24,7 @@ struct Vertex {
     Vec3 ns;               // shading normal (surfaces); the unit direction toward an emitter at infinity
     Vec3 arrival;          // unit direction back along the ray its walk reached it by (kernels.h: traced)
     Spectrum beta{0.0f};
+    Vec2 bary;             // barycentrics on `triangle` (corners 1, 2): where textures are read
     uint32_t triangle = 0;
     int emitter = -1;      // the emitter this vertex lies on, or -1
     float pdfFwd = 0;      // area pdf from the vertex before it in its own subpath
@@ -50,6 +51,6 @@ struct Vertex {
 // A subpath: vertex 0 is the emitter (light subpath) or the sensor (camera subpath).
 using Subpath = std::vector<Vertex>;
 
-static_assert(sizeof(Vertex) == 96, "Vertex gained padding or a field: see its layout");
+static_assert(sizeof(Vertex) == 104, "Vertex gained padding or a field: see its layout");
 
 }  // namespace tripath

@@ -25,6 +25,7 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     v.ng = hit.ng;
     v.ns = hit.ns;
     v.triangle = hit.triangle;
+    v.bary = hit.bary;
     v.material = &scene.materialOf(hit.triangle);
     v.emitter = scene.emitters().emitterOfTriangle(hit.triangle);
     v.delta = isDelta(*v.material);
@@ -84,6 +85,29 @@ Spectrum stepFactor(const Subpath& path, const Vertex& v, Spectrum scatter, floa
     return kernel * step.gOverArea(pdf, v);
 }
 
+// The step of a walk: appends v, which the path's last vertex reached along `dir` (having scattered
+// with factor `scatter` and solid-angle pdf `pdf`), with its throughput and the pdfs `pdfs` asks
+// for. False, and nothing appended, where the throughput vanishes or is not finite (a grazing hit,
+// p_A = 0, or coincident points).
+[[gnu::always_inline]] inline bool appendStep(const Scene& scene, Subpath& path, Vertex& v, Vec3 dir, Spectrum beta,
+                                              Spectrum scatter, float pdf, TransportMode mode, WalkPdfs pdfs,
+                                              double lightPaths) {
+    v.arrival = -dir;
+    v.beta = beta * stepFactor(path, v, scatter, pdf, mode);
+    if (!isFinite(v.beta) || isBlack(v.beta)) return false;
+    if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0)) recordPdfs(scene, path, v, mode, lightPaths);
+    path.push_back(v);
+    return true;
+}
+
+// A camera walk's ray that left the scene along `dir` ends on the environment, if there is one.
+// Out of line: the walk's loop keeps one copy of the step, for the surfaces it hits.
+[[gnu::noinline]] void appendEnvironment(const Scene& scene, Subpath& path, Vec3 dir, Spectrum beta, Spectrum scatter,
+                                         float pdf, WalkPdfs pdfs, double lightPaths) {
+    Vertex sky = environmentVertex(scene, dir);
+    if (sky.emitter >= 0) appendStep(scene, path, sky, dir, beta, scatter, pdf, TransportMode::Radiance, pdfs, lightPaths);
+}
+
 // Extends `path` from its last vertex, which scattered with factor `scatter` into `dir` with
 // solid-angle pdf `pdf`; `beta` is that vertex's throughput divided by its roulette survival
 // probability. The directions are the sampler's and the kernels evaluated with its f_r (a delta
@@ -101,15 +125,13 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, f
         const Vec3 origin = from.onSurface() ? offsetRayOrigin(from.p, from.ng, dir) : from.p;
         const auto hit = firstHit ? *firstHit : scene.intersect(origin, dir);
         firstHit = nullptr;
-        if (!hit && (mode == TransportMode::Importance || scene.emitters().environment() < 0)) return;
-        Vertex v = hit ? surfaceVertex(scene, *hit) : environmentVertex(scene, dir);
-        v.arrival = -dir;
-        v.beta = beta * stepFactor(path, v, scatter, pdf, mode);
-        if (!isFinite(v.beta) || isBlack(v.beta)) return;  // a grazing hit (p_A = 0) or coincident points
-        if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0))
-            recordPdfs(scene, path, v, mode, lightPaths);
-        path.push_back(v);
-        if (!hit || path.size() == maxVertices || (mode == TransportMode::Radiance && settings.cameraUntilNonDelta && !v.delta)) return;
+        if (!hit) {
+            if (mode == TransportMode::Radiance) appendEnvironment(scene, path, dir, beta, scatter, pdf, pdfs, lightPaths);
+            return;
+        }
+        Vertex v = surfaceVertex(scene, *hit);
+        if (!appendStep(scene, path, v, dir, beta, scatter, pdf, mode, pdfs, lightPaths)) return;
+        if (path.size() == maxVertices || (mode == TransportMode::Radiance && settings.cameraUntilNonDelta && !v.delta)) return;
 
         const Vec3 wo = normalize(path[path.size() - 2].p - v.p);
         if (!sidesAgree(v, wo)) return;  // arrived through the surface's shading hemisphere: leak mask
@@ -118,7 +140,9 @@ void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, f
         // the image a seed gives must not depend on the compiler.
         const Vec2 u = uniform2(rng);
         const float uc = rng.uniform();
-        const auto bs = sampleBsdf(*v.material, frame.toLocal(wo), u, uc, mode);
+        BsdfParams textured;
+        const BsdfParams& bsdf = scene.bsdfAt(*v.material, v.triangle, v.bary, textured);
+        const auto bs = sampleBsdf(bsdf, frame.toLocal(wo), u, uc, mode);
         if (!bs || !(bs->pdf > 0) || isBlack(bs->f)) return;
         const Vec3 wi = frame.toWorld(bs->wi);
         if (!sidesAgree(v, wi)) return;
@@ -162,6 +186,7 @@ Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
     y0.delta = e.delta();
     y0.emitter = static_cast<int>(es.emitter);
     y0.triangle = e.triangle;
+    y0.bary = es.bary;
     y0.pdfFwd = es.pdfA;
     y0.beta = Spectrum(1.0f / es.pdfA);
     return y0;
@@ -194,7 +219,7 @@ void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Wa
     const Vec3 dir = y0.atInfinity ? -y0.ns : emitters.sampleDirection(y0.emitter, y0.ng, u, uc);
     const float pdfDir = emitters.directionPdf(y0.emitter, y0.ng, dir);
     if (!(pdfDir > 0)) return;
-    const Spectrum Le = emitters.Le(y0.emitter, y0.ng, dir);
+    const Spectrum Le = emitters.Le(y0.emitter, y0.ng, dir, y0.bary);
     if (isBlack(Le)) return;
     randomWalk(scene, rng, y0.beta, Le, pdfDir, dir, TransportMode::Importance, settings, pdfs, kNoSensor,
                static_cast<size_t>(settings.maxDepth), path);

@@ -17,7 +17,7 @@ struct WalkSettings {
 // The sensor endpoint z0 of every camera subpath.
 Vertex sensorVertex(const Scene& scene);
 // A fresh point on an emitter as the endpoint y0 of a light subpath (or of next-event estimation):
-// pdfFwd = its area pdf, beta = 1 / pdfFwd.
+// pdfFwd = its pdf in the emitter's measure (area, or solid angle at infinity), beta = 1 / pdfFwd.
 Vertex sampleEmitterVertex(const Scene& scene, Rng& rng);
 
 // A camera subpath's first ray: through raster position `raster`, and, when the render loop has
@@ -30,11 +30,13 @@ struct CameraRay {
     const std::optional<SurfacePoint>* hit = nullptr;
 };
 
-// Fills `path` with a camera subpath whose first segment is `ray`. `lightPaths`: the pass's N_L,
-// which the sensor's pdf of that segment is over (pass_constants.h).
+// Fills `path` with a camera subpath whose first segment is `ray`. A ray that leaves the scene ends
+// the subpath on the environment, a vertex at infinity, when the scene has one. `lightPaths`: the
+// pass's N_L, which the sensor's pdf of that segment is over (pass_constants.h).
 void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
                    double lightPaths, Subpath& path);
-// Fills `path` with a light subpath starting from a power-sampled emitter point.
+// Fills `path` with a light subpath starting from a power-sampled emitter point; from an emitter at
+// infinity, its walk starts on the bounding disc facing it (Emitters::beamOrigin), y0.p.
 void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path);
 
 }  // namespace tripath

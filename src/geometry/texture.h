@@ -1,0 +1,79 @@
+// Textures and what a textured material reads from them (glTF 2.0 §3.8 and §5.29, the
+// KHR_texture_transform extension). A Texture is an image of linear RGBA floats -- colour textures
+// are decoded from sRGB when they are read (io/gltf_textures.cpp), so lookups do no decoding --
+// looked up at glTF texture coordinates (u to the right, v downward from the image's top-left
+// corner) with the sampler's wrap modes and a nearest or bilinear filter. A TextureSlot is one use
+// of a texture by a material: which coordinate set, and the affine transform to apply first.
+// MaterialTextures gathers a material's slots and turns them into the parameters at a point.
+//
+// Everything here is plain data built by the io layer; the geometry layer only reads it.
+#pragma once
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "geometry/material.h"
+#include "core/vec.h"
+
+namespace tripath {
+
+using Texel = std::array<float, 4>;  // linear RGBA
+
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+enum class TextureFilter { Nearest, Linear };
+
+class Texture {
+public:
+    // texels: width × height, row by row from the image's top row.
+    Texture(int width, int height, std::vector<Texel> texels, TextureWrap wrapU, TextureWrap wrapV,
+            TextureFilter filter);
+    int width() const { return width_; }
+    int height() const { return height_; }
+    // The filtered texel at texture coordinates uv.
+    Texel lookup(Vec2 uv) const;
+
+private:
+    Texel texel(int x, int y) const;  // x, y already wrapped into the image
+    int width_, height_;
+    std::vector<Texel> texels_;
+    TextureWrap wrapU_, wrapV_;
+    TextureFilter filter_;
+};
+
+// The two texture coordinate sets (TEXCOORD_0, TEXCOORD_1) at one point.
+using TexCoords = std::array<Vec2, 2>;
+
+// A material's use of one texture: glTF's textureInfo with its KHR_texture_transform.
+struct TextureSlot {
+    std::shared_ptr<const Texture> texture;  // null: the slot is unused
+    int texCoord = 0;                        // 0 or 1
+    // uv' = M · (u, v, 1): the extension's translation · rotation · scale, identity without it.
+    std::array<float, 6> transform{1, 0, 0, 0, 1, 0};
+
+    explicit operator bool() const { return texture != nullptr; }
+    Texel lookup(const TexCoords& uv) const;
+};
+
+struct MaterialTextures {
+    TextureSlot baseColor;          // RGB × BsdfParams::albedo; A × baseAlpha
+    TextureSlot metallicRoughness;  // B × metallic, G × roughness
+    TextureSlot normal;             // tangent-space normal, (2 t − 1) with x, y × normalScale
+    TextureSlot emissive;           // RGB × Material::emission
+    float baseAlpha = 1.0f;         // baseColorFactor's alpha
+    float normalScale = 1.0f;
+    float alphaCutoff = -1.0f;      // alphaMode MASK: alpha below it is a hole; negative when opaque
+
+    bool masks() const { return alphaCutoff >= 0; }
+    // The BSDF parameters at a point of coordinates uv, the material's factors being `factors`.
+    BsdfParams at(const BsdfParams& factors, const TexCoords& uv) const;
+    // Whether the emission varies over the surface: an emissive texture, or holes that emit nothing.
+    bool variesEmission() const { return emissive || masks(); }
+    // The emitted radiance at a point, the material's emission being `factor`: 0 in a hole.
+    Spectrum emissionAt(Spectrum factor, const TexCoords& uv) const;
+    // Whether the surface is a hole at a point (alpha below the cutoff); false unless masking.
+    bool holeAt(const TexCoords& uv) const;
+    // The tangent-space normal (x, y, z) the normal texture gives at a point; (0, 0, 1) without one.
+    Vec3 tangentNormalAt(const TexCoords& uv) const;
+};
+
+}  // namespace tripath

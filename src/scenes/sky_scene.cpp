@@ -1,0 +1,56 @@
+#include "scenes/sky_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scenes/scene_builder.h"
+
+namespace tripath {
+
+EnvironmentDesc sunAndSky() {
+    constexpr int kWidth = 256, kHeight = 128;
+    constexpr float kSunRadius = 1.5f * kPi / 180.0f, kSunElevation = 40.0f * kPi / 180.0f;
+    const Vec3 sun = normalize(Vec3(0.6f * std::cos(kSunElevation), std::sin(kSunElevation), -0.8f * std::cos(kSunElevation)));
+    EnvironmentDesc e;
+    e.width = kWidth;
+    e.height = kHeight;
+    e.source = "built-in sun and sky";
+    for (int r = 0; r < kHeight; ++r)
+        for (int c = 0; c < kWidth; ++c) {
+            // The texel's centre, by the map's convention read backwards.
+            const float phi = 2.0f * kPi * ((c + 0.5f) / kWidth - 0.5f), theta = kPi * (r + 0.5f) / kHeight;
+            const Vec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+            Spectrum L;
+            if (d.y < 0) {
+                L = Spectrum(0.12f, 0.1f, 0.08f);
+            } else {
+                const float toHorizon = 1.0f - d.y;  // 0 at the zenith, 1 at the horizon
+                L = Spectrum(0.25f, 0.45f, 1.0f) * (0.6f + 0.8f * toHorizon * toHorizon);
+            }
+            if (std::acos(std::clamp(dot(d, sun), -1.0f, 1.0f)) < kSunRadius) L = Spectrum(5000.0f, 4600.0f, 3800.0f);
+            e.texels.push_back(L);
+        }
+    return e;
+}
+
+SceneDesc skyScene() {
+    using namespace build;
+    SceneDesc s;
+    s.name = "sky";
+    const int ground = addMaterial(s, lambertian("ground", Spectrum(0.4f)));
+    addSquare(s, "ground", ground, {0, 0, 0}, {0, 1, 0}, 6.0f);
+    const int clay = addMaterial(s, lambertian("clay", Spectrum(0.7f, 0.35f, 0.2f)));
+    addBox(s, "box", clay, {-1.6f, 0, -0.6f}, {-0.6f, 1.0f, 0.4f}, 0.4f, {-1.1f, 0, -0.1f});
+    Material metal;
+    metal.name = "rough metal";
+    metal.type = MaterialType::Conductor;
+    metal.albedo = Spectrum(0.95f, 0.8f, 0.55f);
+    metal.roughness = 0.3f;
+    addSphere(s, "metal sphere", addMaterial(s, metal), {0.3f, 0.6f, -0.3f}, 0.6f, 48);
+    addSphere(s, "glass sphere", addMaterial(s, glass("glass")), {1.4f, 0.4f, 0.6f}, 0.4f, 48);
+    s.environment = sunAndSky();
+    s.camera = lookAt({0.5f, 1.6f, 4.5f}, {0.1f, 0.45f, 0}, 0.6f);
+    return s;
+}
+
+}  // namespace tripath
