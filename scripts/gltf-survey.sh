@@ -29,7 +29,7 @@ tripath="${3:-$here/../build/tripath}"
 seconds="${SECONDS_PER_MODEL:-4}"
 timeout="${TIMEOUT:-120}"
 sheet_out="${SHEET_OUT:-$here/../docs/images/khronos-sheet.png}"
-read -r -a sheet <<< "${SHEET:-Avocado BoomBoxWithAxes WaterBottle Suzanne NormalTangentTest TextureCoordinateTest TextureSettingsTest Cube}"
+read -r -a sheet <<< "${SHEET:-Avocado BoomBoxWithAxes WaterBottle Suzanne NormalTangentTest TextureSettingsTest Cube AnimatedMorphSphere}"
 
 [ -d "$models_dir" ] || { echo "error: $models_dir is not a folder" >&2; exit 1; }
 [ -x "$tripath" ] || { echo "error: $tripath not found: build it (scripts/build.sh) or pass TRIPATH" >&2; exit 1; }
