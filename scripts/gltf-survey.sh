@@ -21,7 +21,7 @@
 # by `tripath montage`, four to a row in the order given.
 # Runtime: about (T + 1) seconds per model.
 set -euo pipefail
-[ $# -ge 2 ] && [ $# -le 3 ] || { echo "usage: $0 MODELS_DIR OUT_DIR [TRIPATH]" >&2; exit 2; }
+if [ $# -lt 2 ] || [ $# -gt 3 ]; then echo "usage: $0 MODELS_DIR OUT_DIR [TRIPATH]" >&2; exit 2; fi
 models_dir="${1%/}"
 out="${2%/}"
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -58,10 +58,11 @@ row() {
     ignored="$(grep '^warning: ' "$log" | sed "s|^warning: ||; s|$file: ||" | paste -sd ';' | sed 's/;/; /g' || true)"
     samples="$(grep -o '[0-9]* spp in [0-9.]* s\|[0-9]* NaN/Inf samples dropped' "$log" | paste -sd ',' | sed 's/,/, /' || true)"
     loads=yes renders=yes
+    # A hang or a crash may come before the load ends: whether it loaded is not known.
     if [ "$rc" -eq 124 ]; then
-        renders="no: hang (still running after ${timeout} s)"
+        loads="?" renders="no: hang (still running after ${timeout} s)"
     elif [ "$rc" -gt 128 ]; then
-        renders="no: crash (signal $((rc - 128)))"
+        loads="?" renders="no: crash (signal $((rc - 128)))"
     elif [ "$rc" -ne 0 ]; then
         # A load error names the scene file; anything else failed after loading.
         if grep -q "^error: $file: " "$log"; then loads="error: $(cell "$error" 110)"; renders=no
