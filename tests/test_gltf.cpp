@@ -740,6 +740,25 @@ TEST_F(GltfTest, IgnoredFeaturesWarnOnceEach) {
     for (const std::string& w : warnings) EXPECT_EQ(w.find(file("ignored.gltf").string()), 0u) << w;
 }
 
+// COLOR_0 changes how a model looks (glTF multiplies the base colour by it), so ignoring it is said
+// once, however many primitives carry it, and not at all when none does.
+TEST_F(GltfTest, VertexColoursWarnOnce) {
+    GltfBuilder b;
+    const int p = b.addVec3(kTriangle);
+    tinygltf::Primitive coloured = primitive(p);
+    coloured.attributes["COLOR_0"] = b.addVec3({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+    b.addMesh({coloured, coloured, primitive(p)});
+    b.addRoot({.mesh = 0});
+    EXPECT_EQ(triangles(load(b.write(file("colours.gltf")))).size(), 3u);
+    EXPECT_EQ(warningsContaining("vertex colours (COLOR_0) are ignored"), 1u);
+    EXPECT_EQ(warnings.size(), 1u);
+
+    warnings.clear();
+    b.model.meshes[0].primitives = {primitive(p)};
+    load(b.write(file("plain.gltf")));
+    EXPECT_TRUE(warnings.empty());
+}
+
 TEST_F(GltfTest, DefaultWarningSinkPrintsWarningPrefix) {
     GltfBuilder b;
     b.addTriangleMesh(b.addVec3({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));

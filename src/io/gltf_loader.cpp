@@ -313,6 +313,8 @@ void Loader::addPrimitive(const tinygltf::Primitive& prim, const std::string& na
         return;
     }
     if (!prim.targets.empty()) report_.warnOnce("morph targets are ignored (the base geometry is used)");
+    if (prim.attributes.count("COLOR_0"))
+        report_.warnOnce("vertex colours (COLOR_0) are ignored (the base colour is not multiplied by them)");
     const auto position = prim.attributes.find("POSITION");
     if (position == prim.attributes.end()) report_.fail(name + " has no POSITION attribute");
 
