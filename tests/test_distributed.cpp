@@ -153,6 +153,18 @@ TEST_F(Distributed, AGltfSceneUnderASkyAndItsDepthImagesToo) {
     }
 }
 
+// The built-in sky, lit by its environment alone and reading its ground's texture, on 1 and 2
+// ranks against one process.
+TEST_F(Distributed, ASkyAndATextureToo) {
+    for (const std::string integrator : {"bdpt", "vcm"}) {
+        const std::string args = "render --scene sky --integrator " + integrator + " --width 24 --height 16 --spp 4 --out ";
+        ASSERT_EQ(tripath(args + path("one.exr") + " --threads 2").exitCode, 0) << integrator;
+        const Outcome o = tripath(args + path("two.exr") + " --threads 1", 2);
+        ASSERT_EQ(o.exitCode, 0) << integrator << ": " << o.err;
+        expectSameRender(load(path("one.exr")), load(path("two.exr")), 2, integrator + " on the sky");
+    }
+}
+
 // Starts `cmd` in the background and, as soon as `file` exists, sends `signal` (SIGKILL by
 // default) to the newest process matching `victimPattern`. Returns the command's exit status.
 int killWhenWritten(const std::string& cmd, const std::string& file, const std::string& victimPattern, const fs::path& dir,

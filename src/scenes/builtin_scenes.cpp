@@ -205,7 +205,7 @@ const std::vector<Entry>& entries() {
         {{"furnace", "white furnace: closed sphere, albedo 0.5, emission 1; radiance is 2 everywhere"}, furnaceDefault},
         {{"furnace-0.9", "white furnace with albedo 0.9, emission 1; radiance is 10 everywhere"}, furnaceHigh},
         {{"veach-mis", "four metal plates of increasing roughness, four spherical lights of equal power"}, veachMis},
-        {{"sky", "a box, a metal and a glass sphere on the ground under a sky with a small bright sun (environment only)"}, skyScene},
+        {{"sky", "a box, a metal and a glass sphere on a checkered ground under a sky with a small bright sun (environment only)"}, skyScene},
         {{"smallvcm-5", "SmallVCM's scene 5: its Cornell box with a light box, a mirror and a glass sphere (peer comparison)"}, smallVcm5},
         // Scenes where methods fail for known reasons (failure_scenes.h, docs/failures.md).
         {{"caustic", "glass ball focusing a small area light onto a diffuse floor (pt noisy; lt, bdpt good)"}, causticScene},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/texture.h"
 #include "scenes/scene_builder.h"
 
 namespace tripath {
@@ -33,12 +34,29 @@ EnvironmentDesc sunAndSky() {
     return e;
 }
 
+namespace {
+
+// A grey checkerboard of 2 × 2 texels, repeated: the ground's base colour texture (a built-in that
+// reads a texture, for the determinism and compiler checks, without an image file).
+std::shared_ptr<const MaterialTextures> checkerboard() {
+    const Texel dark{0.25f, 0.25f, 0.25f, 1.0f}, light{0.6f, 0.6f, 0.6f, 1.0f};
+    auto textures = std::make_shared<MaterialTextures>();
+    textures->baseColor.texture = std::make_shared<const Texture>(2, 2, std::vector<Texel>{dark, light, light, dark},
+                                                                  TextureWrap::Repeat, TextureWrap::Repeat,
+                                                                  TextureFilter::Nearest);
+    return textures;
+}
+
+}  // namespace
+
 SceneDesc skyScene() {
     using namespace build;
     SceneDesc s;
     s.name = "sky";
-    const int ground = addMaterial(s, lambertian("ground", Spectrum(0.4f)));
-    addSquare(s, "ground", ground, {0, 0, 0}, {0, 1, 0}, 6.0f);
+    Material ground = lambertian("ground", Spectrum(1.0f));
+    ground.textures = checkerboard();
+    addSquare(s, "ground", addMaterial(s, ground), {0, 0, 0}, {0, 1, 0}, 6.0f);
+    s.meshes.back().texCoords[0] = {{0, 0}, {12, 0}, {12, 12}, {0, 12}};  // a texel a metre
     const int clay = addMaterial(s, lambertian("clay", Spectrum(0.7f, 0.35f, 0.2f)));
     addBox(s, "box", clay, {-1.6f, 0, -0.6f}, {-0.6f, 1.0f, 0.4f}, 0.4f, {-1.1f, 0, -0.1f});
     Material metal;

@@ -11,7 +11,8 @@ namespace tripath {
 // elevation whose irradiance on a surface facing it is several times the rest of the sky's.
 EnvironmentDesc sunAndSky();
 
-// A matte box, a rough metal sphere and a glass sphere on a grey ground under sunAndSky().
+// A matte box, a rough metal sphere and a glass sphere on a checkered ground (a base colour
+// texture) under sunAndSky().
 SceneDesc skyScene();
 
 }  // namespace tripath
