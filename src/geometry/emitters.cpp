@@ -144,12 +144,10 @@ float Emitters::directionPdf(int e, Vec3 frontNormal, Vec3 omega) const {
     return cosineHemispherePdf(c);
 }
 
-Spectrum Emitters::Le(int e, Vec3 frontNormal, Vec3 omega, Vec2 bary) const {
-    const Emitter& em = all_[size_t(e)];
-    if (em.kind == Emitter::Kind::Triangle) {
-        if (!em.twoSided && !(dot(frontNormal, omega) > 0)) return Spectrum(0.0f);
-        return em.textures ? em.textures->emissionAt(em.radiance, em.texCoords->at(bary)) : em.radiance;
-    }
+Spectrum Emitters::otherLe(const Emitter& em, Vec3 frontNormal, Vec3 omega, Vec2 bary) const {
+    if (em.kind == Emitter::Kind::Triangle)  // textured
+        return em.twoSided || dot(frontNormal, omega) > 0 ? em.textures->emissionAt(em.radiance, em.texCoords->at(bary))
+                                                          : Spectrum(0.0f);
     if (em.kind == Emitter::Kind::Point || em.kind == Emitter::Kind::Directional) return em.radiance;
     if (em.kind == Emitter::Kind::Spot) return em.radiance * spotFalloff(em, dot(omega, em.axis));
     return environmentMap_->radiance(-omega);

@@ -106,9 +106,16 @@ public:
     // Emitted radiance Le(x → ω) of emitter e leaving along unit ω (front face only unless
     // two-sided), x at barycentrics `bary` of a triangle emitter; I(ω) for point and spot lights, E
     // for a directional light.
-    Spectrum Le(int e, Vec3 frontNormal, Vec3 omega, Vec2 bary) const;
+    Spectrum Le(int e, Vec3 frontNormal, Vec3 omega, Vec2 bary) const {
+        const Emitter& em = all_[size_t(e)];
+        if (em.kind == Emitter::Kind::Triangle && !em.textures)  // the common case, inline
+            return em.twoSided || dot(frontNormal, omega) > 0 ? em.radiance : Spectrum(0.0f);
+        return otherLe(em, frontNormal, omega, bary);
+    }
 
 private:
+    // Le of a textured triangle or of an emitter that is not a triangle.
+    Spectrum otherLe(const Emitter& em, Vec3 frontNormal, Vec3 omega, Vec2 bary) const;
     // Φ of a light that is not a triangle (the table above).
     double lightPower(const Emitter& e) const;
 
