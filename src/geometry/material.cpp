@@ -168,14 +168,21 @@ float plasticSpecularProbability(const BsdfParams& m, Vec3 wo) {
     return total > 0 ? std::clamp(e / total, 0.1f, 0.9f) : 0.5f;
 }
 
-float pdfPlastic(const BsdfParams& m, Vec3 wo, Vec3 wi) {
-    const float ps = plasticSpecularProbability(m, wo);
-    return ps * ggxReflectionPdf(wo, wi, ggxAlpha(m.roughness)) + (1.0f - ps) * wi.z * kInvPi;
+// The sampler of a GGX reflection lobe of roughness m.roughness, chosen with probability
+// `specular`, and a cosine lobe: its pdf, and a draw from it.
+float pdfGgxOrCosine(const BsdfParams& m, float specular, Vec3 wo, Vec3 wi) {
+    return specular * ggxReflectionPdf(wo, wi, ggxAlpha(m.roughness)) + (1.0f - specular) * wi.z * kInvPi;
 }
 
-std::optional<Vec3> samplePlastic(const BsdfParams& m, Vec3 wo, Vec2 u, float uc) {
-    if (uc < plasticSpecularProbability(m, wo)) return sampleGgxReflection(wo, ggxAlpha(m.roughness), u);
+std::optional<Vec3> sampleGgxOrCosine(const BsdfParams& m, float specular, Vec3 wo, Vec2 u, float uc) {
+    if (uc < specular) return sampleGgxReflection(wo, ggxAlpha(m.roughness), u);
     return sampleCosineHemisphere(u);
+}
+
+float pdfPlastic(const BsdfParams& m, Vec3 wo, Vec3 wi) { return pdfGgxOrCosine(m, plasticSpecularProbability(m, wo), wo, wi); }
+
+std::optional<Vec3> samplePlastic(const BsdfParams& m, Vec3 wo, Vec2 u, float uc) {
+    return sampleGgxOrCosine(m, plasticSpecularProbability(m, wo), wo, u, uc);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -195,13 +202,11 @@ float metallicSpecularProbability(const BsdfParams& m, Vec3 wo) {
 }
 
 float pdfMetallicRoughness(const BsdfParams& m, Vec3 wo, Vec3 wi) {
-    const float ps = metallicSpecularProbability(m, wo);
-    return ps * ggxReflectionPdf(wo, wi, ggxAlpha(m.roughness)) + (1.0f - ps) * wi.z * kInvPi;
+    return pdfGgxOrCosine(m, metallicSpecularProbability(m, wo), wo, wi);
 }
 
 std::optional<Vec3> sampleMetallicRoughness(const BsdfParams& m, Vec3 wo, Vec2 u, float uc) {
-    if (uc < metallicSpecularProbability(m, wo)) return sampleGgxReflection(wo, ggxAlpha(m.roughness), u);
-    return sampleCosineHemisphere(u);
+    return sampleGgxOrCosine(m, metallicSpecularProbability(m, wo), wo, u, uc);
 }
 
 // ---------------------------------------------------------------------------------------------
