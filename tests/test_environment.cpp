@@ -109,14 +109,15 @@ SceneDesc underTheSky(SceneDesc s, EnvironmentDesc sky, Vec3 from, Vec3 at) {
     return s;
 }
 
-// The means over `runs` runs of the centre 12 × 12 pixels' channel average, for each integrator.
-test::MeanError centreOf(const Scene& scene, const char* integrator, int spp, int runs) {
+// The mean over `runs` runs of a block's channel average in a 32 × 32 image (by default the
+// centre 12 × 12 pixels), for one integrator.
+test::MeanError blockOf(const Scene& scene, const char* integrator, int spp, int runs, test::Block block = {10, 10, 12, 12}) {
     RenderRequest r = test::smallRequest();
     r.integrator = integrator;
     r.width = r.height = 32;
     r.spp = spp;
     r.maxDepth = 8;
-    return meanAndError(test::blockRuns(scene, r, runs, 1, {{10, 10, 12, 12}}, average)[0]);
+    return meanAndError(test::blockRuns(scene, r, runs, 1, {block}, average)[0]);
 }
 
 // A convex Lambertian box under a constant sky L sees the sky alone, over a whole hemisphere at
@@ -134,9 +135,31 @@ TEST(Environment, AConvexLambertianObjectUnderAConstantSkyReadsAlbedoTimesL) {
     const Scene scene(underTheSky(box, sky, {1.5f, 1.2f, 2.0f}, {0, 0, 0}), 32, 32);
     const double expected = 0.5 * (1.0 + 0.5 + 0.25) / 3;
     for (const char* integrator : kAllIntegrators) {
-        const auto m = centreOf(scene, integrator, 32, 8);
+        const auto m = blockOf(scene, integrator, 32, 8);
         EXPECT_NEAR(m.mean, expected, 4 * m.stderr_ + 1e-6) << integrator;
         EXPECT_LT(m.stderr_, 0.02 * expected) << integrator << ": too noisy for the test to mean anything";
+    }
+}
+
+// A wide camera that sees nothing but the sky (the scene's one box lies behind it) reads L in every
+// pixel, in every integrator: light tracing too, through strategy (1, 1), a direction drawn from the
+// map joined to the pinhole, which lands in the pixel that looks that way. Catches the sensor's
+// importance or pixel density misread for a direction at infinity, or that strategy's MIS weight
+// against the camera rays that escape (bdpt, vcm).
+TEST(Environment, ACameraThatSeesOnlyTheSkyReadsItsRadiance) {
+    SceneDesc s;
+    build::addBox(s, "box behind", build::addMaterial(s, build::lambertian("grey", Spectrum(0.5f))), {-0.1f, -0.1f, 2.0f},
+                  {0.1f, 0.1f, 2.2f});
+    EnvironmentDesc sky;
+    sky.width = sky.height = 1;
+    sky.texels = {Spectrum(0.5f, 1.0f, 2.0f)};
+    s.environment = sky;
+    s.camera = CameraDesc{true, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 2.4f};
+    const Scene scene(s, 32, 32);
+    for (const char* integrator : kAllIntegrators) {
+        const auto m = blockOf(scene, integrator, 8, 8, {0, 0, 32, 32});
+        EXPECT_NEAR(m.mean, 3.5 / 3, 4 * m.stderr_ + 1e-6) << integrator;
+        EXPECT_LT(m.stderr_, 0.02) << integrator << ": too noisy for the test to mean anything";
     }
 }
 
@@ -168,7 +191,7 @@ TEST(Environment, ATiltedPlaneUnderAMapReadsTheCosineWeightedIntegralOfItsTexels
         }
     const double expected = albedo / M_PI * irradiance;
     for (const char* integrator : kAllIntegrators) {
-        const auto m = centreOf(scene, integrator, 16, 8);
+        const auto m = blockOf(scene, integrator, 16, 8);
         EXPECT_NEAR(m.mean, expected, 4 * m.stderr_ + 1e-4 * expected) << integrator;
         EXPECT_LT(m.stderr_, 0.02 * expected) << integrator << ": too noisy for the test to mean anything";
     }
