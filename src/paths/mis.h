@@ -17,9 +17,9 @@
 // glass) only where it scatters: x0 emits and xk senses, so neither is ever a delta scatterer,
 // whatever its material -- an emissive mirror reached by a camera walk is x0 of the s = 0 path, and
 // NEE to the same point judges it the same way. A strategy that joins its subpaths at a delta
-// scatterer, or hits a point light, is impossible and drops out. An area pdf is a delta exactly
-// when the vertex that generates it is a delta scatterer (or, for x0, a point light's position):
-// such a factor is common to every strategy that can sample the path, and the chain of delta
+// scatterer, or hits a delta light (point, spot, directional), is impossible and drops out. An area
+// pdf is a delta exactly when the vertex that generates it is a delta scatterer (or, for x0, a
+// delta light's position or direction): such a factor is common to every strategy that can sample the path, and the chain of delta
 // vertices it belongs to (between two non-delta ones) is measured in projected solid angle at its
 // ends instead, which makes every ratio across it exact (chainPdf in mis.cpp). A zero pdf that is
 // not a delta makes the strategies that need it impossible, and nothing else.
