@@ -19,10 +19,11 @@
 // NEE to the same point judges it the same way. A strategy that joins its subpaths at a delta
 // scatterer, or hits a delta light (point, spot, directional), is impossible and drops out. An area
 // pdf is a delta exactly when the vertex that generates it is a delta scatterer (or, for x0, a
-// delta light's position or direction): such a factor is common to every strategy that can sample the path, and the chain of delta
-// vertices it belongs to (between two non-delta ones) is measured in projected solid angle at its
-// ends instead, which makes every ratio across it exact (chainPdf in mis.cpp). A zero pdf that is
-// not a delta makes the strategies that need it impossible, and nothing else.
+// delta light's position or direction): such a factor is common to every strategy that can sample
+// the path, and the chain of delta vertices it belongs to (between two non-delta ones) is measured
+// in projected solid angle at its ends instead, which makes every ratio across it exact (chainPdf
+// in mis.cpp). A zero pdf that is not a delta makes the strategies that need it impossible, and
+// nothing else.
 //
 // MIS reads the subpaths and never writes them: what a strategy defines at its junction (the
 // reverse pdfs of the two endpoints and of their predecessors) comes in a Junction. A ratio that
