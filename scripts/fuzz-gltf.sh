@@ -27,9 +27,10 @@ extra=()
 # -max_len: big enough for the small scenes; the 135 KB caustic files are seeds too, but the
 # mutator works on their first 64 KB (their JSON header and the start of the buffer).
 # -timeout: an input that takes more than 10 s to load (a hang) is an artifact too.
-# ASAN_OPTIONS: a leak is a finding as well; allocator_may_return_null turns a giant allocation
+# ASAN_OPTIONS: a leak is a finding as well (but for what scripts/lsan.supp names in libraries);
+# allocator_may_return_null turns a giant allocation
 # into std::bad_alloc (which escapes the fuzzer as a crash with its input) rather than an abort.
-ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
+ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp" \
 nice -n 19 ./build-fuzz/gltf_fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
   -max_len=65536 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/ "${extra[@]}" \
   build-fuzz/corpus scenes fuzz/seeds
