@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "geometry/emitters.h"
 #include "geometry/environment.h"
 #include "integrators/integrator.h"
 #include "requests/environment_spec.h"
@@ -195,6 +196,39 @@ TEST(Environment, ATiltedPlaneUnderAMapReadsTheCosineWeightedIntegralOfItsTexels
         EXPECT_NEAR(m.mean, expected, 4 * m.stderr_ + 1e-4 * expected) << integrator;
         EXPECT_LT(m.stderr_, 0.02 * expected) << integrator << ": too noisy for the test to mean anything";
     }
+}
+
+// Emitters are chosen in proportion to their power: a spot's I ∫ t² dω (integrated here over its
+// cone by the midpoint rule), a directional light's π R² E and a constant sky's π R² · 4π L, for
+// the bounding sphere's radius R. Catches a spot counted as a point light, or its falloff ring
+// counted whole, and a light at infinity weighed without the disc it lights.
+TEST(PunctualLights, EmittersAreChosenInProportionToTheirPower) {
+    const float R = 3.0f, I = 5.0f, E = 0.5f, L = 0.25f, cosInner = std::cos(0.3f), cosOuter = std::cos(0.6f);
+    Emitter spot;
+    spot.kind = Emitter::Kind::Spot;
+    spot.axis = {0, -1, 0};
+    spot.radiance = Spectrum(I);
+    spot.cosInner = cosInner;
+    spot.cosOuter = cosOuter;
+    Emitter sun;
+    sun.kind = Emitter::Kind::Directional;
+    sun.axis = {0, 1, 0};
+    sun.radiance = Spectrum(E);
+    const auto sky = std::make_shared<const Environment>(1, 1, std::vector<Spectrum>{Spectrum(L)});
+    const Emitters emitters({}, {}, {spot, sun}, sky, BoundingSphere{{0, 0, 0}, R});
+    double spotPower = 0;
+    constexpr int kSteps = 100000;
+    for (int i = 0; i < kSteps; ++i) {  // ∫ t(cos θ)² 2π d(cos θ) over [cos θ_outer, 1]
+        const double c = cosOuter + (1.0 - cosOuter) * (i + 0.5) / kSteps;
+        const double t = std::clamp((c - cosOuter) / (cosInner - cosOuter), 0.0, 1.0);
+        spotPower += I * t * t * 2 * M_PI * (1.0 - cosOuter) / kSteps;
+    }
+    const double sunPower = M_PI * R * R * E, skyPower = M_PI * R * R * 4 * M_PI * L;
+    const double total = spotPower + sunPower + skyPower;
+    ASSERT_EQ(emitters.all().size(), 3u);
+    EXPECT_NEAR(emitters.pdfA(0, {}), spotPower / total, 1e-5);
+    EXPECT_NEAR(emitters.pdfA(1, {}), sunPower / total, 1e-5);
+    EXPECT_NEAR(emitters.pdfA(2, {0, 1, 0}) / sky->pdf({0, 1, 0}), skyPower / total, 1e-5);
 }
 
 // A Lambertian floor (y = 0, albedo a) under a directional light of irradiance E along d and a spot

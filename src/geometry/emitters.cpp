@@ -75,10 +75,10 @@ double Emitters::lightPower(const Emitter& e) const {
         case Emitter::Kind::Triangle: break;
         case Emitter::Kind::Point: return 4.0 * kPi * luminance(e.radiance);
         case Emitter::Kind::Spot: {
-            // ∫ t² dω over the cone: the inner cone whole, and the falloff ring at its mean value,
-            // taken as 1/2 (exact enough for choosing among emitters, which needs only proportion).
+            // ∫ t² dω over the cone: the inner cone whole, and the falloff ring, where t is linear in
+            // cos θ and dω = 2π d(cos θ), a third of its solid angle.
             const double inner = 2.0 * kPi * (1.0 - e.cosInner), ring = 2.0 * kPi * (e.cosInner - e.cosOuter);
-            return luminance(e.radiance) * (inner + 0.5 * std::max(ring, 0.0));
+            return luminance(e.radiance) * (inner + std::max(ring, 0.0) / 3.0);
         }
         case Emitter::Kind::Directional: return disc * luminance(e.radiance);
         case Emitter::Kind::Environment: return disc * environmentMap_->luminanceIntegral();
