@@ -1,4 +1,4 @@
-// Physics tests of the BSDFs (DESIGN.md §3: reciprocal, non-negative, energy-conserving), plus the
+// Physics tests of the BSDFs (docs/design.md §3: reciprocal, non-negative, energy-conserving), plus the
 // contract between sampleBsdf, evalBsdf and pdfBsdf that MIS relies on.
 //
 // Statistical checks use fixed-seed streams, so they are deterministic; thresholds are set from

@@ -1,4 +1,4 @@
-// The command line under bad input (DESIGN.md §5): every mistake ends with a non-zero exit code and
+// The command line under bad input (docs/design.md §5): every mistake ends with a non-zero exit code and
 // one line on stderr saying what is wrong, before any rendering starts, and no output file.
 // Each test runs the real binary (TRIPATH_BINARY) through the shell.
 #include <fcntl.h>

@@ -219,7 +219,7 @@ TEST(Strategies, EachStrategyUnweightedAgreesWithItsPathLength) {
     }
 }
 
-// The Neumann series term by term, from independent renders (DESIGN.md §4: --max-depth K keeps
+// The Neumann series term by term, from independent renders (docs/design.md §4: --max-depth K keeps
 // the paths with k ≤ K segments; the depth image of length K holds the paths of exactly K):
 //     image(--max-depth K) − image(--max-depth K−1) ≈ depth image K        (image(0) = 0)
 // with the three terms from three renders of their own seeds, and depth image K taken from a

@@ -1,5 +1,5 @@
 // The kernels of the three-point form (tests/oracle.h) at hand-made points, against values
-// worked out by hand from the definitions in DESIGN.md §1 -- not from the code's own formulas:
+// worked out by hand from the definitions in docs/design.md §1 -- not from the code's own formulas:
 //   ε(x0 → x1)      = Le · |cos θ0| · |cos θ1|   (cosines of the segment x0–x1 at both ends)
 //   ρ(x″ → x′ → x)  = f_r · |cos θ′| · |cos θ|   (cosines of the OUTGOING segment x′–x), f_r = R/π
 //   G(x, x′)        = |cos θ| |cos θ′| / r²      g(x, x′) = V / r²

@@ -1,6 +1,6 @@
 // Reproducible random streams. Every (pixel, sample index) and every light-path index owns a
 // stream derived by hashing (seed, domain, index), so an image depends on the seed and the sample
-// count only -- never on which thread drew the numbers or in what order (DESIGN.md §4).
+// count only -- never on which thread drew the numbers or in what order (docs/design.md §4).
 #pragma once
 #include <cstdint>
 

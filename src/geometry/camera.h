@@ -1,4 +1,4 @@
-// Pinhole sensor: the camera end of every path (DESIGN.md §1).
+// Pinhole sensor: the camera end of every path (docs/design.md §1).
 //
 // The sensor is a point (a delta in position), so no path can hit it by chance: light subpaths
 // reach it only by connection (strategy t=1). Its importance for pixel j is

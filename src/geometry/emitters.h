@@ -8,7 +8,7 @@
 // (luminance of each; R the radius of the scene's bounding sphere, whose disc of area π R² every
 // ray from an emitter at infinity crosses).
 //
-// Measures (docs/design.md, the vertex at infinity). A point on a triangle is measured by area,
+// Measures (docs/design.md §2, the vertex at infinity). A point on a triangle is measured by area,
 // so its pdf is picking probability × 1/area; a point or spot light's "area pdf" is its picking
 // probability alone (a delta in position). An emitter at infinity is a direction, measured in
 // solid angle: the environment's pdf is picking probability × its map's solid-angle density; a

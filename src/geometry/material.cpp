@@ -1,4 +1,4 @@
-// BSDFs of the scene model (DESIGN.md §3): Lambertian, ideal mirror, smooth dielectric, rough GGX
+// BSDFs of the scene model (docs/design.md §3): Lambertian, ideal mirror, smooth dielectric, rough GGX
 // conductor, a rough plastic (GGX coat over a diffuse base) and glTF's metallic-roughness mix of
 // the last two, and the dispatch over the
 // material types behind evalBsdf, pdfBsdf and sampleBsdf. What the rough lobes share lives

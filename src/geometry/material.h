@@ -1,4 +1,4 @@
-// Materials: the small set of BSDFs the scene model maps glTF 2.0 onto (DESIGN.md §3).
+// Materials: the small set of BSDFs the scene model maps glTF 2.0 onto (docs/design.md §3).
 //
 // Every BSDF is evaluated in its local shading frame, z = shading normal. Directions point AWAY
 // from the surface: `wo` toward the vertex the walk came from, `wi` toward the next one.

@@ -1,6 +1,6 @@
 // The light phase of a pass: before any camera sample, trace the pass's N_L light subpaths
 // (Integrator::lightPaths: one per pixel, or --light-paths), store them, and index their vertices
-// for merging (DESIGN.md §1.1). It also makes the pass's constants (paths/pass_constants.h): N_L,
+// for merging (docs/design.md §1.1). It also makes the pass's constants (paths/pass_constants.h): N_L,
 // the merge radius of the pass's index, and η.
 //
 // Light path i of pass p draws from its own stream (seed, light-path domain, p · N_L + i), and the

@@ -1,5 +1,5 @@
 // Joining a light subpath prefix (s vertices) and a camera subpath prefix (t vertices) into one
-// full path of k = s + t − 1 segments: the strategy (s, t) of DESIGN.md §1.
+// full path of k = s + t − 1 segments: the strategy (s, t) of docs/design.md §1.
 #pragma once
 #include <optional>
 #include <span>

@@ -1,4 +1,4 @@
-// The kernels of the three-point form (DESIGN.md §1), as every walk, connection
+// The kernels of the three-point form (docs/design.md §1), as every walk, connection
 // and merge evaluates them:
 //
 //   g(x, x')            = V(x, x') / |x − x'|²                              [1/m²]
@@ -41,7 +41,7 @@ namespace tripath {
 // A segment to a vertex at infinity (vertex.h) has that vertex's direction and, in place of the
 // squared length, 1: the far end is measured in solid angle, so g = V (no 1/r²), its cosine is 1,
 // a solid-angle pdf toward it is its pdf, and the beam's density per unit area across it (emitters.h)
-// becomes an area density at the near end by the near end's cosine alone (docs/design.md).
+// becomes an area density at the near end by the near end's cosine alone (docs/design.md §2).
 class Segment {
 public:
     Segment(const Vertex& a, const Vertex& b) : Segment(a, &b) {}

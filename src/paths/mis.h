@@ -1,4 +1,4 @@
-// Multiple importance sampling over the strategies an integrator enables (DESIGN.md §1).
+// Multiple importance sampling over the strategies an integrator enables (docs/design.md §1).
 //
 // A full path x0 … xk can be produced by strategy (s, t): s vertices from the light, t from the
 // camera, s + t = k + 1. With p_i the pdf of strategy (i, k+1−i), the balance heuristic weight of

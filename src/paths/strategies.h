@@ -2,7 +2,7 @@
 // pass's light vertices: the loops all integrators share.
 //
 // The integrators differ only in the subpaths they build and the strategies they switch on
-// (DESIGN.md §1): PT passes an empty light subpath, LT a camera subpath of the sensor alone.
+// (docs/design.md §1): PT passes an empty light subpath, LT a camera subpath of the sensor alone.
 // Strategy s = 1 always uses an emitter point sampled afresh (next-event estimation), so PT has
 // it without a light subpath; its pdf is the same as that of a light subpath's first vertex.
 #pragma once

@@ -1,4 +1,4 @@
-// A path vertex and a subpath (vertex chain), as DESIGN.md §1 describes them.
+// A path vertex and a subpath (vertex chain), as docs/design.md §1 describes them.
 //
 // Light flows x0 → x1 → … → xk: x0 on an emitter, xk the sensor. A light subpath y0 y1 … grows
 // from x0, a camera subpath z0 z1 … from xk. Each vertex records the area-measure pdf of being

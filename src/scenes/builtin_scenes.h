@@ -1,5 +1,5 @@
 // The built-in scenes, by name: no file needed. Each one exists because a test or a benchmark
-// needs it (DESIGN.md §3); all are listed in builtin_scenes.cpp and defined there top to bottom,
+// needs it (docs/design.md §3); all are listed in builtin_scenes.cpp and defined there top to bottom,
 // the failure scenes in failure_scenes.cpp.
 #pragma once
 #include <string>
