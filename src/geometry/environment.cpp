@@ -36,6 +36,11 @@ Vec2 Environment::uvOf(Vec3 d) {
     return {u, v};
 }
 
+Vec3 Environment::directionOf(Vec2 uv) {
+    const float phi = 2.0f * kPi * (uv.x - 0.5f), theta = kPi * uv.y;
+    return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
+}
+
 int Environment::texelOf(Vec3 d) const {
     const Vec2 uv = uvOf(d);
     const int c = std::clamp(static_cast<int>(uv.x * float(width_)), 0, width_ - 1);

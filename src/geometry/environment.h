@@ -41,8 +41,9 @@ public:
     double luminanceIntegral() const { return integral_; }
     // The solid angle a texel row subtends, per texel.
     double texelSolidAngle(int row) const;
-    // The map's (u, v) of a direction, each in [0, 1].
+    // The map's (u, v) of a direction, each in [0, 1], and the unit direction of a (u, v).
     static Vec2 uvOf(Vec3 d);
+    static Vec3 directionOf(Vec2 uv);
 
 private:
     int texelOf(Vec3 d) const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/environment.h"
 #include "geometry/texture.h"
 #include "scenes/scene_builder.h"
 
@@ -18,9 +19,7 @@ EnvironmentDesc sunAndSky() {
     e.source = "built-in sun and sky";
     for (int r = 0; r < kHeight; ++r)
         for (int c = 0; c < kWidth; ++c) {
-            // The texel's centre, by the map's convention read backwards.
-            const float phi = 2.0f * kPi * ((c + 0.5f) / kWidth - 0.5f), theta = kPi * (r + 0.5f) / kHeight;
-            const Vec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+            const Vec3 d = Environment::directionOf({(c + 0.5f) / kWidth, (r + 0.5f) / kHeight});  // the texel's centre
             Spectrum L;
             if (d.y < 0) {
                 L = Spectrum(0.12f, 0.1f, 0.08f);
