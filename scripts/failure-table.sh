@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The "where each method fails" table of docs/failures.md, and its contact sheet: one
-# `tripath benchmark` run over the failure scenes.
+# `tripath benchmark` run over the failure scenes and the literature scenes.
 #
 #   scripts/failure-table.sh [SECONDS] [SIZE] [RUNS]     defaults: 3 seconds per run, 128x128, 3 runs
 #
 # The benchmark (README, "Over many scenes") renders every failure scene
-# (src/scenes/failure_scenes.h) with pt, lt, bdpt, vcm, bpm and ppm, RUNS runs of SECONDS each
+# (src/scenes/failure_scenes.h), then the four literature scenes (scenes/README.md: glTF files,
+# named by their stems below), with pt, lt, bdpt, vcm, bpm and ppm, RUNS runs of SECONDS each
 # (equal time), against a vcm reference of 10 x SECONDS per scene (vcm samples every path here,
 # the caustics seen through glass or a mirror included), and tests each method for bias against
 # bdpt's runs. Its report stays in build/failures/ (index.html: the table, a page per scene, the
@@ -18,7 +19,7 @@
 #   docs/images/failures-benchmark.png, failures-page-sds.png: the benchmark's index.html and the
 #                             page of sds as headless Chromium shows them (scripts/install-test-deps.sh
 #                             installs it)
-# Runtime: 11 scenes x (6 x RUNS x SECONDS + 10 x SECONDS), about 15 minutes at the defaults.
+# Runtime: 15 scenes x (6 x RUNS x SECONDS + 10 x SECONDS), about 21 minutes at the defaults.
 # Timings are wall-clock: run it on an otherwise idle machine, or the table measures the neighbours.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,7 +28,10 @@ size="${2:-128}"
 runs="${3:-3}"
 tripath="${TRIPATH:-build/tripath}"
 out=build/failures
-scenes=(caustic caustic-point sds sds-point sds-mirrors door-ajar contact grazing degenerate degenerate-tiny degenerate-far)
+scenes=(caustic caustic-point sds sds-point sds-mirrors door-ajar contact grazing degenerate degenerate-tiny degenerate-far
+        scenes/veach-bidir.gltf scenes/lamp-caustic.gltf scenes/box-light-top.gltf scenes/water-caustic.gltf)
+names=("${scenes[@]##*/}")    # what the benchmark names a scene: a built-in's name, a file's stem
+names=("${names[@]%.gltf}")
 methods=(pt lt bdpt vcm bpm ppm)
 
 [ -x "$tripath" ] || { echo "error: $tripath not found: build first (scripts/build.sh) or set TRIPATH" >&2; exit 1; }
@@ -38,13 +42,13 @@ rm -rf "$out"
   --out "$out"
 
 sheet=()
-for scene in "${scenes[@]}"; do
+for scene in "${names[@]}"; do
   sheet+=("$(ls "$out"/references/"$scene"-"$size"x"$size"-vcm-*.exr)")
   for m in "${methods[@]}"; do sheet+=("$out/$scene/$m.exr"); done
 done
 # Shrunk 2x (box filter) so that the sheet stays small enough for the repository.
 "$tripath" montage "${sheet[@]}" --columns $((${#methods[@]} + 1)) --shrink 2 --out docs/images/failures.png \
-  --column-labels "reference,$(IFS=,; echo "${methods[*]}")" --row-labels "$(IFS=,; echo "${scenes[*]}")"
+  --column-labels "reference,$(IFS=,; echo "${methods[*]}")" --row-labels "$(IFS=,; echo "${names[*]}")"
 for scene in ${BIAS_MAPS:-sds}; do
   for m in lt pt; do cp "$out/$scene/bias-$m.png" "docs/images/failures-bias-$scene-$m.png"; done
 done
