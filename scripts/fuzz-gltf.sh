@@ -24,8 +24,9 @@ nice -n 19 cmake --build build-fuzz -j"$(nproc)" --target gltf_fuzzer
 mkdir -p build-fuzz/corpus build-fuzz/artifacts
 extra=()
 [ "${KEEP_GOING:-0}" = 1 ] && extra=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
-# -max_len: big enough for the small scenes; the 135 KB caustic files are seeds too, but the
-# mutator works on their first 64 KB (their JSON header and the start of the buffer).
+# -max_len: big enough for the small scenes; the larger files (caustic, sds, the literature scenes
+# of up to 2.9 MB) are seeds too, but the mutator works on their first 64 KB (their JSON header
+# and the start of the buffer).
 # -timeout: an input that takes more than 10 s to load (a hang) is an artifact too.
 # ASAN_OPTIONS: a leak is a finding as well (but for what scripts/lsan.supp names in libraries);
 # allocator_may_return_null turns a giant allocation
