@@ -37,9 +37,11 @@ void writeCheckpoint(const std::string& path, const Metadata& settings, const Re
         for (const auto& [key, value] : settings) f << key << "=" << value << "\n";
         f << "passes=" << r.passes << "\nnext-pass=" << r.nextPass << "\nseconds=" << fmt::format("{:.6f}", r.seconds)
           << "\ndropped-samples=" << r.droppedSamples << "\nguarded-weights=" << r.guardedWeights
-          << "\nvalues=" << wordCount(r.film) << "\n\n";
+          << "\nvalues=" << wordCount(r.film) << "\nchain-run=" << r.metropolis.run
+          << "\nchain-bytes=" << r.metropolis.chainStates.size() << "\n\n";
         for (const ExactSums* t : r.film.totals())
             f.write(reinterpret_cast<const char*>(t->words().data()), std::streamsize(t->words().size_bytes()));
+        f.write(r.metropolis.chainStates.data(), std::streamsize(r.metropolis.chainStates.size()));
     });
 }
 
@@ -77,6 +79,10 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
     for (ExactSums* t : r.film.totals())
         if (!f.read(reinterpret_cast<char*>(t->words().data()), std::streamsize(t->words().size_bytes())))
             throw bad("cut short");
+    auto optional = [&](const char* key) { return header.contains(key) ? std::strtoull(header[key].c_str(), nullptr, 10) : 0; };
+    r.metropolis.run = optional("chain-run");
+    r.metropolis.chainStates.resize(optional("chain-bytes"));
+    if (!f.read(r.metropolis.chainStates.data(), std::streamsize(r.metropolis.chainStates.size()))) throw bad("cut short");
     if (f.peek() != std::char_traits<char>::eof()) throw bad("longer than its header says");
     return r;
 }
@@ -108,11 +114,12 @@ RenderResult renderResumable(const Scene& scene, const Integrator& integrator, R
     together([&] {
         if (isRankZero()) old = readCheckpoint(path, how.settings, shape);
     });
-    std::array<uint64_t, 4> counts{old ? 1u : 0u, old ? uint64_t(old->passes) : 0, old ? old->nextPass : 0,
-                                   old ? uint64_t(old->seconds * 1e6) : 0};
+    std::array<uint64_t, 5> counts{old ? 1u : 0u, old ? uint64_t(old->passes) : 0, old ? old->nextPass : 0,
+                                   old ? uint64_t(old->seconds * 1e6) : 0, old ? old->metropolis.run : 0};
     team().max(counts);
     if (counts[0] && !old) {
         old = RenderResult{shape, int(counts[1]), counts[2], counts[3] / 1e6};
+        old->metropolis.run = counts[4];  // mlt's chain states travel from rank 0 inside the render
     }
     bool finished = false;  // the checkpoint already holds the whole budget
     if (old) {

@@ -2,11 +2,13 @@
 // as <out>.checkpoint. It holds the settings that must match to continue (as EXR metadata pairs),
 // the pass counts, and the film's exact totals (film.h) word for word, so that a resumed --spp
 // render equals the uninterrupted one bit for bit: totals add exactly, and checkpoints are taken
-// at round boundaries, where every canonical block before nextPass is finished (render.h).
+// at round boundaries, where every canonical block before nextPass is finished (render.h). For
+// mlt it also holds every Markov chain's state (integrators/metropolis_render.h), taken between
+// passes, so that each chain goes on where it stopped.
 //
 // Format: the line "tripath-checkpoint 1", then "key=value" lines (the settings, then passes,
-// next-pass, seconds, dropped-samples, guarded-weights, values), a blank line, and the totals as
-// little-endian 64-bit words. Written to a temporary file and renamed over the target, so a job
+// next-pass, seconds, dropped-samples, guarded-weights, values, chain-run, chain-bytes), a blank
+// line, the totals as little-endian 64-bit words, then the chains' states (chain-bytes bytes). Written to a temporary file and renamed over the target, so a job
 // killed at any moment leaves the previous checkpoint whole.
 #pragma once
 #include <optional>

@@ -96,7 +96,7 @@ void addCompareCommand(CLI::App& app) {
     cmd->remove_option(cmd->get_option("--spp"));
     cmd->remove_option(cmd->get_option("--checkpoint"));  // runs are short and timed: nothing to resume
     cmd->get_option("--time")->required()->description("Wall-clock budget in seconds for each run of each integrator");
-    cmd->add_option("--integrators", c->integrators, "Comma-separated integrators to compare (pt, lt, bdpt, vcm, bpm, ppm)")
+    cmd->add_option("--integrators", c->integrators, "Comma-separated integrators to compare (pt, lt, bdpt, vcm, bpm, ppm, mlt)")
         ->capture_default_str();
     auto* reference = cmd->add_option("--reference", c->options.referencePath,
                     "Reference EXR of the same scene and size (see `tripath reference`, whose random streams are "

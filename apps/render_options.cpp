@@ -72,12 +72,13 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                        "path tracing with MIS over every (s,t); vcm: vertex connection and merging (bdpt plus "
                        "photon merges at every non-delta camera vertex, one MIS); bpm: bidirectional photon "
                        "mapping (merges only); ppm: progressive photon mapping (one merge where the camera path "
-                       "first meets a non-delta surface)")
+                       "first meets a non-delta surface); mlt: multiplexed Metropolis light transport (Markov chains "
+                       "over bdpt's paths and connections, for light that independent samples rarely find)")
             ->capture_default_str();
     // Functions rather than plain bindings: a given value is checked, whatever it is (even 0 or -1).
     auto* spp = cmd.add_option_function<int>(
         "--spp", [&o](int v) { o.spp = v, o.sppGiven = true; },
-        "Samples per pixel, one per pass (default 16 when --time is not given)");
+        "Samples per pixel, one per pass (mlt: steps of its chains per pixel); default 16 when --time is not given");
     inRange(spp, kSppRange);
     auto* time = cmd.add_option_function<double>(
         "--time", [&o](double v) { o.seconds = v, o.timeGiven = true; },
@@ -90,7 +91,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                 ->capture_default_str(),
             kMaxDepthRange);
     inRange(cmd.add_option("--rr-depth", o.rrDepth,
-                           "Russian roulette starts once a subpath has this many vertices (default, measured at equal "
+                           "Russian roulette starts once a subpath has this many vertices (not mlt; default, measured at equal "
                            "time: 3 for pt, 2 for the methods with light subpaths; 0 also means the default)"),
             kRrDepthRange);
     cmd.add_option("--mis", o.mis, "MIS heuristic: balance, power (beta = 2) or none (uniform weights)")
@@ -121,6 +122,23 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                 "splats, MIS weights and the merges' 1/(pi r^2 N_L) count N_L. Converges to the same image, with other "
                 "noise and cost"),
             kLightPathsRange);
+    inRange(cmd.add_option_function<int64_t>(
+                "--bootstrap", [&o](int64_t v) { o.metropolis.bootstrap = v, o.bootstrapGiven = true; },
+                "mlt: samples that estimate each path length's brightness b_k (which scales its part of the image) "
+                "and start the chains, spread evenly over the lengths; written to the EXR with each b_k")
+                ->default_str(std::to_string(o.metropolis.bootstrap)),
+            kBootstrapRange);
+    inRange(cmd.add_option_function<int>(
+                "--chains", [&o](int v) { o.metropolis.chains = v, o.chainsGiven = true; },
+                "mlt: Markov chains, shared among the path lengths in proportion to b_k (at most one per pixel); a "
+                "pass takes about one step per pixel, spread over them, so --spp counts steps per pixel")
+                ->default_str(std::to_string(o.metropolis.chains)),
+            kChainsRange);
+    cmd.add_option_function<float>(
+           "--large-step", [&o](float v) { o.metropolis.largeStep = v, o.largeStepGiven = true; },
+           "mlt: probability that a proposal draws a fresh point of primary sample space rather than moving the "
+           "current one a little (a Gaussian step of 1/64 per coordinate)")
+        ->default_str(fmt::format("{}", o.metropolis.largeStep));
     inRange(cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
                 ->capture_default_str(),
             kSeedRange);

@@ -78,10 +78,13 @@ void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
         else if (k == "radius_pixels") r.merge.radiusPixels = value.cast<float>(), r.radiusPixelsGiven = true;
         else if (k == "alpha") r.merge.alpha = value.cast<float>(), r.alphaGiven = true;
         else if (k == "light_paths") r.lightPaths = value.cast<int64_t>(), r.lightPathsGiven = true;
+        else if (k == "bootstrap") r.metropolis.bootstrap = value.cast<int64_t>(), r.bootstrapGiven = true;
+        else if (k == "chains") r.metropolis.chains = value.cast<int>(), r.chainsGiven = true;
+        else if (k == "large_step") r.metropolis.largeStep = value.cast<float>(), r.largeStepGiven = true;
         else
             throw InputError("unknown option '" + k +
-                             "' (the integrator options are rr_depth, radius, radius_factor, radius_pixels, alpha and "
-                             "light_paths)");
+                             "' (the integrator options are rr_depth, radius, radius_factor, radius_pixels, alpha, "
+                             "light_paths, bootstrap, chains and large_step)");
     }
 }
 
@@ -252,13 +255,15 @@ PYBIND11_MODULE(tripath, m) {
           py::arg("max_depth") = 16, py::arg("mis") = "power", py::arg("threads") = 0, py::arg("depth_images") = false,
           py::arg("strategy_images") = 0, py::arg("progress") = py::none(),
           "Renders scene (a Scene from load(), or a built-in name or glTF path, loaded as load() does) with one "
-          "integrator (pt, lt, bdpt, vcm, bpm, ppm) for spp passes or seconds of wall-clock time "
+          "integrator (pt, lt, bdpt, vcm, bpm, ppm, mlt) for spp passes or seconds of wall-clock time "
           "(16 passes when neither is given). Returns a dict: image (float32 array, height x width x 3, linear "
           "radiance, no copy), depth (with depth_images: one image per path length k = 1..max_depth), strategies (with "
           "strategy_images = K: {(s, t, 'connect' | 'merge'): {'weighted', 'unweighted'}} for k <= K), spp, seconds, "
           "interrupted, dropped_samples, guarded_weights, counters (rays, BSDF calls, ...), metadata (as the EXR's). "
-          "Keyword options: rr_depth (3), and for vcm, bpm, ppm radius, radius_factor, radius_pixels (0.75), alpha "
-          "(0.75), and for lt, bdpt, vcm, bpm, ppm light_paths (light paths per pass; one per pixel). progress(passes, seconds) is called after each pass. The same settings give the same image as "
+          "Keyword options: rr_depth (3; not mlt), and for vcm, bpm, ppm radius, radius_factor, radius_pixels "
+          "(0.75), alpha (0.75), for lt, bdpt, vcm, bpm, ppm light_paths (light paths per pass; one per pixel), and "
+          "for mlt bootstrap (100000), chains (1024) and large_step (0.3). progress(passes, seconds) is called after "
+          "each pass. The same settings give the same image as "
           "`tripath render`, whatever the thread count. Ctrl-C stops at the next pass and returns what is done "
           "(interrupted = True).");
 

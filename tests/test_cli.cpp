@@ -353,7 +353,7 @@ TEST_F(Cli, BrokenGltfIsRefused) {
 
 TEST_F(Cli, UnknownBuiltinIsRefused) { expectRefused("render --scene no-such-scene " + out(), "no-such-scene"); }
 
-TEST_F(Cli, UnknownIntegratorIsRefused) { expectRefused(render("--integrator mlt " + out()), "mlt"); }
+TEST_F(Cli, UnknownIntegratorIsRefused) { expectRefused(render("--integrator pssmlt " + out()), "pssmlt"); }
 
 TEST_F(Cli, SceneWithoutEmitterIsRefused) {
     SceneDesc dark = builtinScene("contact");

@@ -91,9 +91,10 @@ void expectSameRender(const Rendered& a, const Rendered& b, int ranks, const std
 }
 
 // Ranks 1, 2 and 3 against one process with two threads, every integrator, on a built-in. 10
-// passes are blocks of 4, 4 and 2: with three ranks, each renders one block, one of them short.
+// passes are blocks of 4, 4 and 2: with three ranks, each renders one block, one of them short;
+// mlt's ranks each run every third chain through every pass.
 TEST_F(Distributed, EveryRankCountGivesTheImageOfOneProcess) {
-    for (const std::string integrator : {"pt", "lt", "bdpt", "vcm", "bpm", "ppm"}) {
+    for (const std::string integrator : {"pt", "lt", "bdpt", "vcm", "bpm", "ppm", "mlt"}) {
         const std::string args = "render --scene cornell-spheres --integrator " + integrator +
                                  " --width 24 --height 20 --spp 10 --seed 3 --out ";
         ASSERT_EQ(tripath(args + path("one.exr") + " --threads 2").exitCode, 0) << integrator;
@@ -188,31 +189,40 @@ int killWhenWritten(const std::string& cmd, const std::string& file, const std::
 }
 
 // A --spp render killed (SIGKILL) after its first checkpoint and started again, on two ranks
-// this time, ends bit-identical to an uninterrupted one-process render, and leaves no checkpoint.
+// this time, ends bit-identical to an uninterrupted one-process render, and leaves no checkpoint:
+// for mlt, every chain goes on from the state the checkpoint kept.
 TEST_F(Distributed, AResumedCheckpointedRenderEqualsAnUninterruptedOne) {
-    const std::string args = "render --scene cornell --integrator bdpt --width 64 --height 64 --spp 120 --threads 1 --out ";
-    ASSERT_EQ(tripath(args + path("whole.exr")).exitCode, 0);
-    const std::string out = path("cut.exr"), checkpoint = out + ".checkpoint";
-    const std::string cmd = kTripath + " " + args + out + " --checkpoint 0.05";
-    const int status = killWhenWritten(cmd, checkpoint, "^" + std::string(TRIPATH_BINARY) + ".* --out " + out, dir_);
-    ASSERT_NE(status, 0) << "the render finished before it was killed: make it longer";
-    ASSERT_TRUE(fs::exists(checkpoint));
-    const Outcome o = tripath(args + out + " --checkpoint 0.05", 2);
-    ASSERT_EQ(o.exitCode, 0) << o.err;
-    EXPECT_NE(o.err.find("continuing from"), std::string::npos) << o.err;
-    expectSameRender(load(path("whole.exr")), load(out), 2, "resumed");
-    EXPECT_FALSE(fs::exists(checkpoint)) << "a finished render keeps no checkpoint";
+    for (const std::string integrator : {"bdpt", "mlt"}) {
+        const std::string args = "render --scene cornell --integrator " + integrator +
+                                 " --width 64 --height 64 --spp 120 --threads 1 --out ";
+        ASSERT_EQ(tripath(args + path("whole.exr")).exitCode, 0);
+        const std::string out = path(integrator + "-cut.exr"), checkpoint = out + ".checkpoint";
+        const std::string cmd = kTripath + " " + args + out + " --checkpoint 0.05";
+        const int status = killWhenWritten(cmd, checkpoint, "^" + std::string(TRIPATH_BINARY) + ".* --out " + out, dir_);
+        ASSERT_NE(status, 0) << integrator << ": the render finished before it was killed: make it longer";
+        ASSERT_TRUE(fs::exists(checkpoint));
+        const Outcome o = tripath(args + out + " --checkpoint 0.05", 2);
+        ASSERT_EQ(o.exitCode, 0) << o.err;
+        EXPECT_NE(o.err.find("continuing from"), std::string::npos) << o.err;
+        expectSameRender(load(path("whole.exr")), load(out), 2, integrator + " resumed");
+        EXPECT_FALSE(fs::exists(checkpoint)) << "a finished render keeps no checkpoint";
+    }
 }
 
 // A reference run twice with a checkpoint (8 spp, then 8 more on two ranks) is the 16-spp
-// reference rendered at once, bit for bit: the second run goes on from the first's exact totals.
+// reference rendered at once, bit for bit: the second run goes on from the first's exact totals
+// (and mlt's from its chains' states).
 TEST_F(Distributed, AReferenceAddsToItsCheckpointExactly) {
-    const std::string args = "reference --scene cornell-spheres --integrator bdpt --width 24 --height 20 --threads 1 ";
-    ASSERT_EQ(tripath(args + "--spp 16 --out " + path("once.exr")).exitCode, 0);
-    ASSERT_EQ(tripath(args + "--spp 8 --checkpoint 1000 --out " + path("twice.exr")).exitCode, 0);
-    const Outcome o = tripath(args + "--spp 8 --out " + path("twice.exr"), 2);
-    ASSERT_EQ(o.exitCode, 0) << o.err;
-    expectSameRender(load(path("once.exr")), load(path("twice.exr")), 2, "continued reference");
+    for (const std::string integrator : {"bdpt", "mlt"}) {
+        const std::string args = "reference --scene cornell-spheres --integrator " + integrator +
+                                 " --width 24 --height 20 --threads 1 ";
+        const std::string once = path(integrator + "-once.exr"), twice = path(integrator + "-twice.exr");
+        ASSERT_EQ(tripath(args + "--spp 16 --out " + once).exitCode, 0);
+        ASSERT_EQ(tripath(args + "--spp 8 --checkpoint 1000 --out " + twice).exitCode, 0);
+        const Outcome o = tripath(args + "--spp 8 --out " + twice, 2);
+        ASSERT_EQ(o.exitCode, 0) << o.err;
+        expectSameRender(load(once), load(twice), 2, integrator + " continued reference");
+    }
 }
 
 // Ctrl-C to mpirun (which passes SIGTERM to its ranks): every rank stops at its next pass, and the

@@ -7,6 +7,7 @@
 #include "integrators/integrator.h"
 #include "paths/connect.h"
 #include "paths/kernels.h"
+#include "paths/markov_chain.h"
 #include "paths/merge.h"
 #include "paths/walk.h"
 #include "scenes/builtin_scenes.h"
@@ -647,6 +648,87 @@ TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
         }
         EXPECT_GT(checked, sparse ? 0 : 50) << desc.name;
     }
+}
+
+
+// ---- Metropolis: a chain's acceptance against the brute-force target ---------------------
+
+// The path of strategy (s, t) over a chain's subpaths, x0 (emitter) … xk (sensor); empty for
+// s = 1, whose emitter point the subpaths do not keep.
+Path joined(const TargetPaths& paths, Strategy st) {
+    if (st.s == 1) return {};
+    Path x(paths.light.begin(), paths.light.begin() + st.s);
+    for (int j = st.t - 1; j >= 0; --j) x.push_back(paths.camera[size_t(j)]);
+    return x;
+}
+
+// The multiplexed target's luminance by brute force: L((k + 1) · w_{s,t} · f / p_{s,t}), the
+// camera's pdf taken over the whole film (strategyPdf's), so over the P pixels for t ≥ 2.
+double bruteForceTarget(const Scene& scene, const Path& x, int s, const MisContext& mis) {
+    const int k = static_cast<int>(x.size()) - 1;
+    const double w = bruteForceWeight(scene, x, {s, false}, mis);
+    return (k + 1) * w * luminance(pathContribution(scene, x)) / strategyPdf(scene, x, s, mis.roulette.depth);
+}
+
+// Whether the oracle can evaluate a chain's path: one without delta vertices (a delta's f is no
+// function of the points), made by no next-event estimate (joined() has no emitter point for it).
+bool oracleCanEvaluate(const Path& x, int s) {
+    for (int i = 0; i < static_cast<int>(x.size()); ++i)
+        if (scattersDelta(x, i)) return false;
+    return s != 1;
+}
+
+// A chain's step accepts with a = min(1, T(y) / T(x)), T the brute-force target of the proposed
+// path y and of the current one x, read from the weight the step splats the proposal with
+// (a / L(y)); swapping the two gives min(1, T(x) / T(y)). The states' own values are held to T
+// too. Catches a ratio taken the wrong way up, a target without the strategies' count k + 1, the
+// image's P or the MIS weight, and a state whose value is not that of the path it holds.
+TEST(Metropolis, AcceptanceIsTheRatioOfBruteForceTargets) {
+    int checked = 0;
+    for (const SceneDesc& desc : {builtinScene("cornell"), builtinScene("veach-mis"), builtinScene("cornell-point"),
+                                  test::everyEmitterKindUnderTheSky(), builtinScene("door-ajar")}) {
+        const Scene scene(desc, 24, 24);
+        const MultiplexedTarget target{&scene, multiplexedMisContext(MisHeuristic::Power, 576), 576};
+        TargetPaths paths;
+        for (int k = 1; k <= 4; ++k) {
+            MarkovChain chain(k);
+            Rng fresh(5, uint64_t(StreamDomain::Test), uint64_t(k));
+            chain.start(target, fresh, paths);
+            Strategy xs = chain.current().strategy;
+            Path x = joined(paths, xs);
+            for (uint64_t i = 1; i <= 300; ++i) {
+                float toProposal = 0;
+                PathSample proposal;
+                auto splat = [&](const PathSample& sample, float weight) {
+                    if (&sample == &chain.current()) return;
+                    toProposal = weight;
+                    proposal = sample;
+                };
+                const float lx = chain.current().luminance();
+                Rng rng(5, uint64_t(StreamDomain::Test), 1000 * uint64_t(k) + i);
+                const StepOutcome outcome = chain.step(target, 0.3f, rng, paths, splat);
+                if (toProposal > 0 && lx > 0) {
+                    const Path y = joined(paths, proposal.strategy);
+                    if (oracleCanEvaluate(x, xs.s) && oracleCanEvaluate(y, proposal.strategy.s)) {
+                        const double tx = bruteForceTarget(scene, x, xs.s, target.mis);
+                        const double ty = bruteForceTarget(scene, y, proposal.strategy.s, target.mis);
+                        const float ly = proposal.luminance();
+                        const std::string what = desc.name + " k=" + std::to_string(k) + " step " + std::to_string(i);
+                        ASSERT_NEAR(lx, tx, 2e-3 * tx) << what << ": the current state";
+                        ASSERT_NEAR(ly, ty, 2e-3 * ty) << what << ": the proposal";
+                        ASSERT_NEAR(toProposal * ly, std::min(1.0, ty / tx), 4e-3) << what;
+                        ASSERT_NEAR(acceptance(ly, lx), std::min(1.0, tx / ty), 4e-3) << what << ", swapped";
+                        ++checked;
+                    }
+                }
+                if (outcome == StepOutcome::Accepted) {
+                    xs = chain.current().strategy;
+                    x = joined(paths, xs);
+                }
+            }
+        }
+    }
+    EXPECT_GT(checked, 300);
 }
 
 }  // namespace

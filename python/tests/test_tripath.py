@@ -21,7 +21,7 @@ import pytest
 import tripath
 
 TRIPATH = os.environ.get("TRIPATH_BINARY", "")
-INTEGRATORS = ["pt", "lt", "bdpt", "vcm", "bpm", "ppm"]
+INTEGRATORS = ["pt", "lt", "bdpt", "vcm", "bpm", "ppm", "mlt"]
 
 
 @pytest.mark.parametrize("integrator", INTEGRATORS)
@@ -163,6 +163,24 @@ def test_light_paths_give_the_command_lines_bits_and_are_recorded(tmp_path):
     default = tripath.render(tripath.load("cornell-spheres"), "vcm", spp=2, width=24, height=16)
     assert default["metadata"]["tripath:light-paths-per-pass"] == str(24 * 16)
     assert not np.array_equal(default["image"], cli)
+
+
+def test_mlt_gives_the_command_lines_bits_and_records_its_chains(tmp_path):
+    out = tmp_path / "cli.exr"
+    args = ["--scene", "cornell-spheres", "--integrator", "mlt", "--spp", "2", "--width", "24", "--height", "16",
+            "--bootstrap", "5000", "--chains", "40", "--large-step", "0.5"]
+    subprocess.run([TRIPATH, "render", *args, "--out", str(out)], check=True, capture_output=True)
+    cli, meta = tripath.read_exr(str(out))
+    r = tripath.render(tripath.load("cornell-spheres"), "mlt", spp=2, width=24, height=16, bootstrap=5000, chains=40,
+                       large_step=0.5)
+    assert np.array_equal(r["image"], cli)
+    for key in ["tripath:bootstrap", "tripath:chains", "tripath:large-step", "tripath:mlt-normalisation",
+                "tripath:mlt-acceptance"]:
+        assert r["metadata"][key] == meta[key], key
+    assert (meta["tripath:bootstrap"], meta["tripath:chains"], meta["tripath:large-step"]) == ("5000", "40", "0.5")
+    assert r["counters"]["mutations"] >= 2 * 24 * 16 and r["counters"]["accepted_mutations"] > 0
+    with pytest.raises(ValueError, match="^chains needs mlt: bdpt does not"):
+        tripath.render(tripath.load("cornell-spheres"), "bdpt", spp=1, chains=4)
 
 
 def test_one_loaded_scene_renders_at_any_size(cornell):

@@ -2,7 +2,9 @@
 // stream derived by hashing (seed, domain, index), so an image depends on the seed and the sample
 // count only -- never on which thread drew the numbers or in what order (docs/design.md §4).
 #pragma once
+#include <concepts>
 #include <cstdint>
+#include <utility>
 
 namespace tripath {
 
@@ -38,17 +40,44 @@ private:
     uint64_t state_, inc_;
 };
 
+// What the path walks draw their numbers from: a random stream (Rng) or a point in primary
+// sample space that a Markov chain moves (paths/primary_samples.h). Both hand out uniforms in
+// [0, 1) in the order they are asked for, so one walk, kernel and MIS weight serves both.
+template <class S>
+concept Sampler = requires(S& s) {
+    { s.uniform() } -> std::same_as<float>;
+};
+
 // Stream domains: keep camera samples, light paths and anything else from sharing streams.
 // Reference: the per-pixel sample streams of `tripath reference` (and of the reference `tripath
 // compare` renders for itself), so that a reference is independent of every render made with the
 // same seed. LightPath and ReferenceLightPath: the light phase's paths (index pass × N_L + path)
 // of renders and of references. The values are part of every stored image's identity: a retired
 // one (2, once meant for light paths and never used) is not reused, and new domains go at the end.
-enum class StreamDomain : uint64_t { CameraSample = 1, Test = 3, Reference = 4, LightPath = 5, ReferenceLightPath = 6 };
+// Metropolis (MetropolisBootstrap, MetropolisChain and their Reference twins): the bootstrap
+// samples of mlt's normalisation and its chains' proposals (integrators/metropolis_render.h).
+enum class StreamDomain : uint64_t {
+    CameraSample = 1,
+    Test = 3,
+    Reference = 4,
+    LightPath = 5,
+    ReferenceLightPath = 6,
+    MetropolisBootstrap = 7,
+    MetropolisChain = 8,
+    ReferenceMetropolisBootstrap = 9,
+    ReferenceMetropolisChain = 10
+};
 
 // The light paths' domain that goes with a camera samples' domain.
 inline StreamDomain lightPathDomain(StreamDomain cameraDomain) {
     return cameraDomain == StreamDomain::Reference ? StreamDomain::ReferenceLightPath : StreamDomain::LightPath;
+}
+
+// The Metropolis domains that go with a camera samples' domain: (bootstrap, chain).
+inline std::pair<StreamDomain, StreamDomain> metropolisDomains(StreamDomain cameraDomain) {
+    if (cameraDomain == StreamDomain::Reference)
+        return {StreamDomain::ReferenceMetropolisBootstrap, StreamDomain::ReferenceMetropolisChain};
+    return {StreamDomain::MetropolisBootstrap, StreamDomain::MetropolisChain};
 }
 
 }  // namespace tripath

@@ -73,6 +73,8 @@ std::string_view eventName(Event e) {
     case Event::LightVertices: return "light vertices stored";
     case Event::RangeQueries: return "range queries";
     case Event::Merges: return "merges";
+    case Event::Mutations: return "mutations";
+    case Event::AcceptedMutations: return "accepted mutations";
     case Event::Count: break;
     }
     return "?";

@@ -38,6 +38,8 @@ enum class Event : int {
     LightVertices,    // vertices stored by light phases
     RangeQueries,     // merge searches around a camera vertex
     Merges,           // light vertices found within the radius and merged
+    Mutations,        // proposals of mlt's chains
+    AcceptedMutations,  // of which accepted
     Count
 };
 inline constexpr int kEventCount = static_cast<int>(Event::Count);

@@ -91,6 +91,8 @@ public:
     void add(std::span<const double> doubles, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) v_[i] += Fixed192::fromDouble(doubles[i]);
     }
+    // Adds one value to sum i.
+    void add(size_t i, double value) { v_[i] += Fixed192::fromDouble(value); }
     void add(const ExactSums& o) {
         for (size_t i = 0; i < v_.size(); ++i) v_[i] += o.v_[i];
     }

@@ -36,6 +36,14 @@ void Film::add(int pixel, Strategy strategy, Spectrum weighted, Spectrum unweigh
     }
 }
 
+void Film::addExactly(int pixel, int k, Spectrum value) {
+    auto add = [&](Sums& sums) {
+        for (int c = 0; c < 3; ++c) sums.total.add(3 * size_t(pixel) + size_t(c), value[c]);
+    };
+    add(main_);
+    if (k >= 1 && k <= static_cast<int>(depth_.size())) add(depth_[k - 1]);
+}
+
 template <class Self>
 auto Film::sumsOf(Self& film) {
     std::vector<decltype(&film.main_)> out{&film.main_};

@@ -33,6 +33,10 @@ public:
     // Adds a contribution of a strategy to a pixel. Not thread-safe for the same pixel: the
     // render loop gives each pixel to one thread per pass and merges splats in a fixed order.
     void add(int pixel, Strategy strategy, Spectrum weighted, Spectrum unweighted);
+    // Adds a contribution of path length k (0: none) straight to the exact totals of the main
+    // image and of the depth layer k: sums in no order at all, so whoever adds them (mlt's chains,
+    // on any rank and thread) gives the same film. Not thread-safe.
+    void addExactly(int pixel, int k, Spectrum value);
 
     // Adds the current block's sums to the exact totals and clears them (the block's values are
     // already rounded to double; from here on they add exactly). Threads split the work.

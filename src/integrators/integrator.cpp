@@ -12,6 +12,7 @@ std::unique_ptr<Integrator> makeBidirectional(const IntegratorSettings& s);
 std::unique_ptr<Integrator> makeVertexMerging(const IntegratorSettings& s);
 std::unique_ptr<Integrator> makeBidirectionalPhotonMapping(const IntegratorSettings& s);
 std::unique_ptr<Integrator> makeProgressivePhotonMapping(const IntegratorSettings& s);
+std::unique_ptr<Integrator> makeMetropolis(const IntegratorSettings& s);
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const IntegratorSettings& settings) {
     if (name == "pt") return makePathTracer(settings);
@@ -20,7 +21,8 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Integr
     if (name == "vcm") return makeVertexMerging(settings);
     if (name == "bpm") return makeBidirectionalPhotonMapping(settings);
     if (name == "ppm") return makeProgressivePhotonMapping(settings);
-    throw InputError("unknown integrator '" + name + "' (pt, lt, bdpt, vcm, bpm or ppm)");
+    if (name == "mlt") return makeMetropolis(settings);
+    throw InputError("unknown integrator '" + name + "' (pt, lt, bdpt, vcm, bpm, ppm or mlt)");
 }
 
 int defaultRouletteDepth(const std::string& integrator) {

@@ -26,11 +26,19 @@ struct MergeSettings {
 };
 inline constexpr float kFallbackRadiusFactor = 0.003f;
 
+// mlt's parameters (integrators/mlt.cpp).
+struct MetropolisSettings {
+    int64_t bootstrap = 100000;  // N: bootstrap samples for the normalisation, spread evenly over the path lengths
+    int chains = 1024;           // Markov chains over all lengths (at most one per pixel)
+    float largeStep = 0.3f;      // probability that a proposal is a large step
+};
+
 struct IntegratorSettings {
     WalkSettings walk;
     std::optional<int64_t> lightPaths;  // N_L, the light paths per pass, as given (Integrator::lightPaths)
     MisHeuristic mis = MisHeuristic::Power;
     MergeSettings merge;
+    MetropolisSettings metropolis;
 };
 
 // Per-thread scratch subpaths, reused from sample to sample.
@@ -75,10 +83,13 @@ public:
     // Whether sample() traces the camera ray it is given (lt does not): the render loop then traces
     // neighbouring pixels' camera rays together.
     virtual bool tracesCameraRays() const { return true; }
+    // Whether it renders with Markov chains (mlt: integrators/metropolis_render.h) rather than in
+    // passes of camera samples; sample() is then never called.
+    virtual bool runsChains() const { return false; }
     const IntegratorSettings& settings() const { return settings_; }
 
     // Whether passes trace and store light subpaths first: for any strategy with s ≥ 2 or a merge.
-    bool hasLightPhase() const { return strategies().merges() || strategies().maxS >= 2; }
+    bool hasLightPhase() const { return !runsChains() && (strategies().merges() || strategies().maxS >= 2); }
     // N_L, the light paths each pass traces when it has a light phase: the settings' count, or one
     // per pixel. The one place that number is decided; the light phase puts it in the pass's
     // constants (pass_constants.h), which every kernel then reads.
@@ -126,7 +137,7 @@ private:
 // the connections per sample, +5 to +24 % efficiency on the built-ins measured.
 int defaultRouletteDepth(const std::string& integrator);
 
-// "pt", "lt", "bdpt", "vcm", "bpm" or "ppm"; throws InputError for anything else.
+// "pt", "lt", "bdpt", "vcm", "bpm", "ppm" or "mlt"; throws InputError for anything else.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const IntegratorSettings& settings);
 
 }  // namespace tripath

@@ -11,8 +11,10 @@
 #include <optional>
 #include <tuple>
 
+#include "core/error.h"
 #include "core/stats.h"
 #include "integrators/light_phase.h"
+#include "integrators/metropolis_render.h"
 
 namespace tripath {
 
@@ -216,8 +218,8 @@ void gatherDroppedLog(Team& team, const Camera& cam, std::vector<DroppedSample>&
     if (log.size() > kDroppedLogSize) log.resize(kDroppedLogSize);
 }
 
-// Rank 0's result gains the render it resumed (films add exactly, so where a render was cut does
-// not show in its bits).
+}  // namespace
+
 RenderResult& addResumed(RenderResult& r, const RenderResult* resume) {
     if (!resume) return r;
     r.film.add(resume->film);
@@ -230,9 +232,8 @@ RenderResult& addResumed(RenderResult& r, const RenderResult* resume) {
     return r;
 }
 
-}  // namespace
-
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
+    if (integrator.runsChains()) return renderMetropolis(scene, integrator, settings);
     const Camera& cam = scene.camera();
     Team& team = settings.team ? *settings.team : solo();
     FilmLayers layers = settings.layers;
@@ -321,6 +322,7 @@ std::string interruptionText(const RenderResult& r) {
 
 void replaySample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, uint64_t pass, int pixel,
                   ContributionSink& sink) {
+    if (integrator.runsChains()) throw InputError("--replay renders a pixel's sample again; mlt's chains have no pixel samples");
     const Camera& cam = scene.camera();
     LightPhase lightPhase;
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);

@@ -68,6 +68,19 @@ struct RenderSettings {
     std::function<void(const RenderResult&)> onCheckpoint;
 };
 
+// What mlt's chains did (integrators/metropolis_render.h), per path length k = 1 … max-depth
+// (index k − 1), over the whole team and the resumed render.
+struct MetropolisLength {
+    double normalisation = 0;  // b_k: the mean luminance of the target C_k over the bootstrap samples
+    uint64_t chains = 0, steps = 0, accepted = 0;
+};
+struct MetropolisReport {
+    uint64_t run = 0;               // the pass index the chains started at: their streams' identity
+    uint64_t bootstrapSamples = 0;  // N, over all lengths
+    std::vector<MetropolisLength> lengths;
+    std::string chainStates;        // on rank 0: every chain's state, in chain order (checkpoints)
+};
+
 struct RenderResult {
     Film film;                    // on rank 0 of a team, every rank's passes; on the others, their own
     int passes = 0;               // passes in the film, over the whole team (and the resumed render)
@@ -88,12 +101,17 @@ struct RenderResult {
     int budgetPasses = 0;
     double budgetSeconds = 0;
     bool interrupted = false;
+    MetropolisReport metropolis{};  // mlt only
     Image image() const { return film.image(passes); }
 };
 
 // How far an interrupted render got against its budget: "after 5 of 16 passes, 0.52 s" or, for a
 // time budget, "after 5 passes, 0.52 s of 10 s". The summary line and tripath:interrupted say it.
 std::string interruptionText(const RenderResult& r);
+
+// Rank 0's result gains the render it resumed (films add exactly, so where a render was cut does
+// not show in its bits): its film, passes, seconds, counts and budget.
+RenderResult& addResumed(RenderResult& r, const RenderResult* resume);
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
 

@@ -21,7 +21,8 @@ inline constexpr Counter kRangeQueries{Event::RangeQueries};
 inline constexpr Counter kMerges{Event::Merges};
 
 // Strategy (1, t): next-event estimation from a fresh emitter point.
-inline Connection connectNextEvent(const Scene& scene, Rng& rng, std::span<const Vertex> camera, int t, const MisContext& mis) {
+template <Sampler S>
+Connection connectNextEvent(const Scene& scene, S& rng, std::span<const Vertex> camera, int t, const MisContext& mis) {
     const Vertex y0 = sampleEmitterVertex(scene, rng);
     return connect(scene, std::span<const Vertex>(&y0, 1), 1, camera, t, mis);
 }
@@ -29,8 +30,8 @@ inline Connection connectNextEvent(const Scene& scene, Rng& rng, std::span<const
 // Calls sink(strategy, connection) for each enabled (s, t) with t ≥ firstT, 1 ≤ k = s + t − 1 ≤
 // maxDepth and a non-zero contribution. (A camera subpath of the sensor alone gives the t = 1
 // strategies only, the splats of light tracing.)
-template <class Sink>
-void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, std::span<const Vertex> camera, int firstT, Rng& rng,
+template <Sampler S, class Sink>
+void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, std::span<const Vertex> camera, int firstT, S& rng,
                         int maxDepth, const MisContext& mis, Sink&& sink) {
     const int nl = static_cast<int>(light.size()), nc = static_cast<int>(camera.size());
     for (int t = firstT; t <= nc; ++t) {

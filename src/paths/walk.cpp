@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "paths/kernels.h"
+#include "paths/primary_samples.h"
 #include "paths/roulette.h"
 
 namespace tripath {
@@ -13,7 +14,8 @@ namespace {
 // vertex whose pdf reads N_L; were it read, the weights over it would be guarded (mis.h), not wrong.
 constexpr double kNoSensor = std::numeric_limits<double>::quiet_NaN();
 
-Vec2 uniform2(Rng& rng) {
+template <Sampler S>
+Vec2 uniform2(S& rng) {
     const float a = rng.uniform();
     return {a, rng.uniform()};
 }
@@ -117,7 +119,8 @@ Spectrum stepFactor(const Subpath& path, const Vertex& v, Spectrum scatter, floa
 // connections see only the points, so the walks must too. Only the pdfs `pdfs` asks for are
 // computed.
 // `firstHit`, if set, is what the first ray hits, traced already; `lightPaths` is the pass's N_L.
-void randomWalk(const Scene& scene, Rng& rng, Spectrum beta, Spectrum scatter, float pdf, Vec3 dir, TransportMode mode,
+template <Sampler S>
+void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, float pdf, Vec3 dir, TransportMode mode,
                 const WalkSettings& settings, WalkPdfs pdfs, double lightPaths, size_t maxVertices, Subpath& path,
                 const std::optional<SurfacePoint>* firstHit = nullptr) {
     while (path.size() < maxVertices) {
@@ -173,7 +176,8 @@ Vertex sensorVertex(const Scene& scene) {
     return z0;
 }
 
-Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
+template <Sampler S>
+Vertex sampleEmitterVertex(const Scene& scene, S& rng) {
     const float uc = rng.uniform();
     const EmitterSample es = scene.emitters().sample(uc, uniform2(rng), scene.triangles());
     const Emitter& e = scene.emitters().all()[es.emitter];
@@ -192,7 +196,8 @@ Vertex sampleEmitterVertex(const Scene& scene, Rng& rng) {
     return y0;
 }
 
-void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
+template <Sampler S>
+void cameraSubpath(const Scene& scene, const CameraRay& ray, S& rng, const WalkSettings& settings, WalkPdfs pdfs,
                    double lightPaths, Subpath& path) {
     path.clear();
     path.push_back(sensorVertex(scene));
@@ -205,7 +210,8 @@ void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const Wal
                TransportMode::Radiance, settings, pdfs, lightPaths, static_cast<size_t>(settings.maxDepth) + 1, path, ray.hit);
 }
 
-void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {
+template <Sampler S>
+void lightSubpath(const Scene& scene, S& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {
     path.clear();
     if (settings.maxDepth < 1) return;
     path.push_back(sampleEmitterVertex(scene, rng));
@@ -224,5 +230,13 @@ void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, Wa
     randomWalk(scene, rng, y0.beta, Le, pdfDir, dir, TransportMode::Importance, settings, pdfs, kNoSensor,
                static_cast<size_t>(settings.maxDepth), path);
 }
+
+// The walks for both samplers: the render loop's random streams and mlt's chains.
+template Vertex sampleEmitterVertex(const Scene&, Rng&);
+template Vertex sampleEmitterVertex(const Scene&, PrimarySamples&);
+template void cameraSubpath(const Scene&, const CameraRay&, Rng&, const WalkSettings&, WalkPdfs, double, Subpath&);
+template void cameraSubpath(const Scene&, const CameraRay&, PrimarySamples&, const WalkSettings&, WalkPdfs, double, Subpath&);
+template void lightSubpath(const Scene&, Rng&, const WalkSettings&, WalkPdfs, Subpath&);
+template void lightSubpath(const Scene&, PrimarySamples&, const WalkSettings&, WalkPdfs, Subpath&);
 
 }  // namespace tripath

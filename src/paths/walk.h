@@ -1,5 +1,5 @@
 // Subpath generation: random walks from the sensor (camera subpaths) and from an emitter (light
-// subpaths). Each vertex gets its throughput beta, and the forward and reverse area pdfs that
+// subpaths), drawing from a random stream or a chain's primary samples (core/rng.h: Sampler). Each vertex gets its throughput beta, and the forward and reverse area pdfs that
 // the integrator's MIS weights read (StrategySet::cameraWalkPdfs / lightWalkPdfs).
 #pragma once
 #include "core/rng.h"
@@ -18,7 +18,8 @@ struct WalkSettings {
 Vertex sensorVertex(const Scene& scene);
 // A fresh point on an emitter as the endpoint y0 of a light subpath (or of next-event estimation):
 // pdfFwd = its pdf in the emitter's measure (area, or solid angle at infinity), beta = 1 / pdfFwd.
-Vertex sampleEmitterVertex(const Scene& scene, Rng& rng);
+template <Sampler S>
+Vertex sampleEmitterVertex(const Scene& scene, S& rng);
 
 // A camera subpath's first ray: through raster position `raster`, and, when the render loop has
 // traced it already (with its neighbours, in one packet: Scene::intersect8), its direction and hit.
@@ -33,10 +34,12 @@ struct CameraRay {
 // Fills `path` with a camera subpath whose first segment is `ray`. A ray that leaves the scene ends
 // the subpath on the environment, a vertex at infinity, when the scene has one. `lightPaths`: the
 // pass's N_L, which the sensor's pdf of that segment is over (pass_constants.h).
-void cameraSubpath(const Scene& scene, const CameraRay& ray, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs,
+template <Sampler S>
+void cameraSubpath(const Scene& scene, const CameraRay& ray, S& rng, const WalkSettings& settings, WalkPdfs pdfs,
                    double lightPaths, Subpath& path);
 // Fills `path` with a light subpath starting from a power-sampled emitter point; from an emitter at
 // infinity, its walk starts on the bounding disc facing it (Emitters::beamOrigin), y0.p.
-void lightSubpath(const Scene& scene, Rng& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path);
+template <Sampler S>
+void lightSubpath(const Scene& scene, S& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path);
 
 }  // namespace tripath

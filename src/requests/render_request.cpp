@@ -16,6 +16,7 @@ namespace tripath {
 namespace {
 
 bool merges(const Integrator& i) { return i.strategies().merges(); }
+bool chains(const Integrator& i) { return i.runsChains(); }
 
 // tripath:environment and tripath:environment-scale, when the request has an environment.
 Metadata environmentMetadata(const RenderRequest& r) {
@@ -80,6 +81,10 @@ void validateValues(const RenderRequest& r, Spelling spelling) {
     if (!(r.merge.alpha > 0 && r.merge.alpha <= 1))
         fail(fmt::format("{} must be above 0 and at most 1 (got {})", name("alpha"), r.merge.alpha));
     check(true, "strategy-images", r.strategyImages, kStrategyImagesRange);
+    check(r.bootstrapGiven, "bootstrap", r.metropolis.bootstrap, kBootstrapRange);
+    check(r.chainsGiven, "chains", r.metropolis.chains, kChainsRange);
+    if (!(r.metropolis.largeStep >= 0 && r.metropolis.largeStep <= 1))
+        fail(fmt::format("{} must be a probability, from 0 to 1 (got {})", name("large-step"), r.metropolis.largeStep));
     parseMisHeuristic(r.mis);
 }
 
@@ -99,9 +104,14 @@ void requireUsed(const RenderRequest& r, const std::vector<std::string>& integra
         {r.lightPathsGiven, "light-paths", "an integrator that traces light paths (lt, bdpt, vcm, bpm or ppm)",
          [](const Integrator& i) { return i.hasLightPhase(); }},
         {r.strategyImages > 0, "strategy-images",
-         "an integrator with more than one strategy per path length (pt, bdpt, vcm, bpm or ppm; lt's one, (k, 1), is "
-         "its depth image)",
-         [](const Integrator& i) { return i.name() != "lt"; }},
+         "an integrator with more than one strategy per path length in passes of samples (pt, bdpt, vcm, bpm or ppm; "
+         "lt's one, (k, 1), is its depth image; mlt's chains weigh each strategy by where they wander)",
+         [](const Integrator& i) { return i.name() != "lt" && !i.runsChains(); }},
+        {r.rrDepth > 0, "rr-depth", "an integrator whose walks play Russian roulette (every one but mlt)",
+         [](const Integrator& i) { return !i.runsChains(); }},
+        {r.bootstrapGiven, "bootstrap", "mlt", chains},
+        {r.chainsGiven, "chains", "mlt", chains},
+        {r.largeStepGiven, "large-step", "mlt", chains},
     };
     for (const Use& use : uses) {
         if (!use.given) continue;
@@ -131,6 +141,7 @@ IntegratorSettings integratorSettings(const RenderRequest& r) {
     s.mis = parseMisHeuristic(r.mis);
     s.merge = r.merge;
     if (r.lightPathsGiven) s.lightPaths = r.lightPaths;
+    s.metropolis = r.metropolis;
     return s;
 }
 
@@ -184,6 +195,18 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:embree", embreeDescription()},
                {"tripath:ranks", std::to_string(ranks)}};
     for (const Metadata& more : {environmentMetadata(r), lightPhaseMetadata(r, scene, integrator)}) m.insert(m.end(), more.begin(), more.end());
+    if (integrator.runsChains()) {
+        // Per path length k = 1, 2, …: b_k, the length's chains and their acceptance rate.
+        std::vector<std::string> b, chains, acceptance;
+        for (const MetropolisLength& l : result.metropolis.lengths) {
+            b.push_back(fmt::format("{:.6g}", l.normalisation));
+            chains.push_back(std::to_string(l.chains));
+            acceptance.push_back(l.steps ? fmt::format("{:.4f}", double(l.accepted) / double(l.steps)) : "-");
+        }
+        m.push_back({"tripath:mlt-normalisation", fmt::format("{}", fmt::join(b, " "))});
+        m.push_back({"tripath:mlt-chains-per-length", fmt::format("{}", fmt::join(chains, " "))});
+        m.push_back({"tripath:mlt-acceptance", fmt::format("{}", fmt::join(acceptance, " "))});
+    }
     if (result.interrupted) m.push_back({"tripath:interrupted", interruptionText(result)});
     return m;
 }
@@ -195,6 +218,12 @@ Metadata lightPhaseMetadata(const RenderRequest& r, const Scene& scene, const In
     if (integrator.strategies().merges()) {
         m.push_back({"tripath:radius", fmt::format("{:.9g}", integrator.firstMergeRadius(scene))});
         m.push_back({"tripath:alpha", fmt::format("{:.9g}", r.merge.alpha)});
+    }
+    if (integrator.runsChains()) {
+        const MetropolisSettings& ms = integrator.settings().metropolis;
+        m.push_back({"tripath:bootstrap", std::to_string(ms.bootstrap)});
+        m.push_back({"tripath:chains", std::to_string(ms.chains)});
+        m.push_back({"tripath:large-step", fmt::format("{:.9g}", ms.largeStep)});
     }
     return m;
 }

@@ -38,6 +38,8 @@ struct RenderRequest {
     bool radiusPixelsGiven = false, alphaGiven = false;
     int64_t lightPaths = 0;               // light paths per pass, N_L, when lightPathsGiven (else one per pixel); nothing for pt
     bool lightPathsGiven = false;
+    MetropolisSettings metropolis;        // mlt: bootstrap, chains, large-step probability
+    bool bootstrapGiven = false, chainsGiven = false, largeStepGiven = false;
     uint64_t seed = 1;
     int threads = 0;                      // 0: all cores
     bool stats = false;                   // run the phase timers (the counts are always kept)
@@ -58,7 +60,8 @@ struct IntRange {
 };
 inline constexpr IntRange kSizeRange{1, 16384}, kSppRange{1, 1000000}, kMaxDepthRange{1, 1024},
     kRrDepthRange{0, 1024, ", 0 for the integrator's default"}, kThreadsRange{0, 4096, ", 0 for all cores"},
-    kLightPathsRange{1, kMaxLightPaths}, kStrategyImagesRange{0, 16, ", 0 for none"}, kSeedRange{0, UINT64_MAX};
+    kLightPathsRange{1, kMaxLightPaths}, kStrategyImagesRange{0, 16, ", 0 for none"}, kSeedRange{0, UINT64_MAX},
+    kBootstrapRange{1, 1000000000}, kChainsRange{1, 1 << 20};
 // "--spp must be between 1 and 1000000 (got 0)".
 std::string outOfRange(const std::string& name, const IntRange& range, const std::string& got);
 
@@ -102,7 +105,8 @@ Metadata convergenceSettings(const RenderRequest& r, const std::string& integrat
 Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator, const RenderResult& result,
                         int ranks = 1);
 // The part of it that describes the light phase: light paths per pass, and for the merging
-// integrators the first pass's radius in world units and alpha (the radius schedule).
+// integrators the first pass's radius in world units and alpha (the radius schedule); for mlt,
+// its chains' settings (tripath:bootstrap, chains, large-step).
 Metadata lightPhaseMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator);
 
 }  // namespace tripath
