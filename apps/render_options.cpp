@@ -137,7 +137,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     cmd.add_option_function<float>(
            "--large-step", [&o](float v) { o.metropolis.largeStep = v, o.largeStepGiven = true; },
            "mlt: probability that a proposal draws a fresh point of primary sample space rather than moving the "
-           "current one a little (a Gaussian step of 1/64 per coordinate)")
+           "current one a little (a Gaussian step of 1/128 per coordinate)")
         ->default_str(fmt::format("{}", o.metropolis.largeStep));
     inRange(cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
                 ->capture_default_str(),

@@ -6,7 +6,7 @@
 #
 # The benchmark (README, "Over many scenes") renders every failure scene
 # (src/scenes/failure_scenes.h), then the four literature scenes (scenes/README.md: glTF files,
-# named by their stems below), with pt, lt, bdpt, vcm, bpm and ppm, RUNS runs of SECONDS each
+# named by their stems below), with pt, lt, bdpt, vcm, bpm, ppm and mlt, RUNS runs of SECONDS each
 # (equal time), against a vcm reference of 10 x SECONDS per scene (vcm samples every path here,
 # the caustics seen through glass or a mirror included), and tests each method for bias against
 # bdpt's runs. Its report stays in build/failures/ (index.html: the table, a page per scene, the
@@ -19,7 +19,7 @@
 #   docs/images/failures-benchmark.png, failures-page-sds.png: the benchmark's index.html and the
 #                             page of sds as headless Chromium shows them (scripts/install-test-deps.sh
 #                             installs it)
-# Runtime: 15 scenes x (6 x RUNS x SECONDS + 10 x SECONDS), about 21 minutes at the defaults.
+# Runtime: 15 scenes x (7 x RUNS x SECONDS + 10 x SECONDS), about 24 minutes at the defaults.
 # Timings are wall-clock: run it on an otherwise idle machine, or the table measures the neighbours.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -32,7 +32,7 @@ scenes=(caustic caustic-point sds sds-point sds-mirrors door-ajar contact grazin
         scenes/veach-bidir.gltf scenes/lamp-caustic.gltf scenes/box-light-top.gltf scenes/water-caustic.gltf)
 names=("${scenes[@]##*/}")    # what the benchmark names a scene: a built-in's name, a file's stem
 names=("${names[@]%.gltf}")
-methods=(pt lt bdpt vcm bpm ppm)
+methods=(pt lt bdpt vcm bpm ppm mlt)
 
 [ -x "$tripath" ] || { echo "error: $tripath not found: build first (scripts/build.sh) or set TRIPATH" >&2; exit 1; }
 mkdir -p docs/images
