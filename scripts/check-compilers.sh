@@ -55,7 +55,7 @@ done
 mapfile -t scenes < <(./build-gcc/tripath scenes | awk '{ print $1 }')
 pairs=()
 for scene in "${scenes[@]}"; do
-  for integrator in pt lt bdpt vcm bpm ppm; do
+  for integrator in pt lt bdpt vcm bpm ppm mlt; do
     for c in gcc clang gcc-pgo; do
       "./build-$c/tripath" render --scene "$scene" --integrator "$integrator" --spp "$spp" \
         --width "$size" --height "$size" --seed 7 --threads 2 \
@@ -69,7 +69,7 @@ done
 
 echo "GCC ($(g++ -dumpfullversion)) against Clang ($(clang++ -dumpversion)) and against itself profile-guided, ${size}x${size}, $spp spp:"
 if /usr/bin/python3 scripts/exr-identical.py "${pairs[@]}"; then
-  echo "all ${#scenes[@]} scenes x 6 integrators are bit-identical in all three builds"
+  echo "all ${#scenes[@]} scenes x 7 integrators are bit-identical in all three builds"
 else
   echo "error: the builds render different images (rows marked 'differs')" >&2
   exit 1

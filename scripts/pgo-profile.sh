@@ -42,7 +42,7 @@ train() {
     || { cat "$dir/training.log" >&2; exit 1; }
 }
 for scene in cornell cornell-spheres cornell-point veach-mis sds-mirrors scenes/caustic.gltf scenes/door-ajar.gltf scenes/grazing.gltf; do
-  for integrator in pt lt bdpt vcm bpm ppm; do
+  for integrator in pt lt bdpt vcm bpm ppm mlt; do
     train --scene "$scene" --integrator "$integrator"
   done
 done

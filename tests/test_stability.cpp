@@ -52,6 +52,7 @@ struct Job {
     uint64_t seed = 1;
     uint64_t firstPass = 0;
     int maxDepth = 16;
+    int64_t bootstrap = 10000;  // mlt: small, so that its runs stay cheap (its runs are unbiased at any size)
 };
 
 // The request a job makes. Russian roulette starts at the walk's own default depth (the 3rd vertex)
@@ -65,6 +66,7 @@ RenderRequest request(const Job& j) {
     r.seed = j.seed;
     r.maxDepth = j.maxDepth;
     r.rrDepth = WalkSettings{}.rrDepth;
+    r.metropolis.bootstrap = j.bootstrap;
     return r;
 }
 
@@ -167,11 +169,14 @@ TEST(FailureScenes, EverySampleIsFinite) {
     }
 }
 
-// The render loop's own count of dropped (NaN/Inf) samples, at the default max-depth.
+// The render loop's own count of dropped (NaN/Inf) samples, at the default max-depth: for mlt,
+// its count of proposals (and bootstrap samples) whose value was not finite.
 TEST(FailureScenes, RendersDropNoSample) {
+    std::vector<std::string> integrators = kAllIntegrators;
+    integrators.push_back("mlt");
     for (const std::string& name : kFailureScenes) {
         const Scene scene(builtinScene(name), 16, 16, silent);
-        for (const std::string& integrator : kAllIntegrators) {
+        for (const std::string& integrator : integrators) {
             Job job;
             job.integrator = integrator;
             job.size = 16;
@@ -291,11 +296,11 @@ TEST_P(Agreement, IntegratorsAgreeWithinStatisticalError) {
 INSTANTIATE_TEST_SUITE_P(
     FailureScenes, Agreement,
     testing::Values(
-        AgreementCase{"caustic", {"lt", "bdpt"}, 16, 8, "pt: rare events (the caustic, the ball's reflection)", {"pt"}, 0.9, true},
+        AgreementCase{"caustic", {"lt", "bdpt", "mlt"}, 16, 8, "pt: rare events (the caustic, the ball's reflection)", {"pt"}, 0.9, true},
         AgreementCase{"caustic-point", {"lt", "bdpt"}, 16, 8, "pt cannot sample the caustic: see CausticPoint"},
-        AgreementCase{"sds", {"lt", "bdpt"}, 16, 8, "pt: rare events (also the light through the pane)", {"pt"}, 0.8, true},
+        AgreementCase{"sds", {"lt", "bdpt", "mlt"}, 16, 8, "pt: rare events (also the light through the pane)", {"pt"}, 0.8, true},
         AgreementCase{"sds-point", {"lt", "bdpt"}, 16, 8, "pt misses every point-light caustic; see SdsPoint"},
-        AgreementCase{"door-ajar", {"pt", "lt", "bdpt"}, 32, 8, "all can; pt and lt are noisy: more runs"},
+        AgreementCase{"door-ajar", {"pt", "lt", "bdpt", "mlt"}, 32, 8, "all can; pt and lt are noisy: more runs"},
         AgreementCase{"contact", {"pt", "lt", "bdpt"}, 16, 8, "all can"},
         AgreementCase{"grazing", {"pt", "bdpt"}, 16, 8, "lt: see Grazing"},
         AgreementCase{"degenerate", {"pt", "lt", "bdpt"}, 16, 8, "all can"},

@@ -172,18 +172,21 @@ public:
                 out.push_back({y * width + x, chain.length(), s.value * (weight * scale)});
             };
             PassCounts& counts = counts_[c];
+            const uint64_t guardedBefore = chain.guardedWeights();
             for (int i = 0; i < layout_.stepsPerPass; ++i) {
                 Rng rng = cr_.chainStream(ids_[c], chain.steps() + 1);
                 const StepOutcome o = chain.step(cr_.target, cr_.largeStep, rng, paths, splat);
                 counts.notFinite += o == StepOutcome::NotFinite;
                 kAcceptedMutations.add(o == StepOutcome::Accepted);
             }
+            counts.guarded += chain.guardedWeights() - guardedBefore;
             kMutations.add(uint64_t(layout_.stepsPerPass));
         });
         const PhaseScope filing(Phase::Film);
         for (size_t c = 0; c < chains_.size(); ++c) {
             for (const ChainSplat& s : splats_[c]) film.addExactly(s.pixel, s.k, s.value);
             result.droppedSamples += counts_[c].notFinite;
+            result.guardedWeights += counts_[c].guarded;
             counts_[c] = {};
         }
     }
@@ -323,7 +326,10 @@ RenderResult renderMetropolis(const Scene& scene, const Integrator& integrator, 
             settings.onPass(result.film, int(local), result.seconds);
             callbackSeconds += since(t0);
         }
-        if (local >= budget || team.any(timeUpOrStopped())) break;
+        // Without chains (the bootstrap found no light at any length) a pass is empty and the
+        // image black: one pass says so, whatever the time budget.
+        const bool nothingToDo = layout.chains() == 0 && settings.seconds > 0;
+        if (local >= budget || nothingToDo || team.any(timeUpOrStopped())) break;
         if (settings.checkpointSeconds > 0 && team.any(elapsed() - lastCheckpoint >= settings.checkpointSeconds)) {
             const auto t0 = std::chrono::steady_clock::now();
             RenderResult sofar{.film = team.rank() == 0 ? result.film : Film(0, 0), .seconds = result.seconds};

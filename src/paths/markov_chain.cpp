@@ -6,7 +6,7 @@ namespace tripath {
 
 void MarkovChain::start(const MultiplexedTarget& target, Rng& fresh, TargetPaths& paths) {
     u_ = PrimarySamples();
-    steps_ = accepted_ = 0;
+    steps_ = accepted_ = guarded_ = 0;
     u_.propose(true, fresh);
     current_ = evaluateTarget(target, length_, u_, paths);
     u_.accept();

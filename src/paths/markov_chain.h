@@ -34,6 +34,7 @@ public:
     const PathSample& current() const { return current_; }
     uint64_t steps() const { return steps_; }        // steps taken since start()
     uint64_t accepted() const { return accepted_; }  // of which accepted
+    uint64_t guardedWeights() const { return guarded_; }  // proposals whose MIS weight was guarded to 0 (mis.h), in this process
 
     // Starts the chain at the point `fresh` draws, evaluated: a bootstrap sample's stream gives
     // that sample's point and value again.
@@ -55,7 +56,7 @@ private:
     int length_;
     PrimarySamples u_;
     PathSample current_;
-    uint64_t steps_ = 0, accepted_ = 0;
+    uint64_t steps_ = 0, accepted_ = 0, guarded_ = 0;
 };
 
 template <class Splat>
@@ -65,6 +66,7 @@ StepOutcome MarkovChain::step(const MultiplexedTarget& target, float largeStepPr
     const bool large = rng.uniform() < largeStepProbability;
     u_.propose(large, rng);
     PathSample proposal = evaluateTarget(target, length_, u_, paths);
+    guarded_ += proposal.weightGuarded;
     const bool finite = isFinite(proposal.value);
     const float lp = finite ? proposal.luminance() : 0.0f, lc = current_.luminance();
     const float a = finite ? acceptance(lc, lp) : 0.0f;

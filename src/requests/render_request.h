@@ -61,7 +61,7 @@ struct IntRange {
 inline constexpr IntRange kSizeRange{1, 16384}, kSppRange{1, 1000000}, kMaxDepthRange{1, 1024},
     kRrDepthRange{0, 1024, ", 0 for the integrator's default"}, kThreadsRange{0, 4096, ", 0 for all cores"},
     kLightPathsRange{1, kMaxLightPaths}, kStrategyImagesRange{0, 16, ", 0 for none"}, kSeedRange{0, UINT64_MAX},
-    kBootstrapRange{1, 1000000000}, kChainsRange{1, 1 << 20};
+    kBootstrapRange{1, 10000000}, kChainsRange{1, 1 << 20};  // the bootstrap keeps 20 bytes a sample
 // "--spp must be between 1 and 1000000 (got 0)".
 std::string outOfRange(const std::string& name, const IntRange& range, const std::string& got);
 
