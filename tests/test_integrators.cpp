@@ -95,6 +95,14 @@ TEST(Roulette, TheDepthUsedIsTheDepthRecorded) {
         EXPECT_EQ(valueOf(renderMetadata(r, scene, *method, result), "tripath:rr-depth"), std::to_string(used)) << integrator;
         EXPECT_EQ(valueOf(convergenceSettings(r, integrator), "tripath:rr-depth"), std::to_string(used)) << integrator;
     }
+    // mlt's walks play no roulette: both say so rather than a depth it never used.
+    RenderRequest r = test::smallRequest();
+    r.integrator = "mlt";
+    r.spp = 1;
+    const auto mlt = makeIntegrator(r.integrator, integratorSettings(r));
+    const RenderResult result = render(scene, *mlt, renderSettings(r));
+    EXPECT_EQ(valueOf(renderMetadata(r, scene, *mlt, result), "tripath:rr-depth"), "none");
+    EXPECT_EQ(valueOf(convergenceSettings(r, "mlt"), "tripath:rr-depth"), "none");
 }
 
 TEST(Furnace, AlbedoHalf) { expectFurnace(0.5f); }

@@ -24,6 +24,12 @@ Metadata environmentMetadata(const RenderRequest& r) {
     return {{"tripath:environment", r.environment}, {"tripath:environment-scale", fmt::format("{:.9g}", r.environmentScale)}};
 }
 
+// tripath:rr-depth: the roulette start depth `integrator` renders with, or "none" for mlt, whose
+// chains' walks play no roulette.
+std::string rouletteText(const RenderRequest& r, const std::string& integrator) {
+    return makeIntegrator(integrator, {})->runsChains() ? "none" : std::to_string(rouletteDepth(r, integrator));
+}
+
 // The front ends' names of the heuristics; the path core knows only the enum.
 MisHeuristic parseMisHeuristic(const std::string& name) {
     if (name == "balance") return MisHeuristic::Balance;
@@ -170,7 +176,7 @@ Metadata convergenceSettings(const RenderRequest& r, const std::string& integrat
     Metadata m{{"tripath:scene", r.scene},
                {"tripath:integrator", integrator},
                {"tripath:max-depth", std::to_string(r.maxDepth)},
-               {"tripath:rr-depth", std::to_string(rouletteDepth(r, integrator))},
+               {"tripath:rr-depth", rouletteText(r, integrator)},
                {"tripath:mis", r.mis}};
     const Metadata environment = environmentMetadata(r);
     m.insert(m.end(), environment.begin(), environment.end());
@@ -187,7 +193,8 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:seed", std::to_string(r.seed)},
                {"tripath:streams", streamsName(r.domain)},
                {"tripath:max-depth", std::to_string(r.maxDepth)},
-               {"tripath:rr-depth", std::to_string(integrator.settings().walk.rrDepth)},
+               {"tripath:rr-depth",
+                integrator.runsChains() ? "none" : std::to_string(integrator.settings().walk.rrDepth)},
                {"tripath:mis", r.mis},
                {"tripath:dropped-samples", std::to_string(result.droppedSamples)},
                {"tripath:guarded-weights", std::to_string(result.guardedWeights)},

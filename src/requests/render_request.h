@@ -97,7 +97,7 @@ std::unique_ptr<Scene> loadScene(const RenderRequest& r, const WarningSink& warn
 // "render" or "reference", as tripath:streams records a domain.
 const char* streamsName(StreamDomain d);
 // What decides the image a render converges to, as EXR metadata: tripath:scene, integrator,
-// max-depth, rr-depth and mis, and tripath:environment and environment-scale when one is given. Every check that a file may be added to or measured against
+// max-depth, rr-depth ("none" for mlt) and mis, and tripath:environment and environment-scale when one is given. Every check that a file may be added to or measured against
 // (references, checkpoints, the benchmark's reference cache) starts from these.
 Metadata convergenceSettings(const RenderRequest& r, const std::string& integrator);
 // The EXR metadata describing a finished render by `ranks` processes; tripath:interrupted too
