@@ -15,7 +15,7 @@ inline constexpr const char* kEmbreeIsas[] = {"sse2", "sse4.2", "avx", "avx2", "
 int embreeIsaNamed(const std::string& name);
 // The widest ISA of kEmbreeIsas this CPU runs (Embree's own choice when left alone), which renders
 // run on unless the command line's --embree-isa pins another. (AVX2 instead of AVX-512 made
-// one-thread passes 1-4 % faster but left two-thread renders level: bench/README.md, "Embree's ISA".)
+// one-thread passes 1-4 % faster but left two-thread renders level: docs/performance-notes.md.)
 int bestEmbreeIsaLevel();
 // Every Scene built from now on runs this ISA (default: bestEmbreeIsaLevel()).
 void useEmbreeIsa(int level);

@@ -67,7 +67,7 @@ public:
     // Closest hit along origin + t·dir for t in (0, tMax).
     std::optional<SurfacePoint> intersect(Vec3 origin, Vec3 dir, float tMax = 3.0e38f) const;
     // The closest hits of up to 8 rays from one origin (a pinhole's rays through neighbouring
-    // pixels), in one coherent Embree packet: bench/README.md measured 4× the rays/s of single rays
+    // pixels), in one coherent Embree packet: docs/performance-notes.md records 4.3× the rays/s of single rays
     // for a pass's camera rays on cornell. hits[i] for dirs[i].
     void intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::optional<SurfacePoint>> hits) const;
     // True when nothing blocks the open segment between a and b. Each end is a surface point (its

@@ -120,7 +120,7 @@ class LocalScattering {
 public:
     // The local directions are taken from the arguments, not from the members just written: a
     // member stored as 8 + 4 bytes and read back as one 16-byte vector stalls store forwarding
-    // (13 % of a connection's time in the profile of bench/README.md).
+    // (13 % of a connection's time in a profile: docs/performance-notes.md).
     LocalScattering(const Scene& scene, const Vertex& v, const Vec3* towardLight, const Vec3* towardCamera)
         : scene_(scene), v_(v), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr),
           light_(hasLight_ ? *towardLight : Vec3()), camera_(hasCamera_ ? *towardCamera : Vec3()) {

@@ -76,7 +76,7 @@ public:
     // Appends the mergeable vertices of one chunk of the store to `out`, in the chunk's order. The
     // light phase calls it in the task that traced the chunk, while the chunk's vertices are
     // still in that core's cache: one thread's pass over the whole store after the light phase
-    // took 2.5 % of a two-thread pass on smallvcm-5 (bench/README.md, "Merges that wait less").
+    // took 2.5 % of a two-thread pass on smallvcm-5 (docs/performance-notes.md).
     static void mergeable(const LightStore::Chunk& chunk, std::vector<Entry>& out);
     // Indexes the mergeable vertices of every chunk of a store (mergeable's output per chunk,
     // in chunk order) for queries of radius `radius`.
