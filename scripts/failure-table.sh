@@ -4,7 +4,7 @@
 #
 #   scripts/failure-table.sh [SECONDS] [SIZE] [RUNS]     defaults: 3 seconds per run, 128x128, 3 runs
 #
-# The benchmark (README, "Over many scenes") renders every failure scene
+# The benchmark (docs/compare.md, "Over many scenes") renders every failure scene
 # (src/scenes/failure_scenes.h), then the four literature scenes (scenes/README.md: glTF files,
 # named by their stems below), with pt, lt, bdpt, vcm, bpm, ppm and mlt, RUNS runs of SECONDS each
 # (equal time), against a vcm reference of 10 x SECONDS per scene (vcm samples every path here,

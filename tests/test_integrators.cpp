@@ -145,7 +145,7 @@ TEST(Agreement, CornellSmall) { expectAgreement(builtinScene("cornell-small"), "
 // bottom row, at 4096 spp two seeds still differ by 2×) and run-to-run error bars of 8 spp are
 // meaningless: on the third row LT read 0.026 ± 0.009 against PT's 0.076 in one such set of
 // runs, and 0.0763 against 0.0768 at 20000 spp. That is light tracing's known failure, shown in
-// the README; here LT is held to the top two rows, PT and BDPT to all of them, and LT's third
+// docs/integrators.md; here LT is held to the top two rows, PT and BDPT to all of them, and LT's third
 // row gets a budget its error bars can be trusted at (the next test).
 TEST(Agreement, VeachMis) { expectAgreement(builtinScene("veach-mis"), "veach-mis", 8, 2); }
 
