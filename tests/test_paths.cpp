@@ -654,9 +654,10 @@ TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
 // ---- Metropolis: a chain's acceptance against the brute-force target ---------------------
 
 // The path of strategy (s, t) over a chain's subpaths, x0 (emitter) … xk (sensor); empty for
-// s = 1, whose emitter point the subpaths do not keep.
+// s = 1, whose emitter point the subpaths do not keep, and where a walk ended short of its
+// strategy (a state of value 0).
 Path joined(const TargetPaths& paths, Strategy st) {
-    if (st.s == 1) return {};
+    if (st.s == 1 || paths.light.size() < size_t(st.s) || paths.camera.size() < size_t(st.t)) return {};
     Path x(paths.light.begin(), paths.light.begin() + st.s);
     for (int j = st.t - 1; j >= 0; --j) x.push_back(paths.camera[size_t(j)]);
     return x;
@@ -673,6 +674,7 @@ double bruteForceTarget(const Scene& scene, const Path& x, int s, const MisConte
 // Whether the oracle can evaluate a chain's path: one without delta vertices (a delta's f is no
 // function of the points), made by no next-event estimate (joined() has no emitter point for it).
 bool oracleCanEvaluate(const Path& x, int s) {
+    if (x.empty()) return false;
     for (int i = 0; i < static_cast<int>(x.size()); ++i)
         if (scattersDelta(x, i)) return false;
     return s != 1;
