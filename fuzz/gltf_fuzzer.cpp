@@ -3,7 +3,7 @@
 // light phase (light subpaths, their store and the merge search) and a few camera samples with
 // every connection and merge.
 //
-// Contract under test (DESIGN.md §5): any input ends in a SceneDesc or an InputError, never a
+// Contract under test (docs/design.md §5): any input ends in a SceneDesc or an InputError, never a
 // crash, hang, leak or other exception. Anything else escapes this function, and libFuzzer
 // reports it with the input that caused it.
 //

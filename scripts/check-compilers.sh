@@ -4,7 +4,7 @@
 #
 #   scripts/check-compilers.sh [SIZE] [SPP]       defaults: 64 (pixels a side), 4 samples per pixel
 #
-# Why: the same seed must give the same image whatever the thread count (DESIGN.md §1.2), and
+# Why: the same seed must give the same image whatever the thread count (docs/design.md §4), and
 # whatever the compiler too: the fuzz build is Clang, the release build GCC, and a difference
 # between them is a difference in what was computed, e.g. two random draws passed as arguments
 # of one call (their order is unspecified in C++; on x86-64 GCC evaluated the last argument
