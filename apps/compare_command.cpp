@@ -23,6 +23,9 @@ struct CompareCommand {
     evaluation::CompareRequest options;
     std::string integrators = "pt,lt,bdpt";
     std::string crop;
+    std::string theme = "dark";
+    bool noLabels = false;
+    std::string formats;
 };
 
 std::optional<Region> parseCrop(const std::string& text) {
@@ -50,6 +53,8 @@ void validate(CompareCommand& c) {
     o.render = c.render;
     o.methods = splitCommas(c.integrators);
     o.crop = parseCrop(c.crop);
+    o.sheet = {themeNamed(c.theme), !c.noLabels};
+    o.sheetFormats = c.formats.empty() ? std::vector<std::string>{} : splitCommas(c.formats);
     o.team = &team();
     o.narrator = terminalNarrator();
     evaluation::validate(o, Spelling::CommandLine);
@@ -89,8 +94,8 @@ void addCompareCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "compare",
         "Render a scene with several integrators for the same wall-clock time each and compare their error "
-        "against a reference over time: error.csv, error-vs-time.svg/.png, side-by-side.png, summary.md and "
-        "index.html in --out");
+        "against a reference over time: error.csv, error-vs-time.svg/.png, side-by-side.png, each image's crop, "
+        "summary.md and index.html in --out");
     addRenderOptions(*cmd, c->render, false);
     // Every method gets the same time; a sample count would not be a fair budget across methods.
     cmd->remove_option(cmd->get_option("--spp"));
@@ -115,7 +120,17 @@ void addCompareCommand(CLI::App& app) {
                 ->capture_default_str(),
             evaluation::kRunsRange);
     cmd->add_option("--crop", c->crop,
-                    "x,y,w,h: region magnified in side-by-side.png (default: where the methods' errors differ most)");
+                    "x,y,w,h: the region magnified under each image in side-by-side.png and written alone, magnified "
+                    "(nearest neighbour) to about 512 pixels, as <method>-crop.png and reference-crop.png (default: "
+                    "an eighth of the image where the methods' errors differ most)");
+    cmd->add_option("--theme", c->theme, "side-by-side's colours: dark (for screens) or light (for a paper's page)")
+        ->capture_default_str();
+    cmd->add_flag("--no-labels", c->noLabels,
+                  "side-by-side without the method names and figures above the images, for a figure captioned "
+                  "elsewhere");
+    cmd->add_option("--formats", c->formats,
+                    "Comma-separated: side-by-side also as pdf and/or svg (labels stay text, images stay pixels); "
+                    "side-by-side.png is always written");
     cmd->add_option("--out", c->options.outDir, "Output directory (created, if missing, when the first file is written)")
         ->required();
     cmd->callback([c] { run(*c); });

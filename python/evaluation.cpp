@@ -116,6 +116,7 @@ py::dict compareScene(const py::object& sceneArgument, double seconds, const std
                       int runs, const py::object& reference, const std::string& referenceIntegrator,
                       std::optional<double> referenceSeconds, const std::string& out, int width, int height, uint64_t seed,
                       int maxDepth, const std::string& mis, int threads, std::optional<std::array<int, 4>> crop,
+                      const std::string& theme, bool labels, const std::vector<std::string>& formats,
                       const Progress& progress, bool verbose, const py::kwargs& options) {
     const SceneArgument argument(sceneArgument);
     PyScene& scene = *argument;
@@ -132,6 +133,8 @@ py::dict compareScene(const py::object& sceneArgument, double seconds, const std
     r.referenceSeconds = referenceBudget(referenceSeconds);
     r.outDir = out;
     if (crop) r.crop = Region{(*crop)[0], (*crop)[1], (*crop)[2], (*crop)[3]};
+    r.sheet = {themeNamed(theme), labels};
+    r.sheetFormats = formats;
     Watch watch;
     r.stop = &watch.stop;
     r.narrator = narratorOf(watch, progress, verbose);
@@ -219,14 +222,16 @@ void defineEvaluation(py::module_& m) {
           py::arg("runs") = 1, py::arg("reference") = py::none(), py::arg("reference_integrator") = evaluation::kDefaultReferenceIntegrator,
           py::arg("reference_seconds") = py::none(), py::arg("out") = "", py::arg("width") = 512,
           py::arg("height") = 512, py::arg("seed") = 1, py::arg("max_depth") = 16, py::arg("mis") = "power",
-          py::arg("threads") = 0, py::arg("crop") = py::none(), py::arg("progress") = py::none(),
-          py::arg("verbose") = false,
+          py::arg("threads") = 0, py::arg("crop") = py::none(), py::arg("theme") = "dark", py::arg("labels") = true,
+          py::arg("formats") = std::vector<std::string>{}, py::arg("progress") = py::none(), py::arg("verbose") = false,
           "Renders scene (as for render()) with each of integrators for the same wall-clock time (seconds each; "
           "runs independent runs with seeds seed, seed+1, ...) and measures their error against a reference at "
           "checkpoints spaced logarithmically in time, as `tripath compare` does. reference: an EXR path, an array "
           "(height x width x 3), or None to render one with reference_integrator for reference_seconds (default 10 "
           "x seconds) in the reference streams. out: a directory for the full report (error.csv, chart, images, "
-          "index.html); none by default. Returns a dict: summary (a row per integrator: relmse (mean over runs), "
+          "index.html); none by default. crop (x, y, w, h): the region magnified in side-by-side.png and written "
+          "alone as <integrator>-crop.png (default: where the errors differ most); theme ('dark' or 'light') and "
+          "labels (False: no titles) style side-by-side; formats: ['pdf', 'svg'] writes it in those too. Returns a dict: summary (a row per integrator: relmse (mean over runs), "
           "relmse_sd, mse, mae, tail_share, hdr_flip, spp, seconds, relmse_x_spp, efficiency, time_to_best, "
           "rays_per_s), checkpoints (the rows of error.csv), runs (per run: counters), images (run 0's image per "
           "integrator), reference, reference_description, report (out's index.html or None). progress(label, "

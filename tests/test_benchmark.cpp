@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "evaluation/benchmark.h"
 #include "shell_test.h"
 
 namespace tripath {
@@ -68,7 +69,9 @@ TEST_F(Benchmark, TablesEveryMethodOnEverySceneAndFlagsBias) {
         EXPECT_TRUE(flip > 0 && flip < 1) << key.first << " " << key.second << " " << flip;
         EXPECT_TRUE(fs::exists(fs::path(out) / key.first / "index.html"));
         EXPECT_TRUE(fs::exists(fs::path(out) / key.first / ("bias-" + key.second + ".png")));
+        EXPECT_TRUE(fs::exists(fs::path(out) / key.first / ("thumb-" + key.second + ".png")));
     }
+    EXPECT_TRUE(fs::exists(fs::path(out) / "bias-scale.png"));
     EXPECT_GT(std::stoi(rows.at({"sds", "lt"}).at("biased_blocks")), 0);
     EXPECT_EQ(rows.at({"cornell", "pt"}).at("biased_blocks"), "0");
     EXPECT_EQ(rows.at({"cornell", "lt"}).at("biased_blocks"), "0");
@@ -78,6 +81,8 @@ TEST_F(Benchmark, TablesEveryMethodOnEverySceneAndFlagsBias) {
     page << html.rdbuf();
     EXPECT_NE(page.str().find("href=\"sds/index.html\""), std::string::npos);
     EXPECT_NE(page.str().find("sds/bias-lt.png"), std::string::npos);
+    EXPECT_NE(page.str().find("src=\"cornell/thumb-pt.png\""), std::string::npos);
+    EXPECT_NE(page.str().find("src=\"bias-scale.png\""), std::string::npos);
     // results.md, the table docs/failures.md shows, carries the CSV's HDR-FLIP in each cell.
     std::ifstream md(fs::path(out) / "results.md");
     std::stringstream table;
@@ -92,6 +97,26 @@ TEST_F(Benchmark, TablesEveryMethodOnEverySceneAndFlagsBias) {
     ASSERT_EQ(again.exitCode, 0) << again.err;
     EXPECT_NE(again.err.find("reusing the reference"), std::string::npos) << again.err;
     EXPECT_EQ(again.err.find("rendering one"), std::string::npos) << again.err;
+}
+
+// A scene's best method is marked only when its error bar (mean ± sd over runs) is clear of the
+// runner-up's: with means 1.0 and 1.5, sds 0.2 each leave them apart (1.2 < 1.3), sds 0.3 make them
+// overlap (1.3 > 1.2), whichever order the cells come in. Catches marking the lowest mean alone,
+// and comparing with the worst method rather than the runner-up.
+TEST(BenchmarkTable, BestIsMarkedOnlyBeyondTheErrorBars) {
+    auto cell = [](const std::string& method, double relMse, double sd) {
+        evaluation::Cell c{"s", method};
+        c.summary.error.relMse = relMse;
+        c.summary.relMseStd = sd;
+        return c;
+    };
+    using Cells = std::vector<evaluation::Cell>;
+    EXPECT_EQ(evaluation::clearlyBest(Cells{cell("a", 1.0, 0.2), cell("b", 1.5, 0.2), cell("c", 9, 0.1)}, "s"), "a");
+    EXPECT_EQ(evaluation::clearlyBest(Cells{cell("c", 9, 0.1), cell("b", 1.5, 0.2), cell("a", 1.0, 0.2)}, "s"), "a");
+    EXPECT_EQ(evaluation::clearlyBest(Cells{cell("a", 1.0, 0.3), cell("b", 1.5, 0.3), cell("c", 9, 0.1)}, "s"), "");
+    EXPECT_EQ(evaluation::clearlyBest(Cells{cell("c", 9, 0.1), cell("a", 1.0, 0.3), cell("b", 1.5, 0.3)}, "s"), "");
+    EXPECT_EQ(evaluation::clearlyBest(Cells{cell("a", 1.0, 0.2)}, "s"), "") << "one method beats nobody";
+    EXPECT_EQ(evaluation::clearlyBest(Cells{cell("a", 1.0, 0.2), cell("b", 1.5, 0.2)}, "other"), "");
 }
 
 // Every mistake is refused in one line before the first render, and leaves no output folder. A

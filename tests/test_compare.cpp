@@ -1,6 +1,7 @@
 // `tripath reference` and `tripath compare`, end to end through the built binary (TRIPATH_BINARY),
 // plus the pieces they are made of: the render loop's per-pass callback, the chart, the comparison
 // sheet and the choice of its inset. Every render is 32x32 and at most a few seconds.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -316,12 +317,31 @@ TEST(Compose, InsetFindsTheRegionWhereMethodsDiffer) {
     EXPECT_THROW(regionOfLargestDifference(ref, {Image(8, 8)}, 8, 8), InputError);
     EXPECT_THROW(regionOfLargestDifference(ref, {good}, 65, 8), InputError);
 
-    const Image sheet = sideBySide({{ref, "reference", "a"}, {good, "pt", "b"}, {bad, "lt", "c"}}, r);
+    const Sheet sheet = sideBySide({{ref, "reference", "a"}, {good, "pt", "b"}, {bad, "lt", "c"}}, r);
     // 64x48 panels are magnified 4x to reach 256 wide; the 8x8 inset grows to the panel's height.
-    EXPECT_EQ(sheet.width, 8 + 3 * (256 + 8));
-    EXPECT_EQ(sheet.height, 44 + 192 + 8 + 192 + 8);
+    EXPECT_EQ(sheet.width(), 8 + 3 * (256 + 8));
+    EXPECT_EQ(sheet.height(), 44 + 192 + 8 + 192 + 8);
     EXPECT_THROW(sideBySide({{ref, "r", ""}, {Image(8, 8), "x", ""}}, r), InputError);
     EXPECT_THROW(sideBySide({{ref, "r", ""}}, Region{60, 0, 8, 8}), InputError);
+}
+
+// A sheet's label is anchored at x as asked: white on black, its ink (any pixel above black) starts just right of x
+// (Start), straddles it (Middle) or ends just left of it (End), and is as wide as canvas::textWidth
+// says. Catches anchors mapped to the wrong side, and a width measured in another font or size.
+TEST(Compose, LabelsAreAnchoredAsAsked) {
+    for (Anchor anchor : {Anchor::Start, Anchor::Middle, Anchor::End}) {
+        Sheet sheet(200, 30, {0, 0, 0});
+        sheet.label(100, 20, "label", Font{14}, {255, 255, 255}, anchor);
+        const Image img = sheetImage(sheet);
+        int left = img.width, right = -1;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x)
+                if (img.at(x, y)[0] > 0.02f) left = std::min(left, x), right = std::max(right, x);
+        ASSERT_LT(left, right) << int(anchor);
+        const double at = anchor == Anchor::Start ? left - 1 : anchor == Anchor::Middle ? (left + right) / 2.0 : right + 2;
+        EXPECT_NEAR(at, 100, 2) << int(anchor);
+        EXPECT_NEAR(right - left + 1, canvas::textWidth("label", Font{14}), 3) << int(anchor);
+    }
 }
 
 TEST(ReferenceCommand, AddingSamplesEqualsRenderingThemAtOnce) {
@@ -615,6 +635,48 @@ TEST(CompareCommand, PreviewsShareTheReferencesAutomaticExposure) {
         EXPECT_GT(lit, 32 * 32) << names[i] << ".png is dark";
         EXPECT_EQ(sheetDiffers, 0) << names[i] << " in side-by-side.png: pixels unlike its PNG";
         EXPECT_EQ(cropDiffers, 0) << names[i] << "'s crop in side-by-side.png: pixels unlike its PNG";
+        // The crop alone: its 8x8 pixels as blocks of 64x64 (8 × 64 = 512), each the PNG's pixel.
+        const Image alone = readImage(out + "/" + names[i] + "-crop.png");
+        ASSERT_EQ(alone.width, 512);
+        ASSERT_EQ(alone.height, 512);
+        int aloneDiffers = 0;
+        for (int y = 0; y < 512; y += 7)
+            for (int x = 0; x < 512; x += 7) aloneDiffers += bytesAt(alone, x, y) != bytesAt(png, 8 + x / 64, 8 + y / 64);
+        EXPECT_EQ(aloneDiffers, 0) << names[i] << "-crop.png: not the PNG's pixels as 64x64 blocks";
+    }
+}
+
+// Figures for a paper: --theme light --no-labels --formats pdf,svg gives a sheet on white without
+// the title rows, as PNG, PDF and SVG of one size. 32x32 images shown 8x and the 8x8 crop 32x:
+// a row of panels is 8 + 256 + 8 + 256 + 8 pixels high (44 + … with labels), two rows (images,
+// error maps) and the 56-pixel colour bar. Catches each option ignored (a dark corner, rows 36
+// pixels higher, a format not written) and a PDF or SVG page of another size than the PNG.
+TEST(CompareCommand, FiguresForAPaperComeLightUnlabelledAndAsVectorFiles) {
+    TempDir dir;
+    const std::string ref = dir / "ref.exr", out = dir / "out";
+    ASSERT_EQ(tripathCli(dir, "reference " + kSmall + " --spp 16 --out " + ref).exitCode, 0);
+    const Outcome o = tripathCli(dir, "compare " + kSmall + " --integrators pt,bdpt --time 0.01 --reference " + ref +
+                                          " --crop 8,8,8,8 --theme light --no-labels --formats pdf,svg --out " + out);
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    const Image sheet = readImage(out + "/side-by-side.png");
+    const int width = 8 + 3 * (256 + 8), height = 2 * (8 + 256 + 8 + 256 + 8) + 56;
+    EXPECT_EQ(sheet.width, width);
+    EXPECT_EQ(sheet.height, height);
+    EXPECT_EQ(bytesAt(sheet, 0, 0), (std::array<int, 3>{255, 255, 255}));
+    // The reference's first pixel is the sheet's first image pixel, 8 from the top: no label rows.
+    EXPECT_EQ(bytesAt(sheet, 8 + 4, 8 + 4), bytesAt(readImage(out + "/reference.png"), 0, 0));
+    const std::string pdf = readFile(out + "/side-by-side.pdf"), svg = readFile(out + "/side-by-side.svg");
+    EXPECT_EQ(pdf.rfind("%PDF-", 0), 0u);
+    EXPECT_NE(pdf.find(fmt::format("/MediaBox [ 0 0 {} {} ]", width, height)), std::string::npos);
+    EXPECT_NE(svg.find(fmt::format("width=\"{}px\" height=\"{}px\"", width, height)), std::string::npos);
+    EXPECT_NE(svg.find("<image"), std::string::npos) << "the images are pixels in the SVG";
+
+    for (const char* bad : {"--theme sepia", "--formats png,gif", "--formats pdf,pdf"}) {
+        const Outcome refused = tripathCli(dir, "compare " + kSmall + " --integrators pt --time 0.01 --reference " +
+                                                    ref + " " + bad + " --out " + (dir / "no"));
+        EXPECT_NE(refused.exitCode, 0) << bad;
+        EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << bad << ": " << refused.err;
+        EXPECT_FALSE(fs::exists(dir / "no")) << bad;
     }
 }
 

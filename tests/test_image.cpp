@@ -19,7 +19,6 @@
 #include "evaluation/error_map.h"
 #include "image/exposure.h"
 #include "evaluation/metrics.h"
-#include "image/text.h"
 
 namespace fs = std::filesystem;
 using namespace tripath;
@@ -436,25 +435,6 @@ TEST(ErrorMap, ColoursFollowTheLogScaleOfThePixelsRelativeSquaredError) {
     EXPECT_NEAR(map.at(2, 1)[2], expected.b, 1e-6);
     EXPECT_EQ(map.at(0, 0)[0], zero.r);
     EXPECT_THROW(errorMap(filled(3, 2, 1, 1, 1), ref), InputError);
-}
-
-// drawText anchors a label at x by its alignment: white on black, the ink starts just right of x
-// (Left), straddles it (Center) or ends just left of it (Right), and is as wide as textWidth says.
-// Catches alignments mapped to the wrong side.
-TEST(Text, LabelsAreAnchoredByTheirAlignment) {
-    for (Align align : {Align::Left, Align::Center, Align::Right}) {
-        const TextStyle style{14, {1, 1, 1}, false, align};
-        Image img(200, 30);
-        drawText(img, 100, 20, "label", style);
-        int left = img.width, right = -1;
-        for (int y = 0; y < img.height; ++y)
-            for (int x = 0; x < img.width; ++x)
-                if (img.at(x, y)[0] > 0.5f) left = std::min(left, x), right = std::max(right, x);
-        ASSERT_LT(left, right) << int(align);
-        const double anchor = align == Align::Left ? left - 1 : align == Align::Center ? (left + right) / 2.0 : right + 2;
-        EXPECT_NEAR(anchor, 100, 2) << int(align);
-        EXPECT_NEAR(right - left + 1, textWidth("label", style), 2) << int(align);
-    }
 }
 
 // srgbDecode is the inverse of the PNG writer's encoding on every 8-bit code, so an image drawn

@@ -8,13 +8,15 @@
 // <out>/references/ under a name that carries the settings; a cached one is reused when its
 // metadata matches. Every scene and given reference is checked before the first render. From the R runs of each
 // method and of the bias reference, Welch's t-test per block (evaluation/bias.h) says where a
-// difference is bias rather than noise. <out>/index.html has the scenes × methods table,
+// difference is bias rather than noise. <out>/index.html has the scenes × methods table (a
+// thumbnail per cell, the clear winner per scene marked), the bias maps and their scale,
 // <out>/results.csv the same numbers. Ctrl-C finishes nothing new: the scenes done so far are
 // reported.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -22,7 +24,9 @@
 #include "core/error.h"
 #include "evaluation/bias.h"
 #include "evaluation/markup.h"
-#include "image/text.h"
+#include "evaluation/sheet.h"
+#include "image/draw.h"
+#include "image/font.h"
 
 namespace tripath::evaluation {
 
@@ -41,21 +45,60 @@ std::string slug(const std::string& scene) {
 // The blocks of the bias test: 16 across the image's larger side, at least 4 pixels.
 int biasBlockSize(int width, int height) { return std::max(4, (std::max(width, height) + 15) / 16); }
 
-// The bias map as a picture: the method's image (grey) under its blocks, red where the test finds
-// bias, and otherwise darker the smaller the block's p-value (black at p ≤ 1e-6).
+// The colour of a bias map's pixel over an image of luminance `lum` (clamped to 1): the image in
+// grey at 30 %, under red where the block is biased, and otherwise a grey darker the smaller the
+// block's p-value (black at p ≤ 1e-6).
+std::array<float, 3> biasColour(double p, bool biased, float lum) {
+    const float shade = float(std::clamp(1 + std::log10(std::max(p, 1e-6)) / 6, 0.0, 1.0));
+    static constexpr std::array<float, 3> kRed{1, 0.05f, 0.05f};
+    std::array<float, 3> c;
+    for (int i = 0; i < 3; ++i) c[i] = 0.3f * std::min(1.0f, lum) + 0.7f * (biased ? kRed[i] : shade);
+    return c;
+}
+
 Image biasPicture(const BiasMap& map, const Image& image) {
     Image out(image.width, image.height);
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
             const int b = (y / map.blockSize) * map.blocksX + x / map.blockSize;
-            const float* p = &image.rgb[3 * (size_t(y) * image.width + x)];
-            const float lum = std::min(1.0f, 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]);
-            const float shade = float(std::clamp(1 + std::log10(std::max(map.tests[b].p, 1e-6)) / 6, 0.0, 1.0));
-            static constexpr std::array<float, 3> kRed{1, 0.05f, 0.05f};
-            for (int c = 0; c < 3; ++c)
-                out.rgb[3 * (size_t(y) * image.width + x) + c] = 0.3f * lum + 0.7f * (map.biased[b] ? kRed[c] : shade);
+            const float* p = image.at(x, y);
+            const auto c = biasColour(map.tests[b].p, map.biased[b], 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]);
+            std::copy(c.begin(), c.end(), out.at(x, y));
         }
     return out;
+}
+
+// The scale that reads the bias maps: the p-value ramp from 1e-6 to 1 and the colour of a biased
+// block, both as over a black pixel of the image.
+Sheet biasScale() {
+    constexpr int kWidth = 520, kMargin = 30, kBarTop = 22, kBarHeight = 12, kRamp = 360;
+    const Theme& t = kLightTheme;  // the report's page is white
+    Sheet scale(kWidth, 56, t.background);
+    scale.label(kMargin, 14, "p-value of the block's t-test against the bias reference:", Font{12}, t.title);
+    Image ramp(kRamp, kBarHeight), red(40, kBarHeight);
+    for (int x = 0; x < kRamp; ++x) {
+        const auto c = biasColour(std::pow(10.0, -6 + 6.0 * x / (kRamp - 1)), false, 0);
+        fillRect(ramp, {x, 0, 1, kBarHeight}, {c[0], c[1], c[2]});
+    }
+    const auto r = biasColour(1, true, 0);
+    fillRect(red, {0, 0, 40, kBarHeight}, {r[0], r[1], r[2]});
+    scale.picture(ramp, kMargin, kBarTop);
+    for (int d = 0; d <= 6; ++d) {
+        const int x = kMargin + d * (kRamp - 1) / 6;
+        scale.fill({x, kBarTop + kBarHeight, 1, 4}, t.title);
+        scale.label(x, kBarTop + kBarHeight + 16, d == 6 ? "1" : fmt::format("1e-{}", 6 - d), Font{12}, t.detail,
+                    Anchor::Middle);
+    }
+    scale.picture(red, kMargin + kRamp + 24, kBarTop);
+    scale.label(kMargin + kRamp + 24 + 20, kBarTop + kBarHeight + 16, "biased", Font{12}, t.detail, Anchor::Middle);
+    return scale;
+}
+
+// Run 0's image at the comparison's exposure, shrunk to at most kThumbnail pixels across.
+constexpr int kThumbnail = 128;
+void writeThumbnail(const std::string& path, const Image& image, float exposureStops) {
+    writePng(path, shrink(image, std::max(1, (std::max(image.width, image.height) + kThumbnail - 1) / kThumbnail)),
+             exposureStops);
 }
 
 // The names of a list parameter: none empty, none twice, at least one.
@@ -179,6 +222,8 @@ std::vector<Cell> benchmarkScene(const BenchmarkRequest& b, const std::string& s
             cell.biasMap = (fs::path(slug(scene)) / ("bias-" + m + ".png")).string();
             writePng((fs::path(b.outDir) / cell.biasMap).string(), biasPicture(map, images[m]));
         }
+        cell.thumbnail = (fs::path(slug(scene)) / ("thumb-" + m + ".png")).string();
+        writeThumbnail((fs::path(b.outDir) / cell.thumbnail).string(), images[m], kept.exposureStops);
         cells.push_back(cell);
     }
     const Cell& base = *std::find_if(cells.begin(), cells.end(), [&](const Cell& x) { return x.method == baselineOf(b); });
@@ -211,13 +256,6 @@ std::vector<std::string> methodsOf(const std::vector<Cell>& cells) {
 const Cell& cellOf(const std::vector<Cell>& cells, const std::string& scene, const std::string& method) {
     return *std::find_if(cells.begin(), cells.end(), [&](const Cell& x) { return x.scene == scene && x.method == method; });
 }
-double bestRelMse(const std::vector<Cell>& cells, const std::string& scene) {
-    double best = INFINITY;
-    for (const Cell& x : cells)
-        if (x.scene == scene) best = std::min(best, x.summary.error.relMse);
-    return best;
-}
-
 // results.md: the table as Markdown, for documents (docs/failures.md is one benchmark's).
 std::string markdownTable(const std::vector<Cell>& cells) {
     const std::vector<std::string> methods = methodsOf(cells);
@@ -232,7 +270,7 @@ std::string markdownTable(const std::vector<Cell>& cells) {
             const Cell& x = cellOf(cells, s, m);
             std::string cell = fmt::format("{:.3g} ({:.0f} spp, FLIP {:.2g})", x.summary.error.relMse, x.summary.spp,
                                            x.summary.flip);
-            if (x.summary.error.relMse == bestRelMse(cells, s)) cell = "**" + cell + "**";
+            if (x.method == clearlyBest(cells, s)) cell = "**" + cell + "**";
             if (x.biasedBlocks > 0) cell += fmt::format(", biased {}/{}", x.biasedBlocks, x.blocks);
             md += " " + cell + " |";
         }
@@ -264,7 +302,8 @@ void writeResults(const BenchmarkRequest& c, const std::vector<Cell>& cells) {
                        "<style>body{font-family:\"DejaVu Sans\",Verdana,sans-serif;margin:2em;color:#222}"
                        "table{border-collapse:collapse}th,td{border:1px solid #bbb;padding:.3em .7em;text-align:right}"
                        "th:first-child,td:first-child{text-align:left}td.best{background:#ffe98a;font-weight:bold}"
-                       "td small{color:#555}.maps img{width:160px;image-rendering:pixelated;margin:.2em}</style></head><body>\n";
+                       "td small{color:#555}td img{display:block;margin:0 auto .2em}"
+                       ".maps img{width:160px;image-rendering:pixelated;margin:.2em}</style></head><body>\n";
     const std::string references = c.referenceDir.empty() ? "by " + c.referenceIntegrator : "from " + c.referenceDir;
     html += fmt::format("<h1>tripath benchmark</h1>\n<p>{} s per run, {} runs per method, {}×{} pixels; references {}; "
                         "bias tested against {} at family-wise level {}; speed-up against {}.</p>\n",
@@ -274,14 +313,15 @@ void writeResults(const BenchmarkRequest& c, const std::vector<Cell>& cells) {
     for (const std::string& m : methods) html += "<th>" + escapeMarkup(m) + "</th>";
     html += "</tr>\n";
     for (const std::string& s : scenes) {
-        const double best = bestRelMse(cells, s);
+        const std::string best = clearlyBest(cells, s);
         html += fmt::format("<tr><td><a href=\"{0}/index.html\">{1}</a></td>", slug(s), escapeMarkup(s));
         for (const std::string& m : methods) {
             const Cell& x = cellOf(cells, s, m);
             html += fmt::format(
-                        "<td{}><a href=\"{}/index.html\">{:.4g} ± {:.2g}</a><br><small>w/o tail {:.3g} · FLIP {:.3g} · "
-                        "{:.0f} spp · {:.3g} Mrays/s · ×{:.3g}{}</small></td>",
-                        x.summary.error.relMse == best ? " class=\"best\"" : "", slug(s), x.summary.error.relMse,
+                        "<td{}><a href=\"{}/index.html\"><img src=\"{}\" alt=\"{} on {}\"><br>{:.4g} ± {:.2g}</a><br>"
+                        "<small>w/o tail {:.3g} · FLIP {:.3g} · {:.0f} spp · {:.3g} Mrays/s · ×{:.3g}{}</small></td>",
+                        x.method == best ? " class=\"best\"" : "", slug(s), x.thumbnail, escapeMarkup(m), escapeMarkup(s),
+                        x.summary.error.relMse,
                         x.summary.relMseStd, x.relMseWithoutTail, x.summary.flip, x.summary.spp,
                         x.summary.raysPerSecond / 1e6, x.speedUp,
                         x.blocks > 0 ? fmt::format(" · <b>{}</b>/{} biased", x.biasedBlocks, x.blocks) : std::string(""));
@@ -289,9 +329,12 @@ void writeResults(const BenchmarkRequest& c, const std::vector<Cell>& cells) {
         html += "</tr>\n";
     }
     html += "</table>\n<p>Each cell: relMSE mean ± standard deviation over runs; below it, relMSE without the worst "
-            "0.1 % of pixels, HDR-FLIP, samples per pixel, rays (closest-hit and shadow) per second, speed-up against the baseline, biased blocks. Best per scene "
-            "highlighted.</p>\n<p>" + std::string(kFormulas) + "</p>\n<h2>Bias maps</h2>\n"
-            "<p>Red: blocks with significant bias; otherwise darker where the p-value is smaller.</p>\n";
+            "0.1 % of pixels, HDR-FLIP, samples per pixel, rays (closest-hit and shadow) per second, speed-up against the baseline, biased blocks. Highlighted: the "
+            "method whose relMSE beats every other's on the scene beyond their error bars (mean + sd below the "
+            "runner-up's mean − sd); none where the best two overlap.</p>\n<p>" + std::string(kFormulas) +
+            "</p>\n<h2>Bias maps</h2>\n<p>Each method's image in grey under its blocks: red where the bias is "
+            "significant, otherwise darker the smaller the block's p-value.</p>\n"
+            "<img src=\"bias-scale.png\" alt=\"bias map scale\">\n";
     for (const std::string& s : scenes) {
         html += "<div class=\"maps\"><h3>" + escapeMarkup(s) + "</h3>";
         for (const Cell& x : cells)
@@ -302,10 +345,28 @@ void writeResults(const BenchmarkRequest& c, const std::vector<Cell>& cells) {
         html += "</div>\n";
     }
     html += "</body></html>\n";
+    writeSheet((fs::path(c.outDir) / "bias-scale.png").string(), biasScale());
     writeText((fs::path(c.outDir) / "index.html").string(), html);
 }
 
 }  // namespace
+
+std::string clearlyBest(const std::vector<Cell>& cells, const std::string& scene) {
+    const Cell *best = nullptr, *second = nullptr;
+    for (const Cell& x : cells) {
+        if (x.scene != scene) continue;
+        if (!best || x.summary.error.relMse < best->summary.error.relMse) {
+            second = best;
+            best = &x;
+        } else if (!second || x.summary.error.relMse < second->summary.error.relMse) {
+            second = &x;
+        }
+    }
+    if (!second) return "";
+    const bool apart = best->summary.error.relMse + best->summary.relMseStd <
+                       second->summary.error.relMse - second->summary.relMseStd;
+    return apart ? best->method : "";
+}
 
 std::string referenceFile(const BenchmarkRequest& r, const std::string& scene) {
     return (fs::path(r.referenceDir) / (slug(scene) + ".exr")).string();

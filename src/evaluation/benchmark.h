@@ -38,8 +38,14 @@ struct Cell {
     double speedUp = 0;            // the baseline's relMSE × seconds over this method's
     int biasedBlocks = 0, blocks = 0;
     std::string biasMap{};         // PNG, relative to the output directory
+    std::string thumbnail{};       // run 0's image, small, as a PNG relative to the output directory
     std::array<double, kEventCount> events{};  // every counter of core/stats.h, mean per run
 };
+
+// The method of `scene` whose mean relMSE beats every other's beyond their error bars (its mean
+// plus one standard deviation over runs below the runner-up's mean minus its own); empty when
+// none does, or when the scene has one method.
+std::string clearlyBest(const std::vector<Cell>& cells, const std::string& scene);
 
 // The runs of each method: at least two, for the bias test.
 inline constexpr IntRange kBenchmarkRunsRange{2, 100, ", as the bias test needs two runs"};

@@ -2,7 +2,6 @@
 // whichever surface it is given, so the SVG and the PNG are the same drawing by construction.
 #include "evaluation/chart.h"
 
-#include <cairo-svg.h>
 #include <cairo.h>
 #include <fmt/format.h>
 
@@ -13,12 +12,16 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "evaluation/cairo_canvas.h"
+
 namespace tripath {
 
 namespace {
 
-constexpr double kFontSize = 13, kTitleSize = 15, kLegendRow = 20;
-constexpr const char* kFont = "DejaVu Sans";  // Debian's fonts-dejavu-core, as text.h's labels
+using canvas::Anchor, canvas::setColor, canvas::text;
+
+constexpr double kLegendRow = 20;
+constexpr canvas::Font kLabel{13}, kTitle{15, true}, kAxisName{14};
 
 // log10 of the values at the two ends of an axis.
 struct LogAxis {
@@ -92,35 +95,7 @@ struct Layout {
 // A 1-pixel line on a pixel row or column rather than across two (crisp in the PNG).
 double crisp(double v) { return std::floor(v) + 0.5; }
 
-void setColor(cairo_t* cr, const std::array<uint8_t, 3>& c, double alpha = 1) {
-    cairo_set_source_rgba(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, alpha);
-}
-
 void setGrey(cairo_t* cr, int v) { setColor(cr, {uint8_t(v), uint8_t(v), uint8_t(v)}); }
-
-enum class Anchor { Start, Middle, End };
-
-// Width of one line of text, with the font selected for drawing it.
-double advance(cairo_t* cr, const std::string& s, double size, bool bold = false) {
-    cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, size);
-    cairo_text_extents_t e;
-    cairo_text_extents(cr, s.c_str(), &e);
-    return e.x_advance;
-}
-
-// One line of text with its baseline at y, anchored at x; turned by `angle` (radians, clockwise)
-// about (x, y).
-void text(cairo_t* cr, double x, double y, const std::string& s, double size, Anchor anchor = Anchor::Start,
-          bool bold = false, double angle = 0) {
-    const double w = advance(cr, s, size, bold);
-    cairo_save(cr);
-    cairo_translate(cr, x, y);
-    cairo_rotate(cr, angle);
-    cairo_move_to(cr, anchor == Anchor::Start ? 0 : anchor == Anchor::Middle ? -w / 2 : -w, 0);
-    cairo_show_text(cr, s.c_str());
-    cairo_restore(cr);
-}
 
 std::string tickLabel(double v) { return fmt::format("{:g}", v); }
 
@@ -134,7 +109,7 @@ void drawGrid(cairo_t* cr, const Layout& l) {
         cairo_line_to(cr, x, p.y + p.h);
         cairo_stroke(cr);
         setGrey(cr, 0);
-        if (t.labelled) text(cr, x, p.y + p.h + 17, tickLabel(t.value), kFontSize, Anchor::Middle);
+        if (t.labelled) text(cr, x, p.y + p.h + 17, tickLabel(t.value), kLabel, Anchor::Middle);
     }
     for (const Tick& t : ticksFor(l.y)) {
         const double y = crisp(l.py(t.value));
@@ -143,7 +118,7 @@ void drawGrid(cairo_t* cr, const Layout& l) {
         cairo_line_to(cr, p.x + p.w, y);
         cairo_stroke(cr);
         setGrey(cr, 0);
-        if (t.labelled) text(cr, p.x - 6, y + 4, tickLabel(t.value), kFontSize, Anchor::End);
+        if (t.labelled) text(cr, p.x - 6, y + 4, tickLabel(t.value), kLabel, Anchor::End);
     }
 }
 
@@ -186,7 +161,7 @@ void drawSeries(cairo_t* cr, const Layout& l, const LogLogChart& c) {
 // In the plot's top-right corner: a line of each series' colour and its name.
 void drawLegend(cairo_t* cr, const Layout& l, const LogLogChart& c) {
     double nameWidth = 0;
-    for (const ChartSeries& s : c.series) nameWidth = std::max(nameWidth, advance(cr, s.name, kFontSize));
+    for (const ChartSeries& s : c.series) nameWidth = std::max(nameWidth, canvas::advance(cr, s.name, kLabel));
     const double w = std::ceil(46 + nameWidth), h = 10 + kLegendRow * c.series.size();
     const double x = l.plot.x + l.plot.w - w - 10 + 0.5, y = l.plot.y + 10 + 0.5;
     cairo_rectangle(cr, x, y, w, h);
@@ -203,7 +178,7 @@ void drawLegend(cairo_t* cr, const Layout& l, const LogLogChart& c) {
         cairo_line_to(cr, x + 34, rowY);
         cairo_stroke(cr);
         setGrey(cr, 0);
-        text(cr, x + 40, rowY + 4, c.series[i].name, kFontSize);
+        text(cr, x + 40, rowY + 4, c.series[i].name, kLabel);
     }
 }
 
@@ -218,61 +193,20 @@ void drawChart(cairo_t* cr, const LogLogChart& c) {
     cairo_set_line_width(cr, 1);
     cairo_rectangle(cr, crisp(p.x), crisp(p.y), std::round(p.w), std::round(p.h));
     cairo_stroke(cr);
-    text(cr, p.x + p.w / 2, 24, c.title, kTitleSize, Anchor::Middle, true);
-    text(cr, p.x + p.w / 2, p.y + p.h + 42, c.xLabel, kFontSize + 1, Anchor::Middle);
-    text(cr, 20, p.y + p.h / 2, c.yLabel, kFontSize + 1, Anchor::Middle, false, -std::numbers::pi / 2);
+    text(cr, p.x + p.w / 2, 24, c.title, kTitle, Anchor::Middle);
+    text(cr, p.x + p.w / 2, p.y + p.h + 42, c.xLabel, kAxisName, Anchor::Middle);
+    text(cr, 20, p.y + p.h / 2, c.yLabel, kAxisName, Anchor::Middle, -std::numbers::pi / 2);
     drawLegend(cr, l, c);
-}
-
-using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
-
-// Cairo records its first error on the context or surface and ignores the calls after it.
-void check(cairo_status_t status) {
-    if (status != CAIRO_STATUS_SUCCESS) throw std::runtime_error(std::string("chart: ") + cairo_status_to_string(status));
-}
-
-void drawOnto(const Surface& surface, const LogLogChart& c) {
-    cairo_t* cr = cairo_create(surface.get());
-    drawChart(cr, c);
-    const cairo_status_t status = cairo_status(cr);
-    cairo_destroy(cr);
-    check(status);
-    cairo_surface_flush(surface.get());
-    check(cairo_surface_status(surface.get()));
 }
 
 }  // namespace
 
 std::string chartSvg(const LogLogChart& c) {
-    std::string svg;
-    auto append = [](void* out, const unsigned char* data, unsigned int length) {
-        static_cast<std::string*>(out)->append(reinterpret_cast<const char*>(data), length);
-        return CAIRO_STATUS_SUCCESS;
-    };
-    const Surface surface(cairo_svg_surface_create_for_stream(append, &svg, c.width, c.height), cairo_surface_destroy);
-    // Pixels, not Cairo's default points: <img width="800"> in the report shows it at its size.
-    cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
-    drawOnto(surface, c);
-    cairo_surface_finish(surface.get());  // writes the closing tags
-    check(cairo_surface_status(surface.get()));
-    return svg;
+    return canvas::svgOf(c.width, c.height, [&](cairo_t* cr) { drawChart(cr, c); });
 }
 
-// Cairo's 8-bit values are sRGB-encoded, as a browser shows the SVG; decoded here to the linear
-// values that writePng encodes back into the same bytes. The background is opaque, so every pixel
-// has alpha 255 and Cairo's premultiplied colour is the colour itself.
 Image chartImage(const LogLogChart& c) {
-    const Surface surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, c.width, c.height), cairo_surface_destroy);
-    drawOnto(surface, c);
-    const unsigned char* data = cairo_image_surface_get_data(surface.get());
-    const int stride = cairo_image_surface_get_stride(surface.get());
-    Image img(c.width, c.height);
-    for (int y = 0; y < c.height; ++y)
-        for (int x = 0; x < c.width; ++x) {
-            const uint32_t argb = reinterpret_cast<const uint32_t*>(data + size_t(y) * stride)[x];
-            for (int ch = 0; ch < 3; ++ch) img.at(x, y)[ch] = srgbDecode(uint8_t(argb >> (16 - 8 * ch)) / 255.0f);
-        }
-    return img;
+    return canvas::imageOf(c.width, c.height, [&](cairo_t* cr) { drawChart(cr, c); });
 }
 
 }  // namespace tripath

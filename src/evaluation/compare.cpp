@@ -10,7 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/exposure.h"
-#include "image/text.h"
+#include "image/font.h"
 
 namespace tripath::evaluation {
 
@@ -96,6 +96,13 @@ void validate(const CompareRequest& r, Spelling spelling) {
         c && (c->w <= 0 || c->h <= 0 || c->x < 0 || c->y < 0 || c->x > r.render.width - c->w || c->y > r.render.height - c->h))
         throw InputError(fmt::format("{} {},{},{},{} is not inside the {}x{} image", name("crop"), c->x, c->y, c->w, c->h,
                                      r.render.width, r.render.height));
+    for (size_t i = 0; i < r.sheetFormats.size(); ++i) {
+        const std::string& f = r.sheetFormats[i];
+        if (std::find(kSheetFormats.begin(), kSheetFormats.end(), f) == kSheetFormats.end())
+            throw InputError(fmt::format("{} takes png, pdf and svg (got '{}')", name("formats"), f.substr(0, 20)));
+        if (std::find(r.sheetFormats.begin(), r.sheetFormats.begin() + i, f) != r.sheetFormats.begin() + i)
+            throw InputError(fmt::format("{} names {} twice", name("formats"), f));
+    }
     if (!r.referenceImage.rgb.empty() &&
         (r.referenceImage.width != r.render.width || r.referenceImage.height != r.render.height))
         throw InputError(fmt::format("the reference is {}x{}, the renders {}x{}", r.referenceImage.width,

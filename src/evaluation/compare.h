@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/stats.h"
+#include "evaluation/compose.h"
 #include "evaluation/reference_file.h"
 #include "image/draw.h"
 #include "evaluation/metrics.h"
@@ -56,7 +57,9 @@ struct CompareRequest {
     std::string referenceOut;          // where a rendered one goes; empty: <outDir>/reference.exr (none without outDir)
     const std::atomic<bool>* stop = nullptr;  // set (Ctrl-C): the run under way ends at its next pass, no more start
     int runs = 1;
-    std::optional<Region> crop;
+    std::optional<Region> crop;         // the inset; empty: where the methods differ most
+    SheetStyle sheet;                   // side-by-side's colours and labels
+    std::vector<std::string> sheetFormats;  // side-by-side.pdf/.svg too if listed (.png always)
     std::string outDir;                // the report's directory; empty: no files at all
     Team* team = &solo();              // the processes the runs are dealt out to
     Narrator narrator;

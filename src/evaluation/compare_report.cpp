@@ -1,5 +1,5 @@
 // The report files of a comparison (compare.h) other than index.html: error.csv, the error-vs-time
-// chart (SVG and PNG), side-by-side.png and summary.md.
+// chart (SVG and PNG), the side-by-side sheet and its insets alone, and summary.md.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -122,8 +122,9 @@ Image exposed(Image img, float stops) {
 }
 
 // The reference and each method's run 0 at the comparison's exposure, as their PNGs show them; the
-// error maps, in display colours already, as they are.
-void writeSideBySide(const Report& r, const std::string& path) {
+// error maps, in display colours already, as they are. One sheet: the PNG that index.html shows,
+// and the PDF and SVG when asked for.
+void writeSideBySide(const Report& r, const std::string& dir) {
     std::vector<Panel> panels{{exposed(r.reference.image, r.exposureStops), "reference", r.reference.description}};
     for (const std::string& m : r.options.methods) {
         const Run& run0 = *std::find_if(r.runs.begin(), r.runs.end(), [&](const Run& x) { return x.method == m && x.index == 0; });
@@ -136,8 +137,18 @@ void writeSideBySide(const Report& r, const std::string& path) {
     for (const std::string& m : r.options.methods)
         errors.push_back({errorMap(r.images.at(m), r.reference.image), m + ": error",
                           fmt::format("relMSE {:.3g} (run 0)", compareImages(r.images.at(m), r.reference.image).relMse)});
-    const Image images = sideBySide(panels, r.inset);
-    writePng(path, stackRows({images, sideBySide(errors, r.inset), errorColourBar(images.width)}));
+    const SheetStyle& style = r.options.sheet;
+    const Sheet images = sideBySide(panels, r.inset, style);
+    const Sheet sheet = stackRows({images, sideBySide(errors, r.inset, style), errorColourBar(images.width(), style.theme)},
+                                  style.theme);
+    for (const std::string& format : kSheetFormats)
+        if (format == "png" || std::ranges::count(r.options.sheetFormats, format) > 0)
+            writeSheet((std::filesystem::path(dir) / ("side-by-side." + format)).string(), sheet);
+    // The inset of each image on its own, for a figure that lays them out itself.
+    writePng((std::filesystem::path(dir) / "reference-crop.png").string(), magnifiedCrop(panels[0].image, r.inset));
+    for (size_t i = 1; i < panels.size(); ++i)
+        writePng((std::filesystem::path(dir) / (panels[i].title + "-crop.png")).string(),
+                 magnifiedCrop(panels[i].image, r.inset));
 }
 
 void writeSummary(const Report& r, const std::string& path) {
@@ -169,8 +180,9 @@ void writeSummary(const Report& r, const std::string& path) {
         "measuring the error at the checkpoints is not counted in the render time.\n",
         best.method, many ? ", means over runs (± one standard deviation)" : "", kFlipDefinition);
     s += "\nFiles: `error.csv` (every checkpoint), `counters.csv` (per run: rays, BSDF calls, connections, splats, "
-         "merges; as `tripath render --stats` counts them), `error-vs-time.svg`/`.png`, `side-by-side.png`, "
-         "`<method>.exr`/`.png` (run 0), `index.html`.\n";
+         "merges; as `tripath render --stats` counts them), `error-vs-time.svg`/`.png`, "
+         "`side-by-side.png` (and `.pdf`, `.svg` when asked for), `<method>.exr`/`.png` (run 0), "
+         "`<method>-crop.png` and `reference-crop.png` (the inset alone, magnified), `index.html`.\n";
     writeText(path, s);
 }
 
@@ -193,9 +205,9 @@ void writeReport(const CompareRequest& o, const Comparison& c, const std::string
     writeCsv(report, path("error.csv"));
     writeCountersCsv(report, path("counters.csv"));
     writeChart(report, path("error-vs-time.svg"), path("error-vs-time.png"));
-    writeSideBySide(report, path("side-by-side.png"));
+    writeSideBySide(report, dir);
     for (const std::string& m : o.methods) writePng(path(m + "-error.png"), errorMap(c.images.at(m), c.reference.image));
-    writePng(path("error-scale.png"), errorColourBar(512));
+    writeSheet(path("error-scale.png"), errorColourBar(512, o.sheet.theme));
     writeSummary(report, path("summary.md"));
     writeIndexHtml(report, path("index.html"));
 }

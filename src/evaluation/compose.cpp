@@ -6,13 +6,14 @@
 
 #include "core/error.h"
 #include "evaluation/metrics.h"
-#include "image/text.h"
+#include "image/draw.h"
 
 namespace tripath {
 
 namespace {
 
 constexpr int kGap = 8, kLabelHeight = 44;
+constexpr Font kTitle{15, true}, kDetail{13};
 
 Image magnify(const Image& img, int scale) {
     Image out(img.width * scale, img.height * scale);
@@ -32,45 +33,35 @@ void checkPanels(const std::vector<Panel>& panels, const Region& r) {
 
 }  // namespace
 
-Image sideBySide(const std::vector<Panel>& panels, const Region& r, int minWidth) {
+Sheet sideBySide(const std::vector<Panel>& panels, const Region& r, const SheetStyle& style, int minWidth) {
     checkPanels(panels, r);
+    const Theme& t = style.theme;
     const int w = panels.front().image.width, h = panels.front().image.height;
     const int scale = std::max(1, (minWidth + w - 1) / w);
     const int panelW = w * scale, panelH = h * scale;
-    // The inset fills the panel's width, or its height if the region is tall.
     const int zoom = std::max(1, std::min(panelW / r.w, panelH / r.h));
     const int insetH = r.h * zoom;
+    const int top = style.labels ? kLabelHeight : kGap;
     const int sheetW = kGap + static_cast<int>(panels.size()) * (panelW + kGap);
-    const int sheetH = kLabelHeight + panelH + kGap + insetH + kGap;
-    Image sheet(sheetW, sheetH);
-    fillRect(sheet, {0, 0, sheetW, sheetH}, fromSrgb(32, 32, 32));
-    const Rgb outline = fromSrgb(255, 200, 0), textColor{1, 1, 1};
+    Sheet sheet(sheetW, top + panelH + kGap + insetH + kGap, t.background);
     for (size_t i = 0; i < panels.size(); ++i) {
         const Panel& p = panels[i];
         const int x = kGap + static_cast<int>(i) * (panelW + kGap);
-        drawText(sheet, x, 19, p.title, {15, textColor, true});
-        drawText(sheet, x, 37, p.detail, {13, fromSrgb(210, 210, 210)});
-        paste(sheet, p.image, x, kLabelHeight, scale);
-        strokeRect(sheet, {x + r.x * scale - 1, kLabelHeight + r.y * scale - 1, r.w * scale + 2, r.h * scale + 2},
-                   outline);
-        const int insetY = kLabelHeight + panelH + kGap;
-        paste(sheet, magnify(crop(p.image, r.x, r.y, r.w, r.h), zoom), x, insetY);
-        strokeRect(sheet, {x - 1, insetY - 1, r.w * zoom + 2, insetH + 2}, outline);
+        if (style.labels) {
+            sheet.label(x, 19, p.title, kTitle, t.title);
+            sheet.label(x, 37, p.detail, kDetail, t.detail);
+        }
+        sheet.picture(p.image, x, top, scale);
+        sheet.frame({x + r.x * scale - 1, top + r.y * scale - 1, r.w * scale + 2, r.h * scale + 2}, t.outline);
+        const int insetY = top + panelH + kGap;
+        sheet.picture(crop(p.image, r.x, r.y, r.w, r.h), x, insetY, zoom);
+        sheet.frame({x - 1, insetY - 1, r.w * zoom + 2, insetH + 2}, t.outline);
     }
     return sheet;
 }
 
-Image stackRows(const std::vector<Image>& rows) {
-    int width = 0, height = 0;
-    for (const Image& r : rows) width = std::max(width, r.width), height += r.height;
-    Image sheet(width, height);
-    fillRect(sheet, {0, 0, width, height}, fromSrgb(32, 32, 32));
-    int y = 0;
-    for (const Image& r : rows) {
-        paste(sheet, r, 0, y);
-        y += r.height;
-    }
-    return sheet;
+Image magnifiedCrop(const Image& image, const Region& r, int size) {
+    return magnify(crop(image, r.x, r.y, r.w, r.h), std::max(1, size / std::max(r.w, r.h)));
 }
 
 }  // namespace tripath

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "image/draw.h"
+#include "evaluation/sheet.h"
 
 namespace tripath {
 
@@ -14,12 +14,19 @@ struct Panel {
     std::string detail;  // second label line (e.g. "1024 spp  relMSE 0.012")
 };
 
-// Small images are magnified (by a whole factor, nearest neighbour) to at least `minWidth`
-// pixels per panel so that the labels fit. Throws InputError if the panels differ in size or the
-// region is not inside them.
-Image sideBySide(const std::vector<Panel>& panels, const Region& inset, int minWidth = 256);
+struct SheetStyle {
+    Theme theme = kDarkTheme;
+    bool labels = true;  // false: no title lines, for a figure captioned elsewhere
+};
 
-// Images one under the other, left-aligned, on the sheets' dark background.
-Image stackRows(const std::vector<Image>& rows);
+// Small images are magnified (by a whole factor, nearest neighbour) to at least `minWidth`
+// pixels per panel so that the labels fit; the inset fills the panel's width (or its height, for
+// a tall region). Throws InputError if the panels differ in size or the region is not inside them.
+Sheet sideBySide(const std::vector<Panel>& panels, const Region& inset, const SheetStyle& style = {},
+                 int minWidth = 256);
+
+// The region of `image`, magnified by the whole factor (at least 1) that brings its longer side
+// closest to `size` pixels without passing it: a crop to print on its own, its pixels as blocks.
+Image magnifiedCrop(const Image& image, const Region& r, int size = 512);
 
 }  // namespace tripath

@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "image/text.h"
 
 namespace tripath {
 
@@ -54,19 +53,20 @@ Image errorMap(const Image& test, const Image& reference, double epsilon) {
     return out;
 }
 
-Image errorColourBar(int width) {
+Sheet errorColourBar(int width, const Theme& theme) {
     constexpr int kHeight = 56, kBarTop = 24, kBarHeight = 12, kMargin = 40;
-    Image bar(width, kHeight);
-    fillRect(bar, {0, 0, width, kHeight}, fromSrgb(32, 32, 32));
+    Sheet bar(width, kHeight, theme.background);
     const int barWidth = std::max(1, std::min(width - 2 * kMargin, 640));
-    const TextStyle label{12, fromSrgb(210, 210, 210), false, Align::Center};
-    drawText(bar, kMargin, 16, "relative squared error per pixel, (x - r)^2 / (r^2 + 0.01):", {12, {1, 1, 1}});
-    for (int x = 0; x < barWidth; ++x) fillRect(bar, {kMargin + x, kBarTop, 1, kBarHeight}, colourAt(double(x) / (barWidth - 1)));
+    bar.label(kMargin, 16, "relative squared error per pixel, (x - r)^2 / (r^2 + 0.01):", Font{12}, theme.title);
+    Image ramp(barWidth, kBarHeight);
+    for (int x = 0; x < barWidth; ++x) fillRect(ramp, {x, 0, 1, kBarHeight}, colourAt(double(x) / std::max(1, barWidth - 1)));
+    bar.picture(ramp, kMargin, kBarTop);
     const int decades = int(std::lround(std::log10(kErrorMapHigh / kErrorMapLow)));
     for (int d = 0; d <= decades; ++d) {
         const int x = kMargin + int(std::lround(double(d) / decades * (barWidth - 1)));
-        fillRect(bar, {x, kBarTop + kBarHeight, 1, 4}, {1, 1, 1});
-        drawText(bar, x, kBarTop + kBarHeight + 16, fmt::format("1e{}", int(std::log10(kErrorMapLow)) + d), label);
+        bar.fill({x, kBarTop + kBarHeight, 1, 4}, theme.title);
+        bar.label(x, kBarTop + kBarHeight + 16, fmt::format("1e{}", int(std::log10(kErrorMapLow)) + d), Font{12},
+                  theme.detail, Anchor::Middle);
     }
     return bar;
 }

@@ -5,6 +5,7 @@
 #pragma once
 #include <string>
 
+#include "evaluation/sheet.h"
 #include "image/draw.h"
 #include "image/image.h"
 
@@ -23,6 +24,6 @@ Image errorMap(const Image& test, const Image& reference, double epsilon = 0.01)
 
 // A horizontal colour bar `width` pixels wide with the decades labelled, titled
 // "relative squared error per pixel": to print under error maps.
-Image errorColourBar(int width);
+Sheet errorColourBar(int width, const Theme& theme = kDarkTheme);
 
 }  // namespace tripath

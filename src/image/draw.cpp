@@ -1,4 +1,4 @@
-// Rectangles and magnified copies (draw.h): a few loops over the pixels, clipped to the image.
+// Rectangles, magnified and shrunk copies (draw.h): a few loops over the pixels, clipped to the image.
 #include "image/draw.h"
 
 #include <algorithm>
@@ -32,6 +32,20 @@ void paste(Image& dst, const Image& src, int x, int y, int scale) {
             const float* s = src.at(sx / scale, sy / scale);
             std::copy(s, s + 3, dst.at(dx, dy));
         }
+}
+
+Image shrink(const Image& img, int factor) {
+    if (factor == 1) return img;
+    Image out(img.width / factor, img.height / factor);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                double sum = 0;
+                for (int j = 0; j < factor; ++j)
+                    for (int i = 0; i < factor; ++i) sum += img.at(x * factor + i, y * factor + j)[c];
+                out.at(x, y)[c] = static_cast<float>(sum / (factor * factor));
+            }
+    return out;
 }
 
 }  // namespace tripath

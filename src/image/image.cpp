@@ -157,10 +157,11 @@ void writeExr(const std::string& path, const Image& img, const Metadata& meta) {
     });
 }
 
-void writePng(const std::string& path, const Image& img, float exposureStops) {
-    checkImage(path, img);
-    // Clamped to [0, 1] first (`!(v > 0)` also makes NaN black), then OpenImageIO's linear → sRGB
-    // transfer function, then rounded to 8 bits as OpenImageIO converts floats.
+namespace {
+
+// Clamped to [0, 1] first (`!(v > 0)` also makes NaN black), then OpenImageIO's linear → sRGB
+// transfer function, then rounded to 8 bits as OpenImageIO converts floats.
+std::vector<unsigned char> srgbBytes(const std::string& path, const Image& img, float exposureStops) {
     const float scale = std::exp2(exposureStops);
     std::vector<float> clamped(img.rgb.size());
     for (std::size_t i = 0; i < clamped.size(); ++i) {
@@ -173,7 +174,16 @@ void writePng(const std::string& path, const Image& img, float exposureStops) {
         throw InputError(fmt::format("cannot write '{}': sRGB conversion failed: {}", path, srgb.geterror()));
     std::vector<unsigned char> bytes(img.rgb.size());
     srgb.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, bytes.data());
+    return bytes;
+}
 
+}  // namespace
+
+std::vector<unsigned char> previewBytes(const Image& img) { return srgbBytes("a figure", img, 0); }
+
+void writePng(const std::string& path, const Image& img, float exposureStops) {
+    checkImage(path, img);
+    const std::vector<unsigned char> bytes = srgbBytes(path, img, exposureStops);
     atomicWrite(path, "png", ".png", [&](OIIO::ImageOutput& out, const std::string& tmp) {
         OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
         // Tags the file as sRGB (an sRGB chunk) so viewers do not re-guess.

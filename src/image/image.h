@@ -47,6 +47,9 @@ void writeExr(const std::string& path, const Image& img, const Metadata& meta = 
 // Preview: scale by 2^exposureStops, clamp to [0, 1], apply the sRGB OETF (OpenImageIO's colour
 // conversion), round to 8 bits.
 void writePng(const std::string& path, const Image& img, float exposureStops = 0);
+// The 8-bit RGB values, row by row, that writePng writes (exposed at 0 stops): what a figure that
+// embeds the image shows, so that it matches the image's PNG byte for byte.
+std::vector<unsigned char> previewBytes(const Image& img);
 
 // Reads the first three channels of an OpenEXR file (a one- or two-channel
 // file is read as grey). If `meta` is given it receives the string attributes
