@@ -279,7 +279,7 @@ void runMis(benchmark::State& state, int k, MisSeries series) {
     constexpr size_t kPaths = 64;
     std::vector<SyntheticPath> paths;
     Rng rng = testRng(static_cast<uint64_t>(k));
-    // Roulette from the 3rd vertex, as rendered; a merge factor η of 0.5.
+    // Roulette from the 3rd vertex (pt's default; bdpt and vcm render from the 2nd); a merge factor η of 0.5.
     MisContext mis{series.heuristic, series.set, Roulette{}, passConstants(kLightPaths, std::sqrt(0.5f / (kPi * kLightPaths)))};
     mis.runningSums = series.runningSums;
     for (size_t i = 0; i < kPaths; ++i) {

@@ -27,7 +27,7 @@ namespace tripath::bench {
 
 namespace {
 
-constexpr int kDepth = 8;        // the depth bench/ states its targets at
+constexpr int kDepth = 8;        // the depth bench/README.md states its targets at
 constexpr size_t kChunk = 4096;  // rays per task in the replay: a few tiles' worth
 
 std::unique_ptr<Integrator> integratorFor(const std::string& name) {

@@ -15,9 +15,9 @@
 # Floating point: the portable build uses only the x86-64 baseline (SSE2 scalar maths, no x87
 # in the renderer), which has no fused multiply-add, and passes -ffp-contract=off to every
 # compiler (CMakeLists.txt): Clang's default, on, fuses nothing at run time there, but its
-# constant folder evaluated the expressions it marks fusable with one rounding, so scenes built
-# from constants (smallvcm-5, door-ajar, degenerate-tiny) came out an ulp apart from GCC's. Both
-# compilers now round every operation as written; GCC's -mtune=native changes
+# constant folder evaluates the expressions it marks fusable with one rounding, so scenes built
+# from constants (smallvcm-5, door-ajar, degenerate-tiny) would come out an ulp apart from GCC's.
+# With it both compilers round every operation as written; GCC's -mtune=native changes
 # instruction scheduling and selection, never the operations. With -DTRIPATH_NATIVE on a CPU
 # with FMA both compilers fuse (GCC across statements, Clang within expressions), so native
 # builds are not expected to match each other or the portable one, and are not compared here.

@@ -157,7 +157,7 @@ TEST_F(Cli, ARenderThatIsFineSucceeds) {
 // a shell reports a process the signal ended, its summary line says how far it got, and the EXR
 // records tripath:interrupted. The render checkpoints every 10 ms only to show it is under way
 // (the file appears after its first passes, its signal handler long installed). Catches an
-// interrupted render that exits 0 and says nothing (as it did), and a line or key whose pass
+// interrupted render that exits 0 and says nothing, and a line or key whose pass
 // count is not the file's.
 TEST_F(Cli, AnInterruptedRenderSaysSoAndFails) {
     Background job({"render", "--scene", "cornell", "--width", "32", "--height", "32", "--spp", "1000000",

@@ -449,8 +449,8 @@ TEST(CompareCommand, BadInputGivesOneLineError) {
 }
 
 // `tripath reference` and `tripath compare` with their default flags (both seed 1) work together,
-// because a reference draws from its own random streams. Catches: the defaults colliding again
-// (compare refusing, as it did), and a reference that only claims its own streams -- with the
+// because a reference draws from its own random streams. Catches: defaults whose streams collide
+// (compare would refuse), and a reference that only claims its own streams -- with the
 // render streams, its 1-spp image would be bit-identical to `tripath render`'s with the same seed.
 TEST(CompareCommand, ReferenceThenCompareWithDefaultFlagsWorks) {
     TempDir dir;
@@ -470,8 +470,8 @@ TEST(CompareCommand, ReferenceThenCompareWithDefaultFlagsWorks) {
 }
 
 // A reference that does share a run's random numbers is still refused: an image from `tripath
-// render` (the render streams) with a seed that one of the runs would use. Catches a check that
-// was dropped along with the collision of the defaults, or one that ignores --runs.
+// render` (the render streams) with a seed that one of the runs would use. Catches a missing check
+// (the defaults never collide, so only such a reference trips it), or one that ignores --runs.
 TEST(CompareCommand, RefusesAReferenceThatSharesARunsSeed) {
     TempDir dir;
     const std::string rendered = dir / "render.exr", out = dir / "out";
@@ -525,8 +525,8 @@ TEST(CompareCommand, CtrlCKeepsTheReferenceAndWritesNoReport) {
 
 // Input found bad on the way (a scene file that does not load, a reference of another size, read
 // once the request's values passed) leaves no output folder behind: it is made only when the
-// first file is written into it. Catches a compare that creates --out while it validates (as it
-// did), which left an empty folder after every such mistake.
+// first file is written into it. Catches a compare that creates --out while it validates, which
+// leaves an empty folder after every such mistake.
 TEST(CompareCommand, AFailedCompareLeavesNoOutputFolder) {
     TempDir dir;
     const std::string ref = dir / "ref.exr", out = dir / "out/nested";
@@ -546,7 +546,7 @@ TEST(CompareCommand, AFailedCompareLeavesNoOutputFolder) {
 
 // compare and benchmark render a missing reference with the same integrator, vcm, the method that
 // samples every path a scene has (bdpt misses caustics seen through glass under a point light),
-// and both --help texts say so. Catches compare's old default (bdpt) and a help that drifts.
+// and both --help texts say so. Catches another default (bdpt, say) and a help that drifts.
 TEST(CompareCommand, TheDefaultReferenceIsRenderedByVcm) {
     TempDir dir;
     const std::string out = dir / "out";

@@ -33,9 +33,9 @@ Vec3 directionOfUv(double u, double v) {
 
 Environment environmentOf(const EnvironmentDesc& d) { return Environment(d.width, d.height, d.texels); }
 
-// The convention of the issue, exactly: −Z reads u = 0.5 (the middle column), +X u = 0.75, +Y the
-// top row, and a texel is read by the directions inside it. A map read with u mirrored (atan2 of
-// −x), v from the bottom, or a quarter turn off would read another texel.
+// The convention of geometry/environment.h, exactly: −Z reads u = 0.5 (the middle column), +X
+// u = 0.75, +Y the top row, and a texel is read by the directions inside it. A map read with u
+// mirrored (atan2 of −x), v from the bottom, or a quarter turn off would read another texel.
 TEST(Environment, DirectionsReadTheTexelsOfTheLatitudeLongitudeConvention) {
     const auto near = [](Vec2 a, double u, double v) { return std::abs(a.x - u) < 1e-6 && std::abs(a.y - v) < 1e-6; };
     EXPECT_TRUE(near(Environment::uvOf({0, 0, -1}), 0.5, 0.5));

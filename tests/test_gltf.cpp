@@ -835,7 +835,7 @@ TEST_F(GltfTest, MajorVersionOtherThanTwoIsRefused) {
 // A vertex at 1e30 is a finite float, but the edges' squared lengths and cross product (the
 // normal and area the renderer computes in float) are not: said so, rather than "zero-area".
 TEST_F(GltfTest, TrianglesWhoseProductsOverflowFloatAreNotFinite) {
-    // A sliver reaching 1e30 (its edges' squared lengths overflow; in double it was "zero-area"),
+    // A sliver reaching 1e30 (its edges' squared lengths overflow; in double it would be "zero-area"),
     // and a triangle of legs 1e10 (only its squared cross product, ~1e40, overflows).
     const std::vector<std::vector<Vec3>> tooLarge = {{{1e30f, 1e30f, 1e30f}, {1, 0, 0}, {0, 1, 0}},
                                                      {{0, 0, 0}, {1e10f, 0, 0}, {0, 1e10f, 0}}};

@@ -232,7 +232,7 @@ TEST(Exposure, AutomaticExposureMapsThe98thPercentileToWhiteInThirdsOfAStop) {
     EXPECT_EQ(autoExposureStops(Image(4, 4)), 0.0f);  // black stays black
 }
 
-// A model lit by a point light next to it reads 100 and more: at exposure 0 its preview was a
+// A model lit by a point light next to it reads 100 and more: at exposure 0 its preview is a
 // white silhouette. Without an exposure the 98th percentile is about white and the rest keeps its
 // shades; a given exposure is kept.
 TEST_F(ImageIoTest, PreviewWithoutExposureIsExposedFromTheImage) {

@@ -121,9 +121,9 @@ test::BlockRuns runsOf(const SceneDesc& desc, const char* integrator, int runs, 
 
 // Every pair of integrators agrees on every block: Welch's t-test of the 16 runs' block means
 // (test::BlockAgreement) over all 48 comparisons of a scene, Holm-corrected so that the chance of
-// any false alarm is at most 1 % (if the run means are normal). It replaced |Δ| < 5σ, which
-// allowed a larger difference: Holm's first threshold, 0.01/48, is |t| ≈ 4.2 at these degrees of
-// freedom. `ltRows` limits the light tracer to the top rows of blocks: see Agreement.VeachMis.
+// any false alarm is at most 1 % (if the run means are normal). Holm's first threshold, 0.01/48,
+// is |t| ≈ 4.2 at these degrees of freedom: stricter than |Δ| < 5σ. `ltRows` limits the light
+// tracer to the top rows of blocks: see Agreement.VeachMis.
 void expectAgreement(const SceneDesc& desc, const std::string& scene, int spp, int ltRows = 4) {
     std::vector<test::BlockRuns> all;
     for (const char* integrator : kIntegrators) all.push_back(runsOf(desc, integrator, 16, spp));
@@ -173,7 +173,7 @@ TEST(Agreement, SmoothShadingNormals) { expectAgreement(cornellTessellated(100),
 
 // Emitters of delta material (glTF allows emission on any material). The camera walk scatters off
 // the emissive mirror or pane, while the point it hits is x0 of the path that ends there; its
-// weight and next-event estimation's must both count the other (the light was counted twice).
+// weight and next-event estimation's must both count the other (or the light is counted twice).
 // The emitter is out of view, so light tracing sees every pixel too.
 TEST(Agreement, EmissiveMirrorLight) {
     expectAgreement(test::cornellEmissive(MaterialType::Mirror), "emissive mirror", 8);

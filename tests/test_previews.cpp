@@ -70,8 +70,9 @@ double whiteShare(const Image& sheet, int column) {
     return white / 64.0;
 }
 
-// A dim image first (a method that barely sees the scene) made the row's scale: the others were
-// white. Now the brightest image's percentile is white and the dim one dark; a black one is named.
+// A dim image first (a method that barely sees the scene) does not set the row's scale, which
+// would leave the others white: the brightest image's percentile is white and the dim one dark; a
+// black one is named.
 TEST_F(Previews, MontageRowIsNotBlownOutByADimOrBlackImage) {
     const std::string dim = greyExr(path("dim.exr"), 1e-4f), bright = greyExr(path("bright.exr"), 0.5f);
     const std::string black = greyExr(path("black.exr"), 0.0f);

@@ -171,7 +171,7 @@ std::vector<RayHit> hitsOfRandomRays(const Scene& scene, int n) {
 // the images; here every hit is compared). Embree 3.13 builds sets of fewer than 1024 primitives
 // on one thread and partitions sets of fewer than 3072 sequentially: the tessellated `contact`
 // (4800 triangles) and cornell-spheres (18060) reach its parallel code. Built on 1, 2 and 4
-// threads, Embree 3.13.5 gives the same hits: no fix was needed in Scene::buildBvh.
+// threads, Embree 3.13.5 gives the same hits.
 TEST(Determinism, SameHitsWhateverTheThreadsThatBuiltTheBvh) {
     constexpr int kRays = 100000;
     const std::pair<const char*, SceneDesc> scenes[] = {
@@ -417,7 +417,7 @@ TEST(Camera, RasterAndDirectionAreInverse) {
     EXPECT_EQ(cam.importance(-cam.forward()), 0.0f);
 }
 
-// smallvcm-5 must be SmallVCM's scene 5 as SmallVCM images it (the peer comparison of issue 11,
+// smallvcm-5 must be SmallVCM's scene 5 as SmallVCM images it (the peer comparison,
 // bench/peers-smallvcm.sh, compares images pixel for pixel). Its camera, restated from its
 // description: right = normalize(up × −forward), up' = −forward × right; camera coordinates c of a
 // point X are its offsets from the eye along right, up' and −forward; NDC x = f c.x / −c.z and

@@ -1,4 +1,4 @@
-// Stability where methods fail (issue 6): the failure scenes of scenes/failure_scenes.h under
+// Stability where methods fail: the failure scenes of scenes/failure_scenes.h under
 // every integrator. What must hold everywhere: no NaN or infinite sample, bounded work per sample.
 // What must hold where a method can sample the light: agreement with the others within
 // statistical error. Where a method provably cannot, the test states it and measures it (a

@@ -52,8 +52,8 @@ concept Sampler = requires(S& s) {
 // Reference: the per-pixel sample streams of `tripath reference` (and of the reference `tripath
 // compare` renders for itself), so that a reference is independent of every render made with the
 // same seed. LightPath and ReferenceLightPath: the light phase's paths (index pass × N_L + path)
-// of renders and of references. The values are part of every stored image's identity: a retired
-// one (2, once meant for light paths and never used) is not reused, and new domains go at the end.
+// of renders and of references. The values are part of every stored image's identity: none is
+// ever reused (2 is left unused), and new domains go at the end.
 // Metropolis (MetropolisBootstrap, MetropolisChain and their Reference twins): the bootstrap
 // samples of mlt's normalisation and its chains' proposals (integrators/metropolis_render.h).
 enum class StreamDomain : uint64_t {

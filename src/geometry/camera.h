@@ -52,8 +52,7 @@ private:
     float area_;                  // image-plane area at unit distance, A
 };
 
-// Inline: every connection to the sensor asks these, and out of line the optional came back
-// through memory as a byte stored and read back as a word, stalling store forwarding.
+// Inline: every connection to the sensor asks these (store forwarding: docs/performance-notes.md).
 inline std::optional<Vec2> Camera::raster(Vec3 d) const {
     const float c = dot(d, forward_);
     if (c <= 0) return std::nullopt;

@@ -14,10 +14,9 @@ inline constexpr const char* kEmbreeIsas[] = {"sse2", "sse4.2", "avx", "avx2", "
 // The level of an ISA's name in kEmbreeIsas, or -1.
 int embreeIsaNamed(const std::string& name);
 // The widest ISA of kEmbreeIsas this CPU runs (Embree's own choice when left alone), which renders
-// run on unless the command line's --embree-isa pins another. (AVX2 instead of AVX-512 made
-// one-thread passes 1-4 % faster but left two-thread renders level: docs/performance-notes.md.)
+// run on unless the command line's --embree-isa pins another.
 int bestEmbreeIsaLevel();
-// Every Scene built from now on runs this ISA (default: bestEmbreeIsaLevel()).
+// Every Scene built after this call runs this ISA (default: bestEmbreeIsaLevel()).
 void useEmbreeIsa(int level);
 int embreeIsaLevel();
 // "3.13.5 avx2": Embree's version and the ISA in use, as tripath:embree records them.

@@ -332,7 +332,7 @@ void alphaMaskFilter(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 void Scene::setAlphaFilters(RTCGeometryTy* geom, uint32_t first) {
-    if (!surfaceTextures_->anyMasks()) return;  // no filter: opaque scenes trace as fast as ever
+    if (!surfaceTextures_->anyMasks()) return;  // no filter: opaque scenes pay nothing for masks
     alphaMasks_->push_back({surfaceTextures_.get(), first});
     rtcSetGeometryUserData(geom, &alphaMasks_->back());
     rtcSetGeometryIntersectFilterFunction(geom, &alphaMaskFilter);

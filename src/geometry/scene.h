@@ -67,8 +67,8 @@ public:
     // Closest hit along origin + t·dir for t in (0, tMax).
     std::optional<SurfacePoint> intersect(Vec3 origin, Vec3 dir, float tMax = 3.0e38f) const;
     // The closest hits of up to 8 rays from one origin (a pinhole's rays through neighbouring
-    // pixels), in one coherent Embree packet: docs/performance-notes.md records 4.3× the rays/s of single rays
-    // for a pass's camera rays on cornell. hits[i] for dirs[i].
+    // pixels), in one coherent Embree packet (faster than single rays: docs/performance-notes.md).
+    // hits[i] for dirs[i].
     void intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::optional<SurfacePoint>> hits) const;
     // True when nothing blocks the open segment between a and b. Each end is a surface point (its
     // geometric normal given, to offset from) or a free point (a null normal: point light, sensor).

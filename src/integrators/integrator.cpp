@@ -58,8 +58,7 @@ MisContext Integrator::misContext(const PassConstants& constants) const {
 void Integrator::sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
                         ContributionSink& sink) const {
     const std::span<const Vertex> light = pass.light ? pass.light->path(size_t(pixel) % pass.light->paths()) : std::span<const Vertex>();
-    // The light path was traced by another task, likely on another core: ask for its cache lines
-    // now, so that they arrive while the camera walk runs rather than stall the first connection.
+    // The light path was likely traced on another core: its lines are requested before the camera walk.
     for (size_t i = 0; i < light.size_bytes(); i += 64) __builtin_prefetch(reinterpret_cast<const char*>(light.data()) + i);
     cameraWalk(scene, pass, ray, rng, paths.camera);
     splatLightPaths(scene, pass, pixel, std::span<const Vertex>(paths.camera).first(1), rng, sink);

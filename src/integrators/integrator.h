@@ -132,9 +132,8 @@ private:
 // integrator of that name, decided by whether it has light subpaths; chosen by efficiency at equal
 // time (bench/README.md, "Roulette start depth per integrator"). Without them (pt), the 3rd
 // vertex: ending a camera path at its first hit loses the next-event estimates of the vertices it
-// would have reached (−8 to −15 % on the Cornell boxes). With them, the 2nd (the first surface
-// vertex of either subpath): the light subpaths carry that light too, and shorter subpaths cut
-// the connections per sample, +5 to +24 % efficiency on the built-ins measured.
+// would have reached. With them, the 2nd (the first surface vertex of either subpath): the light
+// subpaths carry that light too, and shorter subpaths cut the connections per sample.
 int defaultRouletteDepth(const std::string& integrator);
 
 // "pt", "lt", "bdpt", "vcm", "bpm", "ppm" or "mlt"; throws InputError for anything else.

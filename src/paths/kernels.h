@@ -113,14 +113,11 @@ inline bool sidesAgree(const Vertex& v, Vec3 w) { return dot(v.ng, w) * dot(v.ns
 //
 // The neighbours are given as unit directions from v, null where there is none. An endpoint
 // lacks one: the sensor its camera side, an emitter point its light side -- as does a surface a
-// camera walk hit, taken as the start of the light's path (strategy s = 0). (Pointers, and an
-// inline constructor: this runs several times per connection, and optional<Vec3> arguments
-// passed through memory stall store forwarding.)
+// camera walk hit, taken as the start of the light's path (strategy s = 0). (Pointers rather than
+// optionals, and an inline constructor: this runs several times per connection.)
 class LocalScattering {
 public:
-    // The local directions are taken from the arguments, not from the members just written: a
-    // member stored as 8 + 4 bytes and read back as one 16-byte vector stalls store forwarding
-    // (13 % of a connection's time in a profile: docs/performance-notes.md).
+    // Local directions from the arguments, not from the members just written (store forwarding).
     LocalScattering(const Scene& scene, const Vertex& v, const Vec3* towardLight, const Vec3* towardCamera)
         : scene_(scene), v_(v), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr),
           light_(hasLight_ ? *towardLight : Vec3()), camera_(hasCamera_ ? *towardCamera : Vec3()) {

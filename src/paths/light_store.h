@@ -75,8 +75,7 @@ public:
     using Entry = PointGrid<Candidate>::Entry;
     // Appends the mergeable vertices of one chunk of the store to `out`, in the chunk's order. The
     // light phase calls it in the task that traced the chunk, while the chunk's vertices are
-    // still in that core's cache: one thread's pass over the whole store after the light phase
-    // took 2.5 % of a two-thread pass on smallvcm-5 (docs/performance-notes.md).
+    // still in that core's cache.
     static void mergeable(const LightStore::Chunk& chunk, std::vector<Entry>& out);
     // Indexes the mergeable vertices of every chunk of a store (mergeable's output per chunk,
     // in chunk order) for queries of radius `radius`.
@@ -85,10 +84,9 @@ public:
     size_t bytes() const { return grid_.bytes(); }
     // Calls f(i, prefix, s) for each mergeable light vertex within the radius of each query point
     // qs[i], query by query in the order given, each in a fixed order: `prefix` is its light
-    // subpath up to and including it, which is y_{s−1} of that prefix. The grid overlaps the
-    // queries' reads (PointGrid); the vertices found are gathered and their cache lines requested
-    // before the first is used: each merge reads a light vertex and its predecessors from anywhere
-    // in the store, and waiting for those reads one merge after another took most of a merge's time.
+    // subpath up to and including it, which is y_{s−1} of that prefix. The vertices found, scattered
+    // over the store, are gathered and their lines requested before the first is used, so that
+    // their reads overlap (as the grid's own do: PointGrid).
     // How many query points the grid's reads overlap for at once: a caller gathering points for
     // forEachWithin gains nothing from more.
     static constexpr int kQueriesAtOnce = kPointGridBatch;

@@ -72,11 +72,9 @@ public:
     }
 
     // Calls f(i, payload) for every point within distance r of each query point qs[i], query by
-    // query in the order given, each in a fixed order. The table and the runs are far larger than
-    // the caches and a query's buckets lie anywhere in them, so the reads are requested in two
-    // waves before they are used -- every interval's bounds, then the start of every run -- for all
-    // the queries at once (at most kBatch at a time): the misses of a camera path's vertices
-    // overlap instead of following one another.
+    // query in the order given, each in a fixed order. The reads are requested in two waves before
+    // they are used -- every interval's bounds, then the start of every run -- for up to kBatch
+    // queries at once, so that their cache misses overlap.
     static constexpr int kBatch = kPointGridBatch;
     template <class F>
     void forEachWithin(std::span<const Vec3> qs, F&& f) const {

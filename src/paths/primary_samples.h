@@ -47,8 +47,7 @@ class PrimarySamples {
 public:
     enum class Stream { Camera, Light, Strategy };
     static constexpr int kStreams = 3;
-    // Chosen at equal time on door-ajar (bench/README.md, "Metropolis"): relMSE after 10 s was
-    // 0.44 at 1/32, 0.23 at 1/64, 0.16 at 1/128, 0.18 at 1/256 and 0.52 at 1/1024.
+    // The best of 1/32 to 1/1024 at equal time on door-ajar (bench/README.md, "Metropolis").
     static constexpr double kSmallStepSigma = 1.0 / 128;
 
     // Begins the next proposal: a large step or a small one, drawing what it needs from `fresh`
