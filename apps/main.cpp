@@ -43,7 +43,9 @@ int exitCode(int code) {
 int main(int argc, char** argv) {
     tripath::app::Processes processes(argc, argv);  // under mpirun: one of N ranks (processes.h)
     CLI::App app{"tripath " TRIPATH_VERSION " — path tracing, light tracing, bidirectional path tracing and vertex "
-                 "merging (vcm, bpm, ppm) with MIS, and Metropolis light transport (mlt) over the same paths, on one three-point (area-measure) path core."};
+                 "merging (vcm, bpm, ppm) with MIS, and Metropolis light transport (mlt) over the same paths, on one "
+                 "three-point (area-measure) path core.",
+                 "tripath"};  // named, so that --help reads the same however the binary was called
     app.set_version_flag("--version", "tripath " TRIPATH_VERSION);
     app.require_subcommand(1);
     tripath::app::addRenderCommand(app);

@@ -155,11 +155,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_flag("--depth-images", c->options.depthImages,
                   "Also write <out>-k<K>.exr for each path length K = 1..max-depth: the Neumann-series terms, which "
                   "add up to the full image");
-    inRange(cmd->add_option("--strategy-images", c->options.strategyImages,
-                            "pt, bdpt, vcm, bpm, ppm: also write <out>-s<S>-t<T>-weighted.exr and -unweighted.exr "
-                            "for every connection (s,t) the integrator has, of path length k <= this value "
-                            "(k = s+t-1; pt has (0,k+1) and (1,k)), and <out>-s<S>-t<T>-merge-*.exr for every merge "
-                            "(k = s+t-2)"),
+    inRange(cmd->add_option("--strategy-images", c->options.strategyImages, helpOf("strategy-images")),
             kStrategyImagesRange);
     cmd->add_option("--replay", c->replay,
                     "PASS,PIXEL: render that one sample again (PIXEL = y * width + x; for lt that pixel's light paths PIXEL, PIXEL + width * height, ...) with "

@@ -12,6 +12,7 @@
 #include "geometry/embree_isa.h"
 #include "input_words.h"
 #include "processes.h"
+#include "requests/integrator_parameters.h"
 #include "stats_report.h"
 
 namespace tripath::app {
@@ -43,6 +44,8 @@ CLI::Option* inRange(CLI::Option* option, const IntRange& range) {
     };
     return option->check(CLI::Validator(check, fmt::format("INT in [{}, {}]", range.min, range.max)));
 }
+
+std::string helpOf(const std::string& flag) { return describe(integratorParameter(flag)); }
 
 std::vector<std::string> splitCommas(const std::string& text) {
     std::vector<std::string> items;
@@ -90,55 +93,38 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                            "Longest path kept, in segments k: 1 = emitters seen directly, 2 = direct lighting, ...")
                 ->capture_default_str(),
             kMaxDepthRange);
-    inRange(cmd.add_option("--rr-depth", o.rrDepth,
-                           "Russian roulette starts once a subpath has this many vertices (not mlt; default, measured at equal "
-                           "time: 3 for pt, 2 for the methods with light subpaths; 0 also means the default)"),
-            kRrDepthRange);
+    inRange(cmd.add_option("--rr-depth", o.rrDepth, helpOf("rr-depth")), kRrDepthRange);
     cmd.add_option("--mis", o.mis, "MIS heuristic: balance, power (beta = 2) or none (uniform weights)")
         ->capture_default_str();
-    auto* radius = cmd.add_option_function<float>(
-        "--radius", [&o](float v) { o.merge.radius = v, o.radiusGiven = true; },
-        "vcm, bpm, ppm: merge radius of the first pass in world units");
-    auto* factor = cmd.add_option_function<float>(
+    // The integrators' own parameters: help and shown default from integrator_parameters.h.
+    auto parameter = [&cmd, &o](CLI::Option* option) {
+        return option->default_str(integratorParameter(option->get_name().substr(2)).shownDefault(o));
+    };
+    auto* radius = parameter(cmd.add_option_function<float>(
+        "--radius", [&o](float v) { o.merge.radius = v, o.radiusGiven = true; }, helpOf("radius")));
+    auto* factor = parameter(cmd.add_option_function<float>(
         "--radius-factor", [&o](float v) { o.merge.radiusFactor = v, o.radiusFactorGiven = true; },
-        "vcm, bpm, ppm: merge radius of the first pass as a fraction of the scene's bounding-sphere radius");
-    cmd.add_option_function<float>(
-           "--radius-pixels", [&o](float v) { o.merge.radiusPixels = v, o.radiusPixelsGiven = true; },
-           "vcm, bpm, ppm: merge radius of the first pass in pixel widths on the surfaces the camera sees (the median "
-           "over a grid of pixels); the default when neither --radius nor --radius-factor is given")
-        ->default_str(fmt::format("{}", o.merge.radiusPixels))
+        helpOf("radius-factor")));
+    parameter(cmd.add_option_function<float>(
+                  "--radius-pixels", [&o](float v) { o.merge.radiusPixels = v, o.radiusPixelsGiven = true; },
+                  helpOf("radius-pixels")))
         ->excludes(radius)
         ->excludes(factor);
     radius->excludes(factor);
-    cmd.add_option_function<float>(
-           "--alpha", [&o](float v) { o.merge.alpha = v, o.alphaGiven = true; },
-           "vcm, bpm, ppm: the radius of pass i is r_1 * i^((alpha-1)/2); 1 keeps it fixed (biased), below 1 shrinks "
-           "it (consistent)")
-        ->default_str(fmt::format("{}", o.merge.alpha));
-    inRange(cmd.add_option_function<int64_t>(
-                "--light-paths", [&o](int64_t v) { o.lightPaths = v, o.lightPathsGiven = true; },
-                "lt, bdpt, vcm, bpm, ppm: light paths traced per pass, N_L (default: one per pixel). Pixel i's camera "
-                "sample connects with light path i mod N_L; each light path is joined to the sensor once per pass; "
-                "splats, MIS weights and the merges' 1/(pi r^2 N_L) count N_L. Converges to the same image, with other "
-                "noise and cost"),
+    parameter(cmd.add_option_function<float>(
+        "--alpha", [&o](float v) { o.merge.alpha = v, o.alphaGiven = true; }, helpOf("alpha")));
+    inRange(parameter(cmd.add_option_function<int64_t>(
+                "--light-paths", [&o](int64_t v) { o.lightPaths = v, o.lightPathsGiven = true; }, helpOf("light-paths"))),
             kLightPathsRange);
-    inRange(cmd.add_option_function<int64_t>(
+    inRange(parameter(cmd.add_option_function<int64_t>(
                 "--bootstrap", [&o](int64_t v) { o.metropolis.bootstrap = v, o.bootstrapGiven = true; },
-                "mlt: samples that estimate each path length's brightness b_k (which scales its part of the image) "
-                "and start the chains, spread evenly over the lengths; written to the EXR with each b_k")
-                ->default_str(std::to_string(o.metropolis.bootstrap)),
+                helpOf("bootstrap"))),
             kBootstrapRange);
-    inRange(cmd.add_option_function<int>(
-                "--chains", [&o](int v) { o.metropolis.chains = v, o.chainsGiven = true; },
-                "mlt: Markov chains, shared among the path lengths in proportion to b_k (at most one per pixel); a "
-                "pass takes about one step per pixel, spread over them, so --spp counts steps per pixel")
-                ->default_str(std::to_string(o.metropolis.chains)),
+    inRange(parameter(cmd.add_option_function<int>(
+                "--chains", [&o](int v) { o.metropolis.chains = v, o.chainsGiven = true; }, helpOf("chains"))),
             kChainsRange);
-    cmd.add_option_function<float>(
-           "--large-step", [&o](float v) { o.metropolis.largeStep = v, o.largeStepGiven = true; },
-           "mlt: probability that a proposal draws a fresh point of primary sample space rather than moving the "
-           "current one a little (a Gaussian step of 1/128 per coordinate)")
-        ->default_str(fmt::format("{}", o.metropolis.largeStep));
+    parameter(cmd.add_option_function<float>(
+        "--large-step", [&o](float v) { o.metropolis.largeStep = v, o.largeStepGiven = true; }, helpOf("large-step")));
     inRange(cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
                 ->capture_default_str(),
             kSeedRange);

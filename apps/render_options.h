@@ -29,6 +29,10 @@ struct RenderOptions : RenderRequest {
 // empty item (",," or a trailing comma) is kept so that the command can refuse it.
 std::vector<std::string> splitCommas(const std::string& text);
 
+// The --help text of an integrator parameter (requests/integrator_parameters.h), by its flag
+// without the dashes.
+std::string helpOf(const std::string& flag);
+
 // Refuses an integer flag's value outside `range` (render_request.h) with validate()'s one line,
 // checked on the text before CLI11 converts it, so that a number too large for the flag's type
 // gets the range too (CLI11 alone says only that it cannot convert it). Returns the option.

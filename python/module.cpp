@@ -12,10 +12,15 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "core/error.h"
+#include "requests/integrator_parameters.h"
 #include "image/exposure.h"
 #include "evaluation/flip.h"
 #include "evaluation/metrics.h"
@@ -68,7 +73,32 @@ SceneArgument::SceneArgument(const py::object& scene) {
 
 namespace {
 
-// The integrator options taken as keywords beyond the named parameters.
+std::string keywordOf(const IntegratorParameter& p) {
+    std::string k = p.flag;
+    std::replace(k.begin(), k.end(), '-', '_');
+    return k;
+}
+
+std::vector<std::string> keywordOptions() {
+    std::vector<std::string> names;
+    for (const IntegratorParameter& p : integratorParameters())
+        if (p.keyword) names.push_back(keywordOf(p));
+    return names;
+}
+
+// "Keyword options: rr_depth (pt, lt, ...: help), ...": the docstring's part made from the table.
+std::string keywordOptionsDoc() {
+    std::vector<std::string> items;
+    const RenderRequest defaults;
+    for (const IntegratorParameter& p : integratorParameters()) {
+        if (!p.keyword) continue;
+        const std::string shown = p.shownDefault(defaults);
+        items.push_back(fmt::format("{} ({}{})", keywordOf(p), describe(p), shown.empty() ? "" : "; default " + shown));
+    }
+    return fmt::format("Keyword options: {}.", fmt::join(items, "; "));
+}
+
+// The integrator options taken as keywords beyond the named parameters (integrator_parameters.h).
 void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
     for (const auto& [key, value] : options) {
         const std::string k = py::str(key);
@@ -82,9 +112,8 @@ void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
         else if (k == "chains") r.metropolis.chains = value.cast<int>(), r.chainsGiven = true;
         else if (k == "large_step") r.metropolis.largeStep = value.cast<float>(), r.largeStepGiven = true;
         else
-            throw InputError("unknown option '" + k +
-                             "' (the integrator options are rr_depth, radius, radius_factor, radius_pixels, alpha, "
-                             "light_paths, bootstrap, chains and large_step)");
+            throw InputError(fmt::format("unknown option '{}' (the integrator options are {})", k.substr(0, 40),
+                                         fmt::join(keywordOptions(), ", ")));
     }
 }
 
@@ -250,22 +279,22 @@ PYBIND11_MODULE(tripath, m) {
         return d;
     }, "The built-in scenes: name -> what each one is for");
 
+    static const std::string renderDoc =
+        "Renders scene (a Scene from load(), or a built-in name or glTF path, loaded as load() does) with one "
+        "integrator (pt, lt, bdpt, vcm, bpm, ppm, mlt) for spp passes or seconds of wall-clock time (16 passes when "
+        "neither is given). Returns a dict: image (float32 array, height x width x 3, linear radiance, no copy), depth "
+        "(with depth_images: one image per path length k = 1..max_depth), strategies (with strategy_images = K: "
+        "{(s, t, 'connect' | 'merge'): {'weighted', 'unweighted'}} for k <= K; " +
+        describe(integratorParameter("strategy-images")) +
+        "), spp, seconds, interrupted, dropped_samples, guarded_weights, counters (rays, BSDF calls, ...), metadata "
+        "(as the EXR's). progress(passes, seconds) is called after each pass. The same settings give the same image "
+        "as `tripath render`, whatever the thread count. Ctrl-C stops at the next pass and returns what is done "
+        "(interrupted = True). " +
+        keywordOptionsDoc();
     m.def("render", &renderScene, py::arg("scene"), py::arg("integrator") = "bdpt", py::arg("spp") = py::none(),
           py::arg("seconds") = py::none(), py::arg("width") = 512, py::arg("height") = 512, py::arg("seed") = 1,
           py::arg("max_depth") = 16, py::arg("mis") = "power", py::arg("threads") = 0, py::arg("depth_images") = false,
-          py::arg("strategy_images") = 0, py::arg("progress") = py::none(),
-          "Renders scene (a Scene from load(), or a built-in name or glTF path, loaded as load() does) with one "
-          "integrator (pt, lt, bdpt, vcm, bpm, ppm, mlt) for spp passes or seconds of wall-clock time "
-          "(16 passes when neither is given). Returns a dict: image (float32 array, height x width x 3, linear "
-          "radiance, no copy), depth (with depth_images: one image per path length k = 1..max_depth), strategies (with "
-          "strategy_images = K: {(s, t, 'connect' | 'merge'): {'weighted', 'unweighted'}} for k <= K), spp, seconds, "
-          "interrupted, dropped_samples, guarded_weights, counters (rays, BSDF calls, ...), metadata (as the EXR's). "
-          "Keyword options: rr_depth (3; not mlt), and for vcm, bpm, ppm radius, radius_factor, radius_pixels "
-          "(0.75), alpha (0.75), for lt, bdpt, vcm, bpm, ppm light_paths (light paths per pass; one per pixel), and "
-          "for mlt bootstrap (100000), chains (1024) and large_step (0.3). progress(passes, seconds) is called after "
-          "each pass. The same settings give the same image as "
-          "`tripath render`, whatever the thread count. Ctrl-C stops at the next pass and returns what is done "
-          "(interrupted = True).");
+          py::arg("strategy_images") = 0, py::arg("progress") = py::none(), renderDoc.c_str());
 
     m.def("read_exr", &readExrFile, py::arg("path"),
           "Reads an EXR as (float32 array height x width x 3, {'tripath:...': value} metadata)");

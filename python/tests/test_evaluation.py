@@ -3,6 +3,8 @@
 the returned images again (relMSE in NumPy, HDR-FLIP with tripath.metrics), read the files the
 report writes, and hold the error messages to the command line's."""
 import csv
+import struct
+import zlib
 
 import numpy as np
 import pytest
@@ -69,6 +71,37 @@ def test_compare_with_a_directory_writes_the_command_lines_report(cornell, tmp_p
         assert float(row["relmse"]) == pytest.approx(c["relmse"], rel=1e-6)
     assert {c["run"] for c in r["checkpoints"]} == {0, 1}
     assert all(row["relmse_sd"] > 0 for row in r["summary"])  # two independent runs differ
+
+
+def png_size_and_first_pixel(path):
+    """An 8-bit RGB PNG's width, height and top-left pixel: whatever a row's filter, the first pixel
+    of the first row is stored as it is (its left and upper neighbours count as 0)."""
+    data = path.read_bytes()
+    width, height = struct.unpack(">II", data[16:24])
+    idat, at = b"", 8
+    while at < len(data):
+        length, kind = struct.unpack(">I4s", data[at:at + 8])
+        if kind == b"IDAT":
+            idat += data[at + 8:at + 8 + length]
+        at += 12 + length
+    return width, height, tuple(zlib.decompress(idat)[1:4])
+
+
+def test_compare_writes_a_papers_figure(cornell, reference, tmp_path):
+    # theme, labels and formats reach the sheet as the command line's --theme, --no-labels and
+    # --formats do: on white, without the title rows, and as a PDF too. 24x16 panels are shown 11x
+    # (264 x 176) and the 8x8 crop 22x; each of the two rows of panels (images, error maps) is
+    # 8 + 176 + 8 + 176 + 8 high, over the 56-pixel colour bar. Catches a keyword taken and dropped.
+    out = tmp_path / "figure"
+    tripath.compare(cornell, 0.05, integrators=["pt"], reference=reference, out=str(out), crop=(8, 4, 8, 8),
+                    theme="light", labels=False, formats=["pdf"], **SIZE)
+    assert png_size_and_first_pixel(out / "side-by-side.png") == (8 + 2 * (264 + 8), 2 * 376 + 56, (255, 255, 255))
+    assert (out / "side-by-side.pdf").read_bytes().startswith(b"%PDF-")
+    assert png_size_and_first_pixel(out / "pt-crop.png")[:2] == (512, 512)
+    with pytest.raises(ValueError, match="^theme must be dark or light"):
+        tripath.compare(cornell, 0.05, integrators=["pt"], reference=reference, theme="sepia", **SIZE)
+    with pytest.raises(ValueError, match="^formats takes png, pdf and svg"):
+        tripath.compare(cornell, 0.05, integrators=["pt"], reference=reference, formats=["gif"], **SIZE)
 
 
 def test_compare_refuses_bad_input_as_the_command_line_does(cornell, reference, tmp_path, cli_error):

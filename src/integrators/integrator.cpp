@@ -1,5 +1,8 @@
 #include "integrators/integrator.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <cmath>
 
 #include "core/error.h"
@@ -22,7 +25,7 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Integr
     if (name == "bpm") return makeBidirectionalPhotonMapping(settings);
     if (name == "ppm") return makeProgressivePhotonMapping(settings);
     if (name == "mlt") return makeMetropolis(settings);
-    throw InputError("unknown integrator '" + name + "' (pt, lt, bdpt, vcm, bpm, ppm or mlt)");
+    throw InputError(fmt::format("unknown integrator '{}' ({})", name.substr(0, 40), fmt::join(kIntegratorNames, ", ")));
 }
 
 int defaultRouletteDepth(const std::string& integrator) {

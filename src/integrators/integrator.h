@@ -136,7 +136,9 @@ private:
 // subpaths carry that light too, and shorter subpaths cut the connections per sample.
 int defaultRouletteDepth(const std::string& integrator);
 
-// "pt", "lt", "bdpt", "vcm", "bpm", "ppm" or "mlt"; throws InputError for anything else.
+inline const std::vector<std::string> kIntegratorNames{"pt", "lt", "bdpt", "vcm", "bpm", "ppm", "mlt"};
+
+// One of kIntegratorNames; throws InputError for anything else.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const IntegratorSettings& settings);
 
 }  // namespace tripath

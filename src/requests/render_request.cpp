@@ -8,15 +8,13 @@
 #include "geometry/embree_isa.h"
 #include "core/error.h"
 #include "requests/environment_spec.h"
+#include "requests/integrator_parameters.h"
 #include "scenes/scene_source.h"
 #include "paths/kernels.h"
 
 namespace tripath {
 
 namespace {
-
-bool merges(const Integrator& i) { return i.strategies().merges(); }
-bool chains(const Integrator& i) { return i.runsChains(); }
 
 // tripath:environment and tripath:environment-scale, when the request has an environment.
 Metadata environmentMetadata(const RenderRequest& r) {
@@ -95,37 +93,13 @@ void validateValues(const RenderRequest& r, Spelling spelling) {
 }
 
 void requireUsed(const RenderRequest& r, const std::vector<std::string>& integrators, Spelling spelling) {
-    // A parameter that only some integrators use: what they are, and whether one of `integrators` is.
-    struct Use {
-        bool given;
-        const char* flag;
-        const char* users;
-        bool (*uses)(const Integrator&);
-    };
-    const Use uses[] = {
-        {r.radiusGiven, "radius", "an integrator that merges (vcm, bpm or ppm)", merges},
-        {r.radiusFactorGiven, "radius-factor", "an integrator that merges (vcm, bpm or ppm)", merges},
-        {r.radiusPixelsGiven, "radius-pixels", "an integrator that merges (vcm, bpm or ppm)", merges},
-        {r.alphaGiven, "alpha", "an integrator that merges (vcm, bpm or ppm)", merges},
-        {r.lightPathsGiven, "light-paths", "an integrator that traces light paths (lt, bdpt, vcm, bpm or ppm)",
-         [](const Integrator& i) { return i.hasLightPhase(); }},
-        {r.strategyImages > 0, "strategy-images",
-         "an integrator with more than one strategy per path length in passes of samples (pt, bdpt, vcm, bpm or ppm; "
-         "lt's one, (k, 1), is its depth image; mlt's chains weigh each strategy by where they wander)",
-         [](const Integrator& i) { return i.name() != "lt" && !i.runsChains(); }},
-        {r.rrDepth > 0, "rr-depth", "an integrator whose walks play Russian roulette (every one but mlt)",
-         [](const Integrator& i) { return !i.runsChains(); }},
-        {r.bootstrapGiven, "bootstrap", "mlt", chains},
-        {r.chainsGiven, "chains", "mlt", chains},
-        {r.largeStepGiven, "large-step", "mlt", chains},
-    };
-    for (const Use& use : uses) {
-        if (!use.given) continue;
+    for (const IntegratorParameter& p : integratorParameters()) {
+        if (!p.given(r)) continue;
         std::vector<std::string> without;
         for (const std::string& name : integrators)
-            if (!use.uses(*makeIntegrator(name, {}))) without.push_back(name);
+            if (!p.uses(*makeIntegrator(name, {}))) without.push_back(name);
         if (without.size() == integrators.size())
-            throw InputError(fmt::format("{} needs {}: {} {}", parameterName(use.flag, spelling), use.users,
+            throw InputError(fmt::format("{} needs {}: {} {}", parameterName(p.flag, spelling), neededBy(p),
                                          fmt::join(without, ", "), without.size() == 1 ? "does not" : "do not"));
     }
 }
