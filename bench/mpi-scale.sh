@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Distributed rendering on this machine (issue "distributed rendering", §5; docs/distributed.md):
+# Distributed rendering on this machine (docs/distributed.md):
 #  1. the time to add the ranks' films into rank 0's at the end of a render (MPI_Reduce of the
 #     exact totals, 72 bytes a pixel) at 512², 1920x1080 and 4096², on 1 and 2 ranks;
 #  2. throughput of 2 ranks x 1 thread against 1 process x 2 threads (bdpt, cornell, 256²).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Equal-time comparison with SmallVCM on its scene 5 (issue 11; the peer is described in
-# /work/shared/peers/smallvcm.md): tripath pt, bdpt and vcm on the built-in `smallvcm-5` against
+# Equal-time comparison with SmallVCM on its scene 5 (the peer is described in bench/README.md,
+# "Peers: SmallVCM"): tripath pt, bdpt and vcm on the built-in `smallvcm-5` against
 # SmallVCM's pt, bpt and vcm on its own analytic scene 5, at 256×256, max path length 10, on two
 # cores, SECONDS_EACH seconds each. Each image is measured against a converged reference of its
 # own renderer (the two scenes differ by the tessellation of the spheres), with tripath's relMSE

@@ -7,9 +7,9 @@ Reads OUT_DIR/bench.json (tripath_bench, Google Benchmark JSON; with repetitions
 OUT_DIR/memory.json (the 1M-triangle scene alone in a fresh process), OUT_DIR/render-*.txt (the
 `tripath render` summaries) and OUT_DIR/load-*.txt (uptime before and after).
 
-Two rates are given for every throughput figure. "wall" is per wall-clock second, what the brief
-asks for. "per CPU-s" is per second of CPU time the process actually got: on this shared 2-core
-machine other people's compiles take a varying share of the cores, and the per-CPU-second rate is
+Two rates are given for every throughput figure. "wall" is per wall-clock second. "per CPU-s" is
+per second of CPU time the process actually got: on this shared 2-core machine other people's
+compiles take a varying share of the cores, and the per-CPU-second rate is
 what a benchmark would show with the cores to itself (times the threads it runs), so the ratios
 between two benchmarks are much steadier in it.
 """
@@ -101,7 +101,7 @@ def main(out):
     # ---- whole samples
     p("### Whole samples at max-depth 8\n")
     p("Rays per sample: *exact* counts every rtcIntersect1/rtcOccluded1 call (isect + occl); *est* is "
-      "the brief's estimate, ray-found subpath vertices + unoccluded shadow connections. "
+      "the estimate from vertices: ray-found subpath vertices + unoccluded shadow connections. "
       "Fraction of ceiling: the sample's rays/s over the ceiling for the same mix of closest-hit "
       "and shadow rays on the same scene, both on 2 threads.\n")
     p("| scene | kind | samples/s 1T (wall) | samples/s 2T (wall) | samples/s per CPU-s (1T / 2T) | CPU use 2T | rays/sample exact (isect+occl) | rays/sample est | rays/s 2T (wall) | fraction of ceiling (wall) | fraction of ceiling (per CPU-s) |")

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "image/exposure.h"
@@ -87,6 +89,33 @@ TEST_F(Previews, MontageRowIsNotBlownOutByADimOrBlackImage) {
     EXPECT_EQ(whiteShare(sheet, 1), 0.5);
     EXPECT_EQ(whiteShare(sheet, 0), 0.0);
     EXPECT_EQ(whiteShare(sheet, 2), 0.0);
+}
+
+// A montage for a paper: --theme light on white, and .pdf or .svg give the same page as the .png
+// (two 8 × 8 cells 2 pixels apart, under 20 pixels of column labels: 20 × 30), with the labels as
+// text. Catches a theme or format ignored (a dark corner, PNG bytes in a .pdf), and a page of
+// another size; other extensions are refused in one line.
+TEST_F(Previews, MontageWritesPngPdfOrSvgOfOneSize) {
+    const std::string a = greyExr(path("a.exr"), 0.1f), b = greyExr(path("b.exr"), 0.2f);
+    const std::string args = "montage '" + a + "' '" + b + "' --columns 2 --column-labels x,y --theme light --out ";
+    for (const char* name : {"m.png", "m.pdf", "m.svg"}) {
+        const Outcome o = tripath(args + "'" + path(name) + "'");
+        ASSERT_EQ(o.exitCode, 0) << name << ": " << o.err;
+    }
+    const Image png = readImage(path("m.png"));
+    EXPECT_EQ(png.width, 20);
+    EXPECT_EQ(png.height, 30);
+    EXPECT_EQ(png.at(19, 0)[0], 1.0f) << "the light theme's background is white";
+    std::ifstream pdf(path("m.pdf")), svg(path("m.svg"));
+    std::stringstream pdfText, svgText;
+    pdfText << pdf.rdbuf();
+    svgText << svg.rdbuf();
+    EXPECT_EQ(pdfText.str().rfind("%PDF-", 0), 0u);
+    EXPECT_NE(pdfText.str().find("/MediaBox [ 0 0 20 30 ]"), std::string::npos);
+    EXPECT_NE(svgText.str().find("width=\"20px\" height=\"30px\""), std::string::npos);
+    const Outcome gif = tripath(args + "'" + path("m.gif") + "'");
+    EXPECT_NE(gif.exitCode, 0);
+    EXPECT_NE(gif.err.find("--out must name a .png, .pdf or .svg file"), std::string::npos) << gif.err;
 }
 
 }  // namespace

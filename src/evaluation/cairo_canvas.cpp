@@ -1,3 +1,5 @@
+// Cairo surfaces for the three formats, each drawn on by the same routine, and text set in one
+// font by Cairo's own (toy) text API, which fontconfig resolves to DejaVu Sans.
 #include "evaluation/cairo_canvas.h"
 
 #include <cairo-pdf.h>

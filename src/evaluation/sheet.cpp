@@ -1,3 +1,5 @@
+// A sheet keeps its items as they are added, and draws them in that order onto whichever Cairo
+// surface the format asks for (cairo_canvas.h): one drawing for PNG, PDF and SVG.
 #include "evaluation/sheet.h"
 
 #include <cairo.h>
@@ -7,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <type_traits>
 
 #include "core/atomic_file.h"
 #include "core/error.h"

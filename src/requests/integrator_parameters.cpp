@@ -1,3 +1,4 @@
+// The table of the integrators' own parameters, and the texts made from it.
 #include "requests/integrator_parameters.h"
 
 #include <fmt/format.h>

@@ -132,7 +132,7 @@ SceneDesc veachMis() {
 
 // ---- SmallVCM's scene 5 -------------------------------------------------------------------------
 // The scene we compare the bidirectional family against SmallVCM on (bench/peers-smallvcm.sh;
-// /work/shared/peers/smallvcm.md): its Cornell box with the light box under the ceiling and both
+// bench/README.md, "Peers: SmallVCM"): its Cornell box with the light box under the ceiling and both
 // small spheres, which SmallVCM builds from the flags kLightCeiling | kBothSmallSpheres. Rebuilt
 // here from the numbers its scene description gives, in its own frame (z up, the camera looking
 // along +y), so an image of ours and one of SmallVCM's line up pixel for pixel: right is
