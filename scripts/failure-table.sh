@@ -61,7 +61,7 @@ screenshot "$out/index.html" docs/images/failures-benchmark.png 1400,1150
 screenshot "$out/sds/index.html" docs/images/failures-page-sds.png 1400,1400
 
 # Replace the generated block of docs/failures.md, keeping the hand-written text around it.
-note="relMSE against a vcm reference (10 × the time) after ${seconds} s per run at ${size}x${size}, mean of ${runs} runs ($(date -u +%Y-%m-%d), $(nproc) cores); lower is better, the best of each row in bold; \"biased n/N\": blocks where Welch's t-test against bdpt's runs finds bias (Holm, family-wise 1 %)."
+note="relMSE against a vcm reference (10 × the time) after ${seconds} s per run at ${size}x${size}, mean of ${runs} runs ($(date -u +%Y-%m-%d), $(nproc) cores); lower is better; in bold, a row's best where its mean ± sd is clear of the runner-up's; \"biased n/N\": blocks where Welch's t-test against bdpt's runs finds bias (Holm, family-wise 1 %)."
 awk -v table="$out/results.md" -v note="$note" '
   /<!-- table:begin -->/ { print; print ""; print note; print ""; while ((getline line < table) > 0) print line; print ""; skip = 1; next }
   /<!-- table:end -->/ { skip = 0 }
