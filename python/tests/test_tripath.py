@@ -72,6 +72,21 @@ def test_bad_input_is_a_value_error_with_the_command_lines_message(tmp_path, cor
         tripath.render(cornell, "vcm", light_paths=0)
 
 
+def test_every_keyword_option_the_error_names_is_taken(cornell):
+    # The unknown-option error lists the keyword options from the parameter table; each must be one
+    # that render() takes (pt refuses the ones it does not use, in other words). Catches a
+    # parameter added to the table but not to the keywords render() reads.
+    with pytest.raises(ValueError) as e:
+        tripath.render(cornell, "pt", radious=0.1)
+    names = str(e.value).split("the integrator options are ")[1].rstrip(")").split(", ")
+    assert len(names) >= 9 and "rr_depth" in names and "large_step" in names
+    for name in names:
+        try:
+            tripath.render(cornell, "pt", spp=1, width=4, height=4, **{name: 1})
+        except ValueError as refused:
+            assert "unknown option" not in str(refused), name
+
+
 def write_gltf_with_degenerate_triangle(path):
     """A quad light facing a floor, plus one zero-area triangle the loader drops with a warning."""
     positions = [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1),  # floor
