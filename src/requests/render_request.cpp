@@ -22,10 +22,10 @@ Metadata environmentMetadata(const RenderRequest& r) {
     return {{"tripath:environment", r.environment}, {"tripath:environment-scale", fmt::format("{:.9g}", r.environmentScale)}};
 }
 
-// tripath:rr-depth: the roulette start depth `integrator` renders with, or "none" for mlt, whose
+// tripath:rr-depth: the roulette start depth an integrator renders with, or "none" for mlt, whose
 // chains' walks play no roulette.
-std::string rouletteText(const RenderRequest& r, const std::string& integrator) {
-    return makeIntegrator(integrator, {})->runsChains() ? "none" : std::to_string(rouletteDepth(r, integrator));
+std::string rouletteText(const Integrator& integrator, int depth) {
+    return integrator.runsChains() ? "none" : std::to_string(depth);
 }
 
 // The front ends' names of the heuristics; the path core knows only the enum.
@@ -150,7 +150,7 @@ Metadata convergenceSettings(const RenderRequest& r, const std::string& integrat
     Metadata m{{"tripath:scene", r.scene},
                {"tripath:integrator", integrator},
                {"tripath:max-depth", std::to_string(r.maxDepth)},
-               {"tripath:rr-depth", rouletteText(r, integrator)},
+               {"tripath:rr-depth", rouletteText(*makeIntegrator(integrator, {}), rouletteDepth(r, integrator))},
                {"tripath:mis", r.mis}};
     const Metadata environment = environmentMetadata(r);
     m.insert(m.end(), environment.begin(), environment.end());
@@ -167,8 +167,7 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:seed", std::to_string(r.seed)},
                {"tripath:streams", streamsName(r.domain)},
                {"tripath:max-depth", std::to_string(r.maxDepth)},
-               {"tripath:rr-depth",
-                integrator.runsChains() ? "none" : std::to_string(integrator.settings().walk.rrDepth)},
+               {"tripath:rr-depth", rouletteText(integrator, integrator.settings().walk.rrDepth)},
                {"tripath:mis", r.mis},
                {"tripath:dropped-samples", std::to_string(result.droppedSamples)},
                {"tripath:guarded-weights", std::to_string(result.guardedWeights)},
