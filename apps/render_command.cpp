@@ -155,8 +155,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_flag("--depth-images", c->options.depthImages,
                   "Also write <out>-k<K>.exr for each path length K = 1..max-depth: the Neumann-series terms, which "
                   "add up to the full image");
-    inRange(cmd->add_option("--strategy-images", c->options.strategyImages, helpOf("strategy-images")),
-            kStrategyImagesRange);
+    inRange(documented(cmd->add_option("--strategy-images", c->options.strategyImages), c->options), kStrategyImagesRange);
     cmd->add_option("--replay", c->replay,
                     "PASS,PIXEL: render that one sample again (PIXEL = y * width + x; for lt that pixel's light paths PIXEL, PIXEL + width * height, ...) with "
                     "the other flags as given, and print each of its contributions (strategy, f/p, MIS weight), NaN or "

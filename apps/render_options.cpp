@@ -45,7 +45,10 @@ CLI::Option* inRange(CLI::Option* option, const IntRange& range) {
     return option->check(CLI::Validator(check, fmt::format("INT in [{}, {}]", range.min, range.max)));
 }
 
-std::string helpOf(const std::string& flag) { return describe(integratorParameter(flag)); }
+CLI::Option* documented(CLI::Option* option, const RenderRequest& defaults) {
+    const IntegratorParameter& p = integratorParameter(option->get_name().substr(2));
+    return option->description(describe(p))->default_str(p.shownDefault(defaults));
+}
 
 std::vector<std::string> splitCommas(const std::string& text) {
     std::vector<std::string> items;
@@ -93,38 +96,32 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                            "Longest path kept, in segments k: 1 = emitters seen directly, 2 = direct lighting, ...")
                 ->capture_default_str(),
             kMaxDepthRange);
-    inRange(cmd.add_option("--rr-depth", o.rrDepth, helpOf("rr-depth")), kRrDepthRange);
+    inRange(documented(cmd.add_option("--rr-depth", o.rrDepth), o), kRrDepthRange);
     cmd.add_option("--mis", o.mis, "MIS heuristic: balance, power (beta = 2) or none (uniform weights)")
         ->capture_default_str();
-    // The integrators' own parameters: help and shown default from integrator_parameters.h.
-    auto parameter = [&cmd, &o](CLI::Option* option) {
-        return option->default_str(integratorParameter(option->get_name().substr(2)).shownDefault(o));
-    };
-    auto* radius = parameter(cmd.add_option_function<float>(
-        "--radius", [&o](float v) { o.merge.radius = v, o.radiusGiven = true; }, helpOf("radius")));
-    auto* factor = parameter(cmd.add_option_function<float>(
-        "--radius-factor", [&o](float v) { o.merge.radiusFactor = v, o.radiusFactorGiven = true; },
-        helpOf("radius-factor")));
-    parameter(cmd.add_option_function<float>(
-                  "--radius-pixels", [&o](float v) { o.merge.radiusPixels = v, o.radiusPixelsGiven = true; },
-                  helpOf("radius-pixels")))
+    // The integrators' own parameters, documented in integrator_parameters.cpp.
+    auto* radius = documented(cmd.add_option_function<float>(
+        "--radius", [&o](float v) { o.merge.radius = v, o.radiusGiven = true; }), o);
+    auto* factor = documented(cmd.add_option_function<float>(
+        "--radius-factor", [&o](float v) { o.merge.radiusFactor = v, o.radiusFactorGiven = true; }), o);
+    documented(cmd.add_option_function<float>(
+                  "--radius-pixels", [&o](float v) { o.merge.radiusPixels = v, o.radiusPixelsGiven = true; }), o)
         ->excludes(radius)
         ->excludes(factor);
     radius->excludes(factor);
-    parameter(cmd.add_option_function<float>(
-        "--alpha", [&o](float v) { o.merge.alpha = v, o.alphaGiven = true; }, helpOf("alpha")));
-    inRange(parameter(cmd.add_option_function<int64_t>(
-                "--light-paths", [&o](int64_t v) { o.lightPaths = v, o.lightPathsGiven = true; }, helpOf("light-paths"))),
+    documented(cmd.add_option_function<float>(
+        "--alpha", [&o](float v) { o.merge.alpha = v, o.alphaGiven = true; }), o);
+    inRange(documented(cmd.add_option_function<int64_t>(
+                "--light-paths", [&o](int64_t v) { o.lightPaths = v, o.lightPathsGiven = true; }), o),
             kLightPathsRange);
-    inRange(parameter(cmd.add_option_function<int64_t>(
-                "--bootstrap", [&o](int64_t v) { o.metropolis.bootstrap = v, o.bootstrapGiven = true; },
-                helpOf("bootstrap"))),
+    inRange(documented(cmd.add_option_function<int64_t>(
+                "--bootstrap", [&o](int64_t v) { o.metropolis.bootstrap = v, o.bootstrapGiven = true; }), o),
             kBootstrapRange);
-    inRange(parameter(cmd.add_option_function<int>(
-                "--chains", [&o](int v) { o.metropolis.chains = v, o.chainsGiven = true; }, helpOf("chains"))),
+    inRange(documented(cmd.add_option_function<int>(
+                "--chains", [&o](int v) { o.metropolis.chains = v, o.chainsGiven = true; }), o),
             kChainsRange);
-    parameter(cmd.add_option_function<float>(
-        "--large-step", [&o](float v) { o.metropolis.largeStep = v, o.largeStepGiven = true; }, helpOf("large-step")));
+    documented(cmd.add_option_function<float>(
+        "--large-step", [&o](float v) { o.metropolis.largeStep = v, o.largeStepGiven = true; }), o);
     inRange(cmd.add_option("--seed", o.seed, "Seed: the same seed and sample count give the same image on any thread count")
                 ->capture_default_str(),
             kSeedRange);

@@ -29,9 +29,9 @@ struct RenderOptions : RenderRequest {
 // empty item (",," or a trailing comma) is kept so that the command can refuse it.
 std::vector<std::string> splitCommas(const std::string& text);
 
-// The --help text of an integrator parameter (requests/integrator_parameters.h), by its flag
-// without the dashes.
-std::string helpOf(const std::string& flag);
+// Gives the option of an integrator parameter (requests/integrator_parameters.h, found by its
+// flag) its help and the default it shows, from `defaults`. Returns the option.
+CLI::Option* documented(CLI::Option* option, const RenderRequest& defaults);
 
 // Refuses an integer flag's value outside `range` (render_request.h) with validate()'s one line,
 // checked on the text before CLI11 converts it, so that a number too large for the flag's type
