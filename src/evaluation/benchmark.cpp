@@ -48,12 +48,11 @@ int biasBlockSize(int width, int height) { return std::max(4, (std::max(width, h
 // The colour of a bias map's pixel over an image of luminance `lum` (clamped to 1): the image in
 // grey at 30 %, under red where the block is biased, and otherwise a grey darker the smaller the
 // block's p-value (black at p ≤ 1e-6).
-std::array<float, 3> biasColour(double p, bool biased, float lum) {
+Rgb biasColour(double p, bool biased, float lum) {
     const float shade = float(std::clamp(1 + std::log10(std::max(p, 1e-6)) / 6, 0.0, 1.0));
-    static constexpr std::array<float, 3> kRed{1, 0.05f, 0.05f};
-    std::array<float, 3> c;
-    for (int i = 0; i < 3; ++i) c[i] = 0.3f * std::min(1.0f, lum) + 0.7f * (biased ? kRed[i] : shade);
-    return c;
+    const float under = 0.3f * std::min(1.0f, lum);
+    return biased ? Rgb{under + 0.7f, under + 0.035f, under + 0.035f}
+                  : Rgb{under + 0.7f * shade, under + 0.7f * shade, under + 0.7f * shade};
 }
 
 Image biasPicture(const BiasMap& map, const Image& image) {
@@ -62,36 +61,19 @@ Image biasPicture(const BiasMap& map, const Image& image) {
         for (int x = 0; x < image.width; ++x) {
             const int b = (y / map.blockSize) * map.blocksX + x / map.blockSize;
             const float* p = image.at(x, y);
-            const auto c = biasColour(map.tests[b].p, map.biased[b], 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]);
-            std::copy(c.begin(), c.end(), out.at(x, y));
+            fillRect(out, {x, y, 1, 1}, biasColour(map.tests[b].p, map.biased[b], 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]));
         }
     return out;
 }
 
-// The scale that reads the bias maps: the p-value ramp from 1e-6 to 1 and the colour of a biased
-// block, both as over a black pixel of the image.
+// The scale that reads the bias maps, on the report's white page: the p-value ramp from 1e-6 to 1
+// and the colour of a biased block, both as over a black pixel of the image.
 Sheet biasScale() {
-    constexpr int kWidth = 520, kMargin = 30, kBarTop = 22, kBarHeight = 12, kRamp = 360;
-    const Theme& t = kLightTheme;  // the report's page is white
-    Sheet scale(kWidth, 56, t.background);
-    scale.label(kMargin, 14, "p-value of the block's t-test against the bias reference:", Font{12}, t.title);
-    Image ramp(kRamp, kBarHeight), red(40, kBarHeight);
-    for (int x = 0; x < kRamp; ++x) {
-        const auto c = biasColour(std::pow(10.0, -6 + 6.0 * x / (kRamp - 1)), false, 0);
-        fillRect(ramp, {x, 0, 1, kBarHeight}, {c[0], c[1], c[2]});
-    }
-    const auto r = biasColour(1, true, 0);
-    fillRect(red, {0, 0, 40, kBarHeight}, {r[0], r[1], r[2]});
-    scale.picture(ramp, kMargin, kBarTop);
-    for (int d = 0; d <= 6; ++d) {
-        const int x = kMargin + d * (kRamp - 1) / 6;
-        scale.fill({x, kBarTop + kBarHeight, 1, 4}, t.title);
-        scale.label(x, kBarTop + kBarHeight + 16, d == 6 ? "1" : fmt::format("1e-{}", 6 - d), Font{12}, t.detail,
-                    Anchor::Middle);
-    }
-    scale.picture(red, kMargin + kRamp + 24, kBarTop);
-    scale.label(kMargin + kRamp + 24 + 20, kBarTop + kBarHeight + 16, "biased", Font{12}, t.detail, Anchor::Middle);
-    return scale;
+    return colourBar({"p-value of the block's t-test against the bias reference:",
+                      [](double t) { return biasColour(std::pow(10.0, 6 * t - 6), false, 0); },
+                      {"1e-6", "1e-5", "1e-4", "1e-3", "1e-2", "1e-1", "1"}, 520, 360, 30,
+                      std::pair{biasColour(1, true, 0), std::string("biased")}},
+                     kLightTheme);
 }
 
 // Run 0's image at the comparison's exposure, shrunk to at most kThumbnail pixels across.

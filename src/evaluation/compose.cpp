@@ -15,12 +15,6 @@ namespace {
 constexpr int kGap = 8, kLabelHeight = 44;
 constexpr Font kTitle{15, true}, kDetail{13};
 
-Image magnify(const Image& img, int scale) {
-    Image out(img.width * scale, img.height * scale);
-    paste(out, img, 0, 0, scale);
-    return out;
-}
-
 void checkPanels(const std::vector<Panel>& panels, const Region& r) {
     if (panels.empty()) throw InputError("side-by-side: no images to compose");
     const Image& first = panels.front().image;
@@ -61,7 +55,7 @@ Sheet sideBySide(const std::vector<Panel>& panels, const Region& r, const SheetS
 }
 
 Image magnifiedCrop(const Image& image, const Region& r, int size) {
-    return magnify(crop(image, r.x, r.y, r.w, r.h), std::max(1, size / std::max(r.w, r.h)));
+    return magnified(crop(image, r.x, r.y, r.w, r.h), std::max(1, size / std::max(r.w, r.h)));
 }
 
 }  // namespace tripath

@@ -54,21 +54,13 @@ Image errorMap(const Image& test, const Image& reference, double epsilon) {
 }
 
 Sheet errorColourBar(int width, const Theme& theme) {
-    constexpr int kHeight = 56, kBarTop = 24, kBarHeight = 12, kMargin = 40;
-    Sheet bar(width, kHeight, theme.background);
-    const int barWidth = std::max(1, std::min(width - 2 * kMargin, 640));
-    bar.label(kMargin, 16, "relative squared error per pixel, (x - r)^2 / (r^2 + 0.01):", Font{12}, theme.title);
-    Image ramp(barWidth, kBarHeight);
-    for (int x = 0; x < barWidth; ++x) fillRect(ramp, {x, 0, 1, kBarHeight}, colourAt(double(x) / std::max(1, barWidth - 1)));
-    bar.picture(ramp, kMargin, kBarTop);
+    constexpr int kMargin = 40;
     const int decades = int(std::lround(std::log10(kErrorMapHigh / kErrorMapLow)));
-    for (int d = 0; d <= decades; ++d) {
-        const int x = kMargin + int(std::lround(double(d) / decades * (barWidth - 1)));
-        bar.fill({x, kBarTop + kBarHeight, 1, 4}, theme.title);
-        bar.label(x, kBarTop + kBarHeight + 16, fmt::format("1e{}", int(std::log10(kErrorMapLow)) + d), Font{12},
-                  theme.detail, Anchor::Middle);
-    }
-    return bar;
+    std::vector<std::string> ticks;
+    for (int d = 0; d <= decades; ++d) ticks.push_back(fmt::format("1e{}", int(std::log10(kErrorMapLow)) + d));
+    return colourBar({"relative squared error per pixel, (x - r)^2 / (r^2 + 0.01):", colourAt, ticks, width,
+                      std::min(width - 2 * kMargin, 640), kMargin},
+                     theme);
 }
 
 }  // namespace tripath

@@ -60,21 +60,46 @@ Sheet stackRows(const std::vector<Sheet>& rows, const Theme& theme) {
     return sheet;
 }
 
+Sheet colourBar(const ColourBar& b, const Theme& theme) {
+    constexpr int kHeight = 56, kBarTop = 24, kBarHeight = 12, kSwatch = 40;
+    constexpr Font kFont{12};
+    const int ramp = std::max(2, b.rampWidth);
+    Sheet sheet(b.width, kHeight, theme.background);
+    sheet.label(b.margin, 16, b.title, kFont, theme.title);
+    Image pixels(ramp, kBarHeight);
+    for (int x = 0; x < ramp; ++x) fillRect(pixels, {x, 0, 1, kBarHeight}, b.colour(double(x) / (ramp - 1)));
+    sheet.picture(pixels, b.margin, kBarTop);
+    const size_t n = b.ticks.size();
+    for (size_t i = 0; i < n; ++i) {
+        const int x = b.margin + int(std::lround(n > 1 ? double(i) / double(n - 1) * (ramp - 1) : 0.0));
+        sheet.fill({x, kBarTop + kBarHeight, 1, 4}, theme.title);
+        sheet.label(x, kBarTop + kBarHeight + 16, b.ticks[i], kFont, theme.detail, Anchor::Middle);
+    }
+    if (b.swatch) {
+        const int x = b.margin + ramp + 24;
+        Image swatch(kSwatch, kBarHeight);
+        fillRect(swatch, {0, 0, kSwatch, kBarHeight}, b.swatch->first);
+        sheet.picture(swatch, x, kBarTop);
+        sheet.label(x + kSwatch / 2, kBarTop + kBarHeight + 16, b.swatch->second, kFont, theme.detail, Anchor::Middle);
+    }
+    return sheet;
+}
+
 namespace {
 
 using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 
 // The picture at its shown size in Cairo's pixel format (premultiplied ARGB, opaque): each pixel
-// the bytes writePng would write for it, repeated scale × scale times.
+// the bytes writePng would write for it.
 Surface pixelsOf(const Sheet::Picture& p) {
-    const std::vector<unsigned char> bytes = previewBytes(p.image);
-    const int w = p.image.width * p.scale, h = p.image.height * p.scale;
-    Surface s(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h), cairo_surface_destroy);
+    const Image shown = magnified(p.image, p.scale);
+    const std::vector<unsigned char> bytes = previewBytes(shown);
+    Surface s(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, shown.width, shown.height), cairo_surface_destroy);
     unsigned char* data = cairo_image_surface_get_data(s.get());
     const int stride = cairo_image_surface_get_stride(s.get());
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const unsigned char* b = &bytes[3 * (size_t(y / p.scale) * p.image.width + x / p.scale)];
+    for (int y = 0; y < shown.height; ++y)
+        for (int x = 0; x < shown.width; ++x) {
+            const unsigned char* b = &bytes[3 * (size_t(y) * shown.width + x)];
             reinterpret_cast<uint32_t*>(data + size_t(y) * stride)[x] = 0xff000000u | b[0] << 16 | b[1] << 8 | b[2];
         }
     cairo_surface_mark_dirty(s.get());

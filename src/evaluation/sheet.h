@@ -4,6 +4,8 @@
 // same items, so they show the same thing; in PDF and SVG the labels stay text and the pictures
 // stay pixels. The comparison sheets, the error scale and `tripath montage` are sheets.
 #pragma once
+#include <functional>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -70,6 +72,18 @@ private:
 
 // Images one under the other, left-aligned, on the theme's background.
 Sheet stackRows(const std::vector<Sheet>& rows, const Theme& theme);
+
+// A scale that reads a false-colour picture: a title, a horizontal ramp `rampWidth` pixels long
+// `margin` pixels from the left, and labelled ticks evenly spaced along it; beside it, optionally,
+// a swatch of a colour outside the ramp (a bias map's "biased"). 56 pixels high, `width` across.
+struct ColourBar {
+    std::string title;
+    std::function<Rgb(double t)> colour;  // the ramp's colour at t in [0, 1], left to right
+    std::vector<std::string> ticks;       // tick i of n at t = i / (n − 1)
+    int width, rampWidth, margin;
+    std::optional<std::pair<Rgb, std::string>> swatch{};
+};
+Sheet colourBar(const ColourBar& bar, const Theme& theme);
 
 // The sheet in the format its path's extension names (.png, .pdf or .svg; InputError otherwise),
 // written atomically. PDF pages are sized one point per pixel, SVG in pixels.

@@ -34,6 +34,12 @@ void paste(Image& dst, const Image& src, int x, int y, int scale) {
         }
 }
 
+Image magnified(const Image& img, int scale) {
+    Image out(img.width * scale, img.height * scale);
+    paste(out, img, 0, 0, scale);
+    return out;
+}
+
 Image shrink(const Image& img, int factor) {
     if (factor == 1) return img;
     Image out(img.width / factor, img.height / factor);

@@ -26,6 +26,8 @@ void strokeRect(Image& img, Region r, Rgb c, int thickness = 1);
 // Copies `src` into `dst` with its top-left corner at (x, y), each pixel repeated scale x scale
 // times (nearest neighbour: magnified noise stays noise, not blur).
 void paste(Image& dst, const Image& src, int x, int y, int scale = 1);
+// `img` with each pixel repeated scale × scale times.
+Image magnified(const Image& img, int scale);
 // Each factor × factor block of `img` averaged into one pixel (a box filter; a partial block at the
 // right or bottom edge is left out): a thumbnail, or a figure small enough to keep.
 Image shrink(const Image& img, int factor);
