@@ -83,17 +83,6 @@ void writeThumbnail(const std::string& path, const Image& image, float exposureS
              exposureStops);
 }
 
-// The names of a list parameter: none empty, none twice, at least one.
-void checkList(const std::vector<std::string>& items, const char* flag, Spelling spelling) {
-    const std::string name = parameterName(flag, spelling);
-    for (size_t i = 0; i < items.size(); ++i) {
-        if (items[i].empty()) throw InputError(fmt::format("{} has an empty entry", name));
-        if (std::find(items.begin(), items.begin() + i, items[i]) != items.begin() + i)
-            throw InputError(fmt::format("{} names '{}' twice", name, items[i]));
-    }
-    if (items.empty()) throw InputError(fmt::format("{} needs at least one entry", name));
-}
-
 const std::string& baselineOf(const BenchmarkRequest& r) { return r.baseline.empty() ? r.methods.front() : r.baseline; }
 
 double referenceSeconds(const BenchmarkRequest& r) {
@@ -363,8 +352,7 @@ void validate(const BenchmarkRequest& r, Spelling spelling) {
     if (r.referenceSeconds < 0)
         throw InputError(fmt::format("{} must be above 0 (got {})", name("reference-time"), r.referenceSeconds));
     checkList(r.scenes, "scenes", spelling);
-    checkList(r.methods, "integrators", spelling);
-    for (const std::string& m : r.methods) makeIntegrator(m, {});
+    checkList(r.methods, "integrators", spelling, [](const std::string& m) { makeIntegrator(m, {}); });
     makeIntegrator(r.referenceIntegrator, {});
     makeIntegrator(r.biasReference, {});
     if (!(r.biasLevel > 0 && r.biasLevel < 1))

@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
-#include <set>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -17,17 +17,6 @@ namespace tripath::evaluation {
 namespace fs = std::filesystem;
 
 namespace {
-
-void checkMethods(const std::vector<std::string>& methods, Spelling spelling) {
-    const std::string name = parameterName("integrators", spelling);
-    if (methods.empty()) throw InputError(name + " is empty");
-    std::set<std::string> seen;
-    for (const std::string& m : methods) {
-        if (m.empty()) throw InputError(name + " has an empty entry");
-        makeIntegrator(m, {});  // throws for an unknown name
-        if (!seen.insert(m).second) throw InputError(fmt::format("{} lists '{}' twice", name, m));
-    }
-}
 
 // The rendered methods and, when the comparison renders its reference, its integrator.
 std::vector<std::string> renderingIntegrators(const CompareRequest& r) {
@@ -54,6 +43,18 @@ void keepRuns(std::vector<RunOutput>& outputs, const std::string& dir, Compariso
 }
 
 }  // namespace
+
+void checkList(const std::vector<std::string>& items, const char* flag, Spelling spelling,
+               const std::function<void(const std::string&)>& known, bool mayBeEmpty) {
+    const std::string name = parameterName(flag, spelling);
+    for (size_t i = 0; i < items.size(); ++i) {
+        if (items[i].empty()) throw InputError(fmt::format("{} has an empty entry", name));
+        if (known) known(items[i]);
+        if (std::find(items.begin(), items.begin() + i, items[i]) != items.begin() + i)
+            throw InputError(fmt::format("{} lists '{}' twice", name, items[i].substr(0, 40)));
+    }
+    if (items.empty() && !mayBeEmpty) throw InputError(fmt::format("{} needs at least one entry", name));
+}
 
 void checkOutDir(const std::string& dir, const std::string& file, Spelling spelling) {
     const std::string name = parameterName("out", spelling);
@@ -89,20 +90,17 @@ void validate(const CompareRequest& r, Spelling spelling) {
         throw InputError(outOfRange(name("runs"), kRunsRange, std::to_string(r.runs)));
     if (r.referenceSeconds < 0)
         throw InputError(fmt::format("{} must be above 0 (got {})", name("reference-time"), r.referenceSeconds));
-    checkMethods(r.methods, spelling);
+    checkList(r.methods, "integrators", spelling, [](const std::string& m) { makeIntegrator(m, {}); });
     makeIntegrator(r.referenceIntegrator, {});  // an unknown name is refused before anything renders
     requireUsed(r.render, renderingIntegrators(r), spelling);
     if (const auto& c = r.crop;
         c && (c->w <= 0 || c->h <= 0 || c->x < 0 || c->y < 0 || c->x > r.render.width - c->w || c->y > r.render.height - c->h))
         throw InputError(fmt::format("{} {},{},{},{} is not inside the {}x{} image", name("crop"), c->x, c->y, c->w, c->h,
                                      r.render.width, r.render.height));
-    for (size_t i = 0; i < r.sheetFormats.size(); ++i) {
-        const std::string& f = r.sheetFormats[i];
+    checkList(r.sheetFormats, "formats", spelling, [&](const std::string& f) {
         if (std::find(kSheetFormats.begin(), kSheetFormats.end(), f) == kSheetFormats.end())
             throw InputError(fmt::format("{} takes png, pdf and svg (got '{}')", name("formats"), f.substr(0, 20)));
-        if (std::find(r.sheetFormats.begin(), r.sheetFormats.begin() + i, f) != r.sheetFormats.begin() + i)
-            throw InputError(fmt::format("{} names {} twice", name("formats"), f));
-    }
+    }, true);
     if (!r.referenceImage.rgb.empty() &&
         (r.referenceImage.width != r.render.width || r.referenceImage.height != r.render.height))
         throw InputError(fmt::format("the reference is {}x{}, the renders {}x{}", r.referenceImage.width,

@@ -77,6 +77,11 @@ constexpr double kReferenceBudget = 10;
 // is made once the inputs are known good (createDirectory). Only rank 0 checks files.
 void validate(const CompareRequest& r, Spelling spelling);
 
+// The names of a list parameter: none empty, each one `known` accepts (it throws InputError for a
+// name it does not know), none twice, and at least one unless the list may be empty.
+void checkList(const std::vector<std::string>& items, const char* flag, Spelling spelling,
+               const std::function<void(const std::string&)>& known = {}, bool mayBeEmpty = false);
+
 // Throws InputError unless `dir` is a directory in which `file` can be written, or one that can
 // be made: the nearest of its ancestors that exists is a directory that takes new entries.
 // Creates nothing.
