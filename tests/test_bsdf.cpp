@@ -363,6 +363,7 @@ const std::vector<float> kAlbedoAngles = {0.0f, 30.0f, 60.0f, 80.0f, 89.0f, 120.
 TEST(Bsdf, DirectionalAlbedoAtMostOne) {
     std::vector<Material> materials = nonDeltaMaterials();
     materials.push_back(makeMaterial(MaterialType::Mirror, Spectrum(1.0f)));
+    materials.push_back(makeMaterial(MaterialType::SmoothConductor, Spectrum(0.9f), 0.0f));
     materials.push_back(makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, 1.5f));
     materials.push_back(makeMaterial(MaterialType::Plastic, Spectrum(1.0f), 0.15f, 3.0f));
     int k = 0;
@@ -406,6 +407,37 @@ TEST(Bsdf, MirrorReflectsWithItsAlbedo) {
         EXPECT_EQ(s->wi, Vec3(-wo.x, -wo.y, wo.z));
         const Spectrum w = s->f * (std::abs(s->wi.z) / s->pdf);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(w[c], a[c], 1e-6f);
+    }
+}
+
+// glTF's metallic 1, roughness 0 is the rough conductor's limit: a delta reflection of Schlick's
+// F0 + (1 − F0)(1 − cos θ)⁵, written out here (F0 = 0.5 reads 0.694 at 80°, not 0.5). And the same
+// limit reached through a texture (MetallicRoughness, metallic 1, roughness 0: the GGX path at its
+// smallest α) reflects as much, its directional albedo within 1 % of the delta's at 0°–85°, so
+// that a file's factor and its texture render alike. Catches a constant-reflectance mirror (28 %
+// too dark at 80°), Fresnel taken at the wrong cosine, or a factor path that differs from the
+// texture path.
+TEST(Bsdf, SmoothConductorIsTheRoughOnesLimitWithSchlicksFresnel) {
+    const Spectrum f0(0.5f, 0.8f, 0.2f);
+    const Material smooth = makeMaterial(MaterialType::SmoothConductor, f0, 0.0f);
+    EXPECT_TRUE(isDelta(smooth));
+    const Material textured = metallicRoughness(f0, 1.0f, 0.0f);
+    int k = 0;
+    for (float theta : {0.0f, 30.0f, 60.0f, 80.0f, 85.0f}) {
+        const Vec3 wo = directionAtAngle(theta);
+        const auto s = sampleBsdf(smooth, wo, {0.3f, 0.6f}, 0.2f, TransportMode::Radiance);
+        ASSERT_TRUE(s.has_value());
+        EXPECT_TRUE(s->delta);
+        EXPECT_EQ(s->wi, Vec3(-wo.x, -wo.y, wo.z));
+        const Spectrum w = s->f * (std::abs(s->wi.z) / s->pdf);
+        const double c = std::cos(double(theta) * std::numbers::pi / 180);
+        Rng rng = testRng(2600 + k++);
+        const Estimate e = directionalAlbedo(textured, wo, TransportMode::Radiance, 20000, rng);
+        for (int ch = 0; ch < 3; ++ch) {
+            const double schlick = f0[ch] + (1 - f0[ch]) * std::pow(1 - c, 5);
+            EXPECT_NEAR(w[ch], schlick, 1e-5) << "θ=" << theta << " channel " << ch;
+            EXPECT_NEAR(e.mean[ch], schlick, 0.01 * schlick + 4 * e.sigma[ch]) << "θ=" << theta << " channel " << ch;
+        }
     }
 }
 
@@ -658,6 +690,7 @@ TEST(Bsdf, FiniteForDegenerateDirections) {
     };
     std::vector<Material> materials = nonDeltaMaterials();
     materials.push_back(makeMaterial(MaterialType::Mirror, Spectrum(1.0f)));
+    materials.push_back(makeMaterial(MaterialType::SmoothConductor, Spectrum(0.5f), 0.0f));
     materials.push_back(makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, 1.5f));
     materials.push_back(makeMaterial(MaterialType::Dielectric, Spectrum(1.0f), 0.0f, 1.0f));
     materials.push_back(makeMaterial(MaterialType::Plastic, Spectrum(1.0f), 0.5f, 1.0f));
@@ -705,8 +738,9 @@ TEST(Bsdf, ValidateRejectsBadParameters) {
         EXPECT_FALSE(msg.empty()) << why;
         EXPECT_EQ(msg.find('\n'), std::string::npos) << why;
     };
-    for (MaterialType t : {MaterialType::Lambertian, MaterialType::Mirror, MaterialType::Dielectric,
-                           MaterialType::Conductor, MaterialType::Plastic, MaterialType::MetallicRoughness}) {
+    for (MaterialType t : {MaterialType::Lambertian, MaterialType::Mirror, MaterialType::SmoothConductor,
+                           MaterialType::Dielectric, MaterialType::Conductor, MaterialType::Plastic,
+                           MaterialType::MetallicRoughness}) {
         const Material ok = makeMaterial(t, Spectrum(0.5f), 0.5f, 1.5f);
         Material m = ok;
         m.albedo.y = nan;

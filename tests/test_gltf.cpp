@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "io/gltf_checks.h"
 #include "io/gltf_loader.h"
+#include "io/gltf_materials.h"
 #include "io/gltf_model.h"
 
 namespace tripath {
@@ -400,27 +401,32 @@ TEST_F(GltfTest, MaterialsMapToTypesAndParameters) {
     setExtension(glass.extensions, "KHR_materials_ior", "ior", tinygltf::Value(1.33));
     tinygltf::Material thinGlass = pbrMaterial("thin glass", {1, 1, 1, 1}, 0, 0);
     setExtension(thinGlass.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(1));
+    tinygltf::Material mirror = pbrMaterial("mirror", {0.9, 0.9, 0.9, 1}, 1, 0);
+    mirror.extras = gltf::mirrorMarker();
     b.model.materials = {glass,
-                         pbrMaterial("mirror", {0.9, 0.9, 0.9, 1}, 1, 0),
+                         pbrMaterial("smooth metal", {0.9, 0.9, 0.9, 1}, 1, 0),
                          pbrMaterial("metal", {1, 0.8, 0.5, 1}, 1, 0.3),
                          pbrMaterial("diffuse", {0.2, 0.4, 0.6, 1}, 0, 1),
                          pbrMaterial("plastic", {0.5, 0.1, 0.1, 1}, 0, 0.4),
-                         thinGlass};
+                         thinGlass,
+                         mirror};
     const int positions = b.addVec3(kTriangle);
-    for (int m = 0; m < 6; ++m) b.addTriangleMesh(positions, -1, m);
+    for (int m = 0; m < 7; ++m) b.addTriangleMesh(positions, -1, m);
     b.addTriangleMesh(positions);  // no material
-    for (int m = 0; m < 7; ++m) b.addRoot({.mesh = m});
+    for (int m = 0; m < 8; ++m) b.addRoot({.mesh = m});
     const SceneDesc scene = load(b.write(file("materials.gltf")));
 
-    ASSERT_EQ(scene.meshes.size(), 7u);
-    ASSERT_EQ(scene.materials.size(), 7u);
-    for (int m = 0; m < 6; ++m) EXPECT_EQ(scene.meshes[m].material, m);
+    ASSERT_EQ(scene.meshes.size(), 8u);
+    ASSERT_EQ(scene.materials.size(), 8u);
+    for (int m = 0; m < 7; ++m) EXPECT_EQ(scene.meshes[m].material, m);
     const auto& mats = scene.materials;
     EXPECT_EQ(mats[0].type, MaterialType::Dielectric);
     EXPECT_FLOAT_EQ(mats[0].ior, 1.33f);
     expectNear(mats[0].albedo, {0.9f, 0.95f, 1});
-    EXPECT_EQ(mats[1].type, MaterialType::Mirror);
+    EXPECT_EQ(mats[1].type, MaterialType::SmoothConductor);  // the BRDF's limit: Schlick's Fresnel
     expectNear(mats[1].albedo, Vec3(0.9f));
+    EXPECT_EQ(mats[6].type, MaterialType::Mirror);  // marked as the renderer's Fresnel-free mirror
+    expectNear(mats[6].albedo, Vec3(0.9f));
     EXPECT_EQ(mats[2].type, MaterialType::Conductor);
     EXPECT_FLOAT_EQ(mats[2].roughness, 0.3f);
     expectNear(mats[2].albedo, {1, 0.8f, 0.5f});
@@ -432,9 +438,9 @@ TEST_F(GltfTest, MaterialsMapToTypesAndParameters) {
     expectNear(mats[4].albedo, {0.5f, 0.1f, 0.1f});
     EXPECT_EQ(mats[5].type, MaterialType::Dielectric);
     EXPECT_FLOAT_EQ(mats[5].ior, 1.5f);
-    EXPECT_EQ(mats[6].type, MaterialType::Lambertian);  // the default for no material
-    expectNear(mats[6].albedo, Vec3(0.8f));
-    EXPECT_EQ(scene.meshes[6].material, 6);
+    EXPECT_EQ(mats[7].type, MaterialType::Lambertian);  // the default for no material
+    expectNear(mats[7].albedo, Vec3(0.8f));
+    EXPECT_EQ(scene.meshes[7].material, 7);
     for (const Material& m : mats) EXPECT_TRUE(isBlack(m.emission)) << m.name;
 }
 

@@ -213,7 +213,8 @@ std::vector<OracleScene> oracleScenes(Pdfs pdfs = Pdfs::FromPoints) {
     for (const char* name : {"cornell", "cornell-spheres", "cornell-small", "cornell-point", "veach-mis", "furnace", "smallvcm-5"})
         v.push_back({builtinScene(name)});
     v.push_back({cornellTessellated(100)});
-    for (MaterialType type : {MaterialType::Mirror, MaterialType::Dielectric, MaterialType::Conductor})
+    for (MaterialType type : {MaterialType::Mirror, MaterialType::SmoothConductor, MaterialType::Dielectric,
+                              MaterialType::Conductor})
         v.push_back({test::cornellEmissive(type)});
     v.push_back({test::everyEmitterKind()});
     v.push_back({test::everyEmitterKindUnderTheSky()});

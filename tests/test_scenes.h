@@ -8,8 +8,8 @@
 
 namespace tripath::test {
 
-// The Cornell box whose ceiling light is made of `type` (mirror or glass: smooth; conductor:
-// roughness 0.3), grey, still emitting the same radiance. The camera looks down at the floor and
+// The Cornell box whose ceiling light is made of `type` (mirror, smooth conductor or glass:
+// smooth; conductor: roughness 0.3), grey, still emitting the same radiance. The camera looks down at the floor and
 // the boxes, so the emitter itself is never seen directly: light tracing can then estimate every
 // pixel, and all three integrators must agree.
 inline SceneDesc cornellEmissive(MaterialType type) {

@@ -113,6 +113,43 @@ TEST_F(Textures, TrianglesOfABlackPartOfAnEmissiveTextureAreNoEmitters) {
     EXPECT_EQ(scene->emitters().all().size(), 1u);
 }
 
+// A triangle whose emissive texture is black but for one texel that none of the power estimate's
+// 256 points falls on still emits: it stays an emitter, so light tracing (which starts only from
+// emitters) sees the quad as it is, the texel's pixel reading its radiance L (the quad fills a
+// 64 × 64 image, a texel a pixel) and every other pixel 0. Catches an emitter dropped because its
+// estimate found nothing (the file is then refused as having no emitter, or renders black).
+TEST_F(Textures, OneBrightTexelBetweenThePowerEstimatesPointsStillEmits) {
+    constexpr int kSide = 64, kX = 40, kY = 45;  // (40, 45) lies in triangle 0, u + v > 1
+    std::vector<uint8_t> texels(3 * kSide * kSide, 0);
+    for (int c = 0; c < 3; ++c) texels[size_t(3 * (kY * kSide + kX) + c)] = 255;
+    writePng(file("dot.png"), kSide, kSide, 3, texels);
+    TexturedScene s;
+    nlohmann::json m = blackMaterial();
+    const float L = 8;
+    m["emissiveFactor"] = {1, 1, 1};
+    m["emissiveTexture"] = {{"index", s.addTexture("dot.png")}};
+    m["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", L}}}};
+    s.addQuad({.material = s.addMaterial(m)});
+    s.setCamera(2);
+    const Scene scene(loadGltf(s.write(file("scene.gltf")), [](const std::string&) {}), kSide, kSide);
+    EXPECT_GE(scene.emitters().emitterOfTriangle(0), 0);
+    EXPECT_EQ(scene.emitters().emitterOfTriangle(1), -1);  // no texel under it emits
+    RenderRequest r = smallRequest();
+    r.integrator = "lt";
+    r.width = r.height = kSide;
+    r.spp = 64;
+    const std::vector<Image> images = renderRuns(scene, r, 16, 700);
+    std::vector<double> texel, elsewhere;
+    for (const Image& img : images) {
+        texel.push_back(blockMean(img, kX, kY, 1, 1));
+        elsewhere.push_back(blockMean(img, 0, 0, kSide, kSide) * kSide * kSide - texel.back());
+    }
+    const MeanError e = meanAndError(texel);
+    EXPECT_NEAR(e.mean, L, 5 * e.stderr_);
+    EXPECT_LT(5 * e.stderr_, 0.25 * L);  // the check has power
+    EXPECT_NEAR(meanAndError(elsewhere).mean, 0.0, 1e-9);
+}
+
 // The mean over independent runs of each texel's pixels, per channel, against `expected` (of
 // texel x, y and channel c): within 5 standard errors of 32 runs (t with 31 degrees of freedom:
 // a false alarm among the 96 comparisons of a test has probability about 0.002).
@@ -409,37 +446,65 @@ TEST_F(Textures, EmbeddedImagesReadAsFilesDo) {
     EXPECT_GT(blockMean(images[0], 0, 0, kSize, kSize), 0.1);
 }
 
-// KHR_texture_transform: the slot maps (u, v) as the extension's README composes it, translation
-// · rotation · scale with column-major R = mat3(cos, sin, 0, −sin, cos, 0, 0, 0, 1), multiplied out
-// here step by step, and reads the coordinate set the extension's texCoord names. The texture
-// (16 × 16, repeating, nearest, linear data) holds its texel's position in its red and green.
-TEST_F(Textures, TextureTransformIsTheExtensionsMatrix) {
+// KHR_texture_transform as its README's example states it: offset [0, 1], rotation π/2 and scale
+// [0.5, 0.5] show the image's lower-left quadrant alone, turned a quarter clockwise. The texture
+// (4 × 4, nearest, linear data) holds each texel's position in its red and green; the quad's 2 × 2
+// cells, read at their centres, must show the quadrant's texels Q (Q[row][column], row 0 its top:
+// image texel x = column, y = 2 + row) turned clockwise, so that cell (row r, column c) shows
+// Q[1 − c][r]. The transform names coordinate set 1, so set 0 (far off) must not be read. Catches
+// a rotation of the other sign (the upper-right quadrant, turned anticlockwise), scale applied
+// after the rotation, or the extension's texCoord ignored.
+TEST_F(Textures, TextureTransformShowsTheExtensionsExampleQuadrant) {
     std::vector<uint8_t> bytes;
-    for (int y = 0; y < 16; ++y)
-        for (int x = 0; x < 16; ++x) bytes.insert(bytes.end(), {uint8_t(16 * x), uint8_t(16 * y), 255});
-    writePng(file("where.png"), 16, 16, 3, bytes);
+    for (int y = 0; y < kTexels; ++y)
+        for (int x = 0; x < kTexels; ++x) bytes.insert(bytes.end(), {uint8_t(16 * x), uint8_t(16 * y), 255});
+    writePng(file("where.png"), kTexels, kTexels, 3, bytes);
     TexturedScene s;
-    const float ox = 0.25f, oy = 0.5f, r = 0.3926991f, sx = 1.5f, sy = 0.75f;
     nlohmann::json m = whiteMaterial();
     m["normalTexture"] = {{"index", s.addTexture("where.png", true, true)},
                           {"extensions", {{"KHR_texture_transform",
-                                           {{"offset", {ox, oy}}, {"rotation", r}, {"scale", {sx, sy}}, {"texCoord", 1}}}}}};
+                                           {{"offset", {0, 1}}, {"rotation", 1.5707963f}, {"scale", {0.5, 0.5}},
+                                            {"texCoord", 1}}}}}};
     s.addQuad({.material = s.addMaterial(m)});
     s.addQuad({.z = 1, .material = s.addMaterial(emitterMaterial(1)), .facingDown = true});
     const SceneDesc desc = loadGltf(s.write(file("scene.gltf")), [](const std::string&) {});
     const TextureSlot& slot = desc.materials[0].textures->normal;
-    auto repeatIndex = [](float x) {
-        const int i = int(std::floor(16 * x));
-        return ((i % 16) + 16) % 16;
-    };
-    for (Vec2 uv : {Vec2{0.1f, 0.2f}, Vec2{0.33f, 0.71f}, Vec2{0.6f, 0.05f}, Vec2{0.9f, 0.45f}}) {
-        const Vec2 scaled{sx * uv.x, sy * uv.y};
-        const Vec2 rotated{scaled.x * std::cos(r) - scaled.y * std::sin(r),
-                           scaled.x * std::sin(r) + scaled.y * std::cos(r)};
-        const Vec2 expected{rotated.x + ox, rotated.y + oy};
-        const Texel t = slot.lookup({Vec2{0.97f, 0.97f}, uv});  // set 0 must not be read
-        EXPECT_EQ(std::lround(t[0] * 255 / 16), repeatIndex(expected.x)) << uv.x << "," << uv.y;
-        EXPECT_EQ(std::lround(t[1] * 255 / 16), repeatIndex(expected.y)) << uv.x << "," << uv.y;
+    for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) {
+            const Vec2 uv{(c + 0.5f) / 2, (r + 0.5f) / 2};
+            const int row = 1 - c, column = r;  // Q[1 − c][r]
+            const Texel t = slot.lookup({Vec2{0.6f, 0.1f}, uv});
+            EXPECT_EQ(std::lround(t[0] * 255 / 16), column) << "cell " << r << "," << c;
+            EXPECT_EQ(std::lround(t[1] * 255 / 16), 2 + row) << "cell " << r << "," << c;
+        }
+}
+
+// glTF's alpha is independent of the colour beside it: a base colour texel (200, 100, 50, 128)
+// reads the sRGB decoding of 200, 100 and 50 and alpha 128/255, and a texel of alpha 0 keeps its
+// colour; data textures (a normal map's RGB) read their stored bytes whatever their alpha. The PNG
+// is written byte for byte (png_bytes.h). Catches a reader that multiplies colour by alpha (0.127
+// instead of 0.578 in red; black wherever alpha is 0).
+TEST_F(Textures, RgbaTexelsReadAsStoredNotMultipliedByAlpha) {
+    const std::vector<uint8_t> texels{200, 100, 50, 128, 10, 220, 90, 0};
+    writePng(file("rgba.png"), 2, 1, 4, texels);
+    TexturedScene s;
+    nlohmann::json m = whiteMaterial();
+    const int texture = s.addTexture("rgba.png");
+    m["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", texture}};
+    m["normalTexture"] = {{"index", texture}};
+    s.addQuad({.material = s.addMaterial(m)});
+    s.addQuad({.z = 1, .material = s.addMaterial(emitterMaterial(1)), .facingDown = true});
+    const SceneDesc desc = loadGltf(s.write(file("scene.gltf")), [](const std::string&) {});
+    const MaterialTextures& t = *desc.materials[0].textures;
+    for (int x = 0; x < 2; ++x) {
+        const Vec2 uv{0.25f + 0.5f * x, 0.5f};
+        const Texel colour = t.baseColor.lookup({uv, uv}), data = t.normal.lookup({uv, uv});
+        for (int c = 0; c < 3; ++c) {
+            const uint8_t byte = texels[size_t(4 * x + c)];
+            EXPECT_NEAR(colour[size_t(c)], srgbByteToLinear(byte), 1e-6f) << "texel " << x << " channel " << c;
+            EXPECT_NEAR(data[size_t(c)], byte / 255.0f, 1e-6f) << "texel " << x << " channel " << c;
+        }
+        EXPECT_NEAR(colour[3], texels[size_t(4 * x + 3)] / 255.0f, 1e-6f) << "texel " << x;
     }
 }
 

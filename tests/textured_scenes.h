@@ -1,8 +1,7 @@
 // Small textured glTF scenes that the tests write themselves: axis-aligned quads with texture
-// coordinates, materials as glTF JSON, PNG textures written with OpenImageIO, a camera looking
-// down −z. What the loader reads from them is what a user's file would give it.
+// coordinates, materials as glTF JSON, PNG textures written byte for byte (png_bytes.h), a camera
+// looking down −z. What the loader reads from them is what a user's file would give it.
 #pragma once
-#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -15,20 +14,9 @@
 #include <vector>
 
 #include "core/vec.h"
+#include "png_bytes.h"
 
 namespace tripath::test {
-
-// Writes a PNG of width × height texels with `channels` channels, row by row from the top, of
-// 8-bit (uint8_t) or 16-bit (uint16_t) values.
-template <class T>
-void writePng(const std::filesystem::path& file, int width, int height, int channels, const std::vector<T>& values) {
-    const OIIO::TypeDesc type = sizeof(T) == 1 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
-    auto out = OIIO::ImageOutput::create(file.string());
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(width, height, channels, type)));
-    ASSERT_TRUE(out->write_image(type, values.data()));
-    ASSERT_TRUE(out->close());
-}
 
 // sRGB-encoded byte → linear (IEC 61966-2-1), the decoding glTF prescribes for colour textures.
 inline float srgbByteToLinear(uint8_t byte) {

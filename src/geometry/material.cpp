@@ -1,5 +1,5 @@
 // BSDFs of the scene model (docs/design.md §3): Lambertian, ideal mirror, smooth dielectric, rough GGX
-// conductor, a rough plastic (GGX coat over a diffuse base) and glTF's metallic-roughness mix of
+// conductor and its smooth limit, a rough plastic (GGX coat over a diffuse base) and glTF's metallic-roughness mix of
 // the last two, and the dispatch over the
 // material types behind evalBsdf, pdfBsdf and sampleBsdf. What the rough lobes share lives
 // beside it: the GGX distribution in microfacet.cpp, the plastic coat's albedo table in
@@ -73,7 +73,10 @@ Spectrum evalLambertian(const BsdfParams& m) { return m.albedo * kInvPi; }
 float pdfLambertian(Vec3 wi) { return wi.z * kInvPi; }
 
 // ---------------------------------------------------------------------------------------------
-// Mirror: f = albedo δ(wi − R(wo)) / |cos θi|, sampled with probability 1.
+// Ideal specular reflection: f = R(θ) δ(wi − reflect(wo)) / |cos θi|, sampled with probability
+// 1. The mirror's reflectance is its albedo at every angle; the smooth conductor's is Schlick's
+// Fresnel of F0 = albedo at cos θ = |cos θo| (= |cos θi|), the limit of the rough conductor's
+// F(wo·h) as its microfacet normals h gather at the shading normal.
 
 // A delta sample whose 1/|cos θi| overflowed (wo denormal-close to the plane) carries no usable
 // weight; dropping it keeps every returned value finite.
@@ -82,10 +85,12 @@ std::optional<BsdfSample> finiteDelta(BsdfSample s) {
     return s;
 }
 
-std::optional<BsdfSample> sampleMirror(const BsdfParams& m, Vec3 wo) {
+std::optional<BsdfSample> sampleSpecularReflection(const BsdfParams& m, Vec3 wo) {
     if (wo.z == 0) return std::nullopt;
     const Vec3 wi = reflectAboutNormal(wo);
-    return finiteDelta({wi, m.albedo / std::abs(wi.z), 1.0f, true});
+    const Spectrum reflectance =
+        m.type == MaterialType::SmoothConductor ? fresnelSchlick(m.albedo, std::abs(wo.z)) : m.albedo;
+    return finiteDelta({wi, reflectance / std::abs(wi.z), 1.0f, true});
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -267,6 +272,7 @@ const char* materialTypeName(MaterialType t) {
     case MaterialType::Mirror: return "mirror";
     case MaterialType::Dielectric: return "dielectric";
     case MaterialType::Conductor: return "conductor";
+    case MaterialType::SmoothConductor: return "smooth-conductor";
     case MaterialType::Plastic: return "plastic";
     case MaterialType::MetallicRoughness: return "metallic-roughness";
     }
@@ -274,7 +280,8 @@ const char* materialTypeName(MaterialType t) {
 }
 
 bool isDelta(const BsdfParams& m) {
-    return m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric;
+    return m.type == MaterialType::Mirror || m.type == MaterialType::SmoothConductor ||
+           m.type == MaterialType::Dielectric;
 }
 
 // Non-delta lobes are reflection only: both directions strictly on the same side of the shading
@@ -294,7 +301,8 @@ float pdfBsdf(const BsdfParams& m, Vec3 wo, Vec3 wi) {
 std::optional<BsdfSample> sampleBsdf(const BsdfParams& m, Vec3 wo, Vec2 u, float uc, TransportMode mode) {
     kBsdfSamples.add();
     switch (m.type) {
-    case MaterialType::Mirror: return sampleMirror(m, wo);
+    case MaterialType::Mirror:
+    case MaterialType::SmoothConductor: return sampleSpecularReflection(m, wo);
     case MaterialType::Dielectric: return sampleDielectric(m, wo, uc, mode);
     default: return sampleNonDelta(m, wo, u, uc, mode);
     }

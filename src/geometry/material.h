@@ -16,9 +16,12 @@ namespace tripath {
 
 enum class MaterialType {
     Lambertian,  // f = albedo / π
-    Mirror,      // ideal specular reflection, reflectance = albedo
+    Mirror,      // ideal specular reflection, reflectance = albedo at every angle (no Fresnel)
     Dielectric,  // ideal smooth glass: Fresnel-weighted reflection and refraction, ior
     Conductor,   // rough GGX microfacet metal (Cook-Torrance), F0 = albedo (Schlick Fresnel)
+    // the Conductor's limit at roughness 0 (glTF's metallic 1, roughness 0): ideal specular
+    // reflection of reflectance F_Schlick(albedo, cos θ)
+    SmoothConductor,
     Plastic,     // diffuse albedo under a rough GGX dielectric coat of index ior
     // glTF 2.0's metallic-roughness BRDF (spec Appendix B): metallic × Conductor + (1 − metallic)
     // × Plastic, both with the base colour as albedo, one roughness, the coat of index ior

@@ -79,6 +79,7 @@ double texturedEmitterPower(const MaterialTextures& textures, Spectrum factor, c
             const Vec2 b = sampleUniformTriangle({(i + 0.5f) / kGrid, (j + 0.5f) / kGrid});
             sum += std::max(0.0f, luminance(textures.emissionAt(factor, uv.at(b))));
         }
+    if (!(sum > 0)) sum = std::max(0.0f, luminance(textures.emissionBound(factor, uv.corner)));
     return double(area) * sum / (kGrid * kGrid);
 }
 

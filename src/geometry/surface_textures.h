@@ -57,7 +57,10 @@ Vec3 perturbNormal(Vec3 n, Vec3 tangent, float bitangentSign, Vec3 t);
 
 // The power weight of a textured emitter triangle: its area times the average luminance of its
 // emission over it, from the emission at the centres of a 16 × 16 stratified grid of points
-// uniform by area (sampleUniformTriangle of the cell centres). 0 when every sample is dark.
+// uniform by area (sampleUniformTriangle of the cell centres). Where every point is dark but the
+// texels under the triangle can emit (one bright texel between the points), the weight is as if
+// one point had seen the brightest of them, so that every triangle that emits anywhere keeps a
+// choice probability above 0; 0 only for a triangle that emits nowhere.
 double texturedEmitterPower(const MaterialTextures& textures, Spectrum factor, const TriangleTexCoords& uv,
                             float area);
 

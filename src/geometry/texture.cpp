@@ -33,6 +33,29 @@ double texelCoordinate(float c, int n) {
     return std::isfinite(x) ? std::clamp(x, -0x1p40, 0x1p40) : 0.0;
 }
 
+Texel channelMax(const Texel& a, const Texel& b) {
+    return {std::max(a[0], b[0]), std::max(a[1], b[1]), std::max(a[2], b[2]), std::max(a[3], b[3])};
+}
+
+// Whether the triangle t (texel units) and the box [x0, x1] × [y0, y1] overlap, by separating
+// axes: the box's own (the caller's range) and each edge's normal. Conservative: a degenerate
+// edge separates nothing, and the box is widened by a thousandth of a texel against rounding.
+bool overlaps(const std::array<Vec2, 3>& t, double x0, double y0, double x1, double y1) {
+    constexpr double kMargin = 1e-3;
+    x0 -= kMargin, y0 -= kMargin, x1 += kMargin, y1 += kMargin;
+    for (int e = 0; e < 3; ++e) {
+        const Vec2 a = t[size_t(e)], b = t[size_t(e + 1) % 3], c = t[size_t(e + 2) % 3];
+        const double nx = double(a.y) - b.y, ny = double(b.x) - a.x;  // the edge's normal
+        auto side = [&](double x, double y) { return nx * (x - a.x) + ny * (y - a.y); };
+        const double inside = side(c.x, c.y);
+        if (inside == 0) continue;
+        const bool separated = inside > 0 ? std::max({side(x0, y0), side(x1, y0), side(x0, y1), side(x1, y1)}) < 0
+                                          : std::min({side(x0, y0), side(x1, y0), side(x0, y1), side(x1, y1)}) > 0;
+        if (separated) return false;
+    }
+    return true;
+}
+
 Texel lerp(const Texel& a, const Texel& b, float t) {
     Texel r;
     for (int c = 0; c < 4; ++c) r[c] = a[c] + (b[c] - a[c]) * t;
@@ -43,7 +66,10 @@ Texel lerp(const Texel& a, const Texel& b, float t) {
 
 Texture::Texture(int width, int height, std::vector<Texel> texels, TextureWrap wrapU, TextureWrap wrapV,
                  TextureFilter filter)
-    : width_(width), height_(height), texels_(std::move(texels)), wrapU_(wrapU), wrapV_(wrapV), filter_(filter) {}
+    : width_(width), height_(height), texels_(std::move(texels)), maxTexel_{}, wrapU_(wrapU), wrapV_(wrapV),
+      filter_(filter) {
+    for (const Texel& t : texels_) maxTexel_ = channelMax(maxTexel_, t);
+}
 
 Texel Texture::texel(int x, int y) const { return texels_[size_t(y) * size_t(width_) + size_t(x)]; }
 
@@ -59,11 +85,40 @@ Texel Texture::lookup(Vec2 uv) const {
     return lerp(lerp(texel(xa, ya), texel(xb, ya), fx), lerp(texel(xa, yb), texel(xb, yb), fx), fy);
 }
 
-Texel TextureSlot::lookup(const TexCoords& uv) const {
+Texel Texture::maxOver(const std::array<Vec2, 3>& corners) const {
+    std::array<Vec2, 3> t;  // the corners in texel units
+    double x0 = 0x1p40, y0 = 0x1p40, x1 = -0x1p40, y1 = -0x1p40;
+    for (size_t k = 0; k < 3; ++k) {
+        if (!std::isfinite(corners[k].x) || !std::isfinite(corners[k].y)) return maxTexel_;
+        t[k] = {float(texelCoordinate(corners[k].x, width_)), float(texelCoordinate(corners[k].y, height_))};
+        x0 = std::min(x0, double(t[k].x)), x1 = std::max(x1, double(t[k].x));
+        y0 = std::min(y0, double(t[k].y)), y1 = std::max(y1, double(t[k].y));
+    }
+    // Texel i is read by nearest lookups in [i, i + 1), by bilinear ones in [i − ½, i + 1½).
+    const double widen = filter_ == TextureFilter::Linear ? 0.5 : 0.0;
+    const auto i0 = int64_t(std::floor(x0 - widen)), i1 = int64_t(std::floor(x1 + widen));
+    const auto j0 = int64_t(std::floor(y0 - widen)), j1 = int64_t(std::floor(y1 + widen));
+    const double cells = double(i1 - i0 + 1) * double(j1 - j0 + 1);
+    if (cells > std::min(4.0 * width_ * height_ + 64, 0x1p20)) return maxTexel_;
+    Texel m{};
+    for (int64_t j = j0; j <= j1; ++j)
+        for (int64_t i = i0; i <= i1; ++i)
+            if (overlaps(t, double(i) - widen, double(j) - widen, double(i) + 1 + widen, double(j) + 1 + widen))
+                m = channelMax(m, texel(wrapIndex(i, width_, wrapU_), wrapIndex(j, height_, wrapV_)));
+    return m;
+}
+
+Texel TextureSlot::maxOver(const TexCoords corners[3]) const {
+    return texture->maxOver({transformed(corners[0]), transformed(corners[1]), transformed(corners[2])});
+}
+
+Vec2 TextureSlot::transformed(const TexCoords& uv) const {
     const Vec2 c = uv[size_t(texCoord)];
     const auto& m = transform;
-    return texture->lookup({m[0] * c.x + m[1] * c.y + m[2], m[3] * c.x + m[4] * c.y + m[5]});
+    return {m[0] * c.x + m[1] * c.y + m[2], m[3] * c.x + m[4] * c.y + m[5]};
 }
+
+Texel TextureSlot::lookup(const TexCoords& uv) const { return texture->lookup(transformed(uv)); }
 
 BsdfParams MaterialTextures::at(const BsdfParams& factors, const TexCoords& uv) const {
     BsdfParams p = factors;
@@ -83,6 +138,13 @@ Spectrum MaterialTextures::emissionAt(Spectrum factor, const TexCoords& uv) cons
     if (holeAt(uv)) return Spectrum(0.0f);
     if (!emissive) return factor;
     const Texel t = emissive.lookup(uv);
+    return factor * Spectrum(t[0], t[1], t[2]);
+}
+
+Spectrum MaterialTextures::emissionBound(Spectrum factor, const TexCoords corners[3]) const {
+    if (masks() && baseAlpha * (baseColor ? baseColor.maxOver(corners)[3] : 1.0f) < alphaCutoff) return Spectrum(0.0f);
+    if (!emissive) return factor;
+    const Texel t = emissive.maxOver(corners);
     return factor * Spectrum(t[0], t[1], t[2]);
 }
 

@@ -31,11 +31,18 @@ public:
     int height() const { return height_; }
     // The filtered texel at texture coordinates uv.
     Texel lookup(Vec2 uv) const;
+    // Per channel, the largest value a lookup anywhere on the triangle of texture coordinates
+    // `corners` can return: the largest among the texels it can read (those whose cell, widened
+    // by half a texel for bilinear filtering, the triangle overlaps); the whole image's largest
+    // when the triangle's bounds span more cells than four images' worth (or 2^20), where
+    // finding them would cost more than the answer is worth.
+    Texel maxOver(const std::array<Vec2, 3>& corners) const;
 
 private:
     Texel texel(int x, int y) const;  // x, y already wrapped into the image
     int width_, height_;
     std::vector<Texel> texels_;
+    Texel maxTexel_;  // per channel, over the whole image
     TextureWrap wrapU_, wrapV_;
     TextureFilter filter_;
 };
@@ -52,6 +59,10 @@ struct TextureSlot {
 
     explicit operator bool() const { return texture != nullptr; }
     Texel lookup(const TexCoords& uv) const;
+    // Texture::maxOver for the triangle whose corners have the coordinates `corners`.
+    Texel maxOver(const TexCoords corners[3]) const;
+    // The coordinates this slot reads the texture at: its set of uv, transformed.
+    Vec2 transformed(const TexCoords& uv) const;
 };
 
 struct MaterialTextures {
@@ -70,6 +81,10 @@ struct MaterialTextures {
     bool variesEmission() const { return emissive || masks(); }
     // The emitted radiance at a point, the material's emission being `factor`: 0 in a hole.
     Spectrum emissionAt(Spectrum factor, const TexCoords& uv) const;
+    // Per channel, a bound on emissionAt over the triangle of corner coordinates `corners`: 0
+    // only where no point of it can emit (its emissive texels there are black, or its alpha is
+    // below the cutoff throughout).
+    Spectrum emissionBound(Spectrum factor, const TexCoords corners[3]) const;
     // Whether the surface is a hole at a point (alpha below the cutoff); false unless masking.
     bool holeAt(const TexCoords& uv) const;
     // The tangent-space normal (x, y, z) the normal texture gives at a point; (0, 0, 1) without one.

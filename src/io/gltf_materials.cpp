@@ -4,7 +4,9 @@
 //   KHR_materials_transmission.transmissionFactor > 0   → Dielectric (smooth glass), albedo = baseColor,
 //                                                          ior = KHR_materials_ior.ior (default 1.5)
 //   a metallicRoughnessTexture                          → MetallicRoughness (glTF's BRDF, Appendix B)
-//   metallicFactor 1 and roughnessFactor 0              → Mirror, reflectance = baseColor (the BRDF's limit)
+//   metallicFactor 1 and roughnessFactor 0              → SmoothConductor, F0 = baseColor (the BRDF's limit:
+//                                                          Schlick's Fresnel); Mirror, reflectance =
+//                                                          baseColor, when marked so (mirrorMarker)
 //   metallicFactor 1                                    → Conductor (GGX), F0 = baseColor, roughness
 //   metallicFactor 0 and roughnessFactor ≥ 0.99         → Lambertian, albedo = baseColor (an approximation:
 //                                                          the BRDF keeps a rough coat; scene files
@@ -34,10 +36,19 @@ namespace tripath::gltf {
 
 namespace {
 
-MaterialType classifyMaterial(float metallic, float roughness, float transmission, bool metallicRoughnessTexture) {
+bool markedMirror(const tinygltf::Value& extras) {
+    if (!extras.IsObject() || !extras.Has("tripath")) return false;
+    const tinygltf::Value& ours = extras.Get("tripath");
+    return ours.IsObject() && ours.Has("bsdf") && ours.Get("bsdf").IsString() &&
+           ours.Get("bsdf").Get<std::string>() == "mirror";
+}
+
+MaterialType classifyMaterial(float metallic, float roughness, float transmission, bool metallicRoughnessTexture,
+                              bool mirror) {
     if (transmission > 0) return MaterialType::Dielectric;
     if (metallicRoughnessTexture) return MaterialType::MetallicRoughness;
-    if (metallic == 1) return roughness == 0 ? MaterialType::Mirror : MaterialType::Conductor;
+    if (metallic == 1 && roughness == 0) return mirror ? MaterialType::Mirror : MaterialType::SmoothConductor;
+    if (metallic == 1) return MaterialType::Conductor;
     if (metallic == 0) return roughness >= 0.99f ? MaterialType::Lambertian : MaterialType::Plastic;
     return MaterialType::MetallicRoughness;
 }
@@ -76,8 +87,9 @@ Material MaterialConverter::convertMaterial(const tinygltf::Material& g, int ind
         extensionNumber(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, context),
         context + "transmissionFactor");
     m.ior = float(extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5, context));
-    m.type = classifyMaterial(metallic, roughness, transmission, pbr.metallicRoughnessTexture.index >= 0);
-    m.roughness = (m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric) ? 0.0f : roughness;
+    m.type = classifyMaterial(metallic, roughness, transmission, pbr.metallicRoughnessTexture.index >= 0,
+                              markedMirror(g.extras));
+    m.roughness = isDelta(m) ? 0.0f : roughness;
     m.metallic = m.type == MaterialType::MetallicRoughness ? metallic : 0.0f;
     m.emission = emission(g, context);
     m.twoSidedEmission = g.doubleSided;
@@ -172,6 +184,11 @@ std::vector<Material> convertMaterials(const tinygltf::Model& model, TextureRead
         materials.push_back(converter.convertMaterial(model.materials[i], int(i)));
     converter.warnIgnored();
     return materials;
+}
+
+tinygltf::Value mirrorMarker() {
+    tinygltf::Value::Object bsdf{{"bsdf", tinygltf::Value(std::string("mirror"))}};
+    return tinygltf::Value(tinygltf::Value::Object{{"tripath", tinygltf::Value(std::move(bsdf))}});
 }
 
 Material defaultMaterial() {

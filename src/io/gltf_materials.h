@@ -21,4 +21,10 @@ std::vector<Material> convertMaterials(const tinygltf::Model& model, TextureRead
 // The material of primitives that name none.
 Material defaultMaterial();
 
+// The extras {"tripath": {"bsdf": "mirror"}} that mark a metallic 1, roughness 0 material as the
+// renderer's Mirror (reflectance the base colour at every angle), which glTF's BRDF cannot say:
+// without it such a material is the BRDF's smooth limit, a SmoothConductor. Exported built-in
+// scenes carry it; other files need not.
+tinygltf::Value mirrorMarker();
+
 }  // namespace tripath::gltf

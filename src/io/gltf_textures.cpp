@@ -5,7 +5,7 @@
 // from memory (an IOMemReader), as PNG or JPEG by their magic bytes. The header is checked before
 // any texel is read, so a file claiming 100000 × 100000 texels costs nothing. Colour textures
 // (base colour, emission) are decoded from sRGB to linear as they are stored; data textures
-// (metallic-roughness, normals) are stored as read. Samplers: wrapS/wrapT as given, the
+// (metallic-roughness, normals) are stored as read. Alpha is read unassociated, as stored. Samplers: wrapS/wrapT as given, the
 // magnification filter for every lookup (no mipmaps: a minification filter's mipmap part reads
 // as its base filter), linear when the sampler names none.
 #include "io/gltf_textures.h"
@@ -91,8 +91,12 @@ std::string formatName(const std::string& bytes) {
     return {};
 }
 
-// The 2 × 3 affine map of KHR_texture_transform: translation · rotation · scale (its README's
-// GLSL, column-major: u' = cos·sx·u − sin·sy·v + ox, v' = sin·sx·u + cos·sy·v + oy).
+// The 2 × 3 affine map of KHR_texture_transform: translation · rotation · scale, the rotation
+// turning the coordinates counter-clockwise as drawn in glTF's uv space, whose v runs down (the
+// image turns clockwise): u' = cos·sx·u + sin·sy·v + ox, v' = −sin·sx·u + cos·sy·v + oy. The
+// README's GLSL listing has the transpose, a y-up rotation; Khronos glTF issue #1563, the
+// extension's own example (offset [0, 1], rotation π/2, scale 0.5 reads the lower-left quadrant)
+// and the TextureTransformTest sample model agree on this sign.
 std::array<float, 6> transformMatrix(const tinygltf::Value& t, const std::string& what, const Report& report) {
     auto pair = [&](const char* key, float fallback, float out[2]) {
         out[0] = out[1] = fallback;
@@ -111,7 +115,7 @@ std::array<float, 6> transformMatrix(const tinygltf::Value& t, const std::string
         rotation = float(t.Get("rotation").GetNumberAsDouble());
     }
     const float c = std::cos(rotation), s = std::sin(rotation);
-    const std::array<float, 6> m{c * scale[0], -s * scale[1], offset[0], s * scale[0], c * scale[1], offset[1]};
+    const std::array<float, 6> m{c * scale[0], s * scale[1], offset[0], -s * scale[0], c * scale[1], offset[1]};
     for (float x : m)
         if (!std::isfinite(x)) report.fail(what + ": KHR_texture_transform is not finite");
     return m;
@@ -176,7 +180,14 @@ std::vector<float> TextureReader::decode(const std::string& bytes, const std::st
                                          int& width, int& height, int& channels) const {
     const QuietStderr quiet;
     OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-    auto input = OIIO::ImageInput::open(name, nullptr, &memory);
+    // The texels as stored: glTF's colour and alpha are independent (its alpha is coverage for
+    // MASK, and normal or metallic-roughness maps may carry any fourth channel), while PNG readers
+    // multiply colour by alpha unless told otherwise.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    void* proxy = &memory;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    auto input = OIIO::ImageInput::open(name, &config, &memory);
     if (!input) report_.fail(what + ": cannot read its image: " + quoted(OIIO::geterror()));
     const OIIO::ImageSpec& spec = input->spec();
     const long long pixels = (long long)spec.width * spec.height;

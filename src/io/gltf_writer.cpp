@@ -11,6 +11,7 @@
 #include <span>
 
 #include "core/error.h"
+#include "io/gltf_materials.h"
 #include "io/gltf_model.h"
 
 namespace tripath {
@@ -117,11 +118,15 @@ tinygltf::Material ModelBuilder::material(const Material& m) {
             if (roughness >= 0.99f)
                 warn(fmt::format("material '{}': a plastic of roughness {} loads back as Lambertian", m.name, roughness));
             break;
-        case MaterialType::Mirror: metallic = 1, roughness = 0; break;
+        case MaterialType::Mirror:
+            metallic = 1, roughness = 0;
+            g.extras = gltf::mirrorMarker();
+            break;
+        case MaterialType::SmoothConductor: metallic = 1, roughness = 0; break;
         case MaterialType::Conductor:
             metallic = 1, roughness = m.roughness;
             if (roughness == 0)
-                warn(fmt::format("material '{}': a metal of roughness 0 loads back as a mirror", m.name));
+                warn(fmt::format("material '{}': a metal of roughness 0 loads back as a smooth conductor", m.name));
             break;
         case MaterialType::Dielectric:
             roughness = 0;

@@ -5,7 +5,8 @@
 // Materials are written so that the loader's mapping (the table atop gltf_materials.cpp) gives them back:
 //   Lambertian  metallic 0, roughness 1
 //   Plastic     metallic 0, roughness r (< 0.99), KHR_materials_ior when ior ≠ 1.5
-//   Mirror      metallic 1, roughness 0
+//   Mirror      metallic 1, roughness 0, extras {"tripath": {"bsdf": "mirror"}} (mirrorMarker)
+//   SmoothConductor  metallic 1, roughness 0
 //   Conductor   metallic 1, roughness r (> 0)
 //   Dielectric  metallic 0, roughness 0, KHR_materials_transmission 1, KHR_materials_ior
 //   MetallicRoughness  metallic m, roughness r, KHR_materials_ior when ior ≠ 1.5
@@ -30,8 +31,8 @@ namespace tripath {
 
 // Writes the scene to `path` through writeGltfModel (gltf_model.h: a temporary file renamed over
 // it; InputError, one line naming the path, when it cannot write). Warns (once per material) where
-// the file cannot say exactly what the scene holds: a Conductor smoother than 0.01 (it would load
-// as a Mirror) or a Plastic rougher than 0.99 (it would load as Lambertian). Throws InputError for
+// the file cannot say exactly what the scene holds: a Conductor of roughness 0 (it would load as
+// a SmoothConductor) or a Plastic rougher than 0.99 (it would load as Lambertian). Throws InputError for
 // non-finite values, which JSON cannot hold.
 void writeGltf(const SceneDesc& scene, const std::string& path, const WarningSink& warn);
 
