@@ -191,8 +191,10 @@ std::optional<Vec3> samplePlastic(const BsdfParams& m, Vec3 wo, Vec2 u, float uc
 }
 
 // ---------------------------------------------------------------------------------------------
-// glTF metallic-roughness (glTF 2.0 spec, Appendix B): f = m · conductor + (1 − m) · plastic, the
-// conductor's F0 and the plastic's diffuse albedo both the base colour, one GGX roughness. Each
+// glTF metallic-roughness (glTF 2.0 spec, Appendix B's mix of a metal and a dielectric): f = m ·
+// conductor + (1 − m) · plastic, the conductor's F0 and the plastic's diffuse albedo both the base
+// colour, one GGX roughness. The dielectric is the coupled plastic above rather than Appendix B's
+// fresnel_mix (1 − F(v·h)) ρ/π + F(v·h) D V, whose albedo exceeds 1 at grazing angles. Each
 // lobe reflects at most 1, so the mix does. Sampling picks the conductor's sampler with
 // probability m and the plastic's otherwise, so the pdf is the mixture of theirs; both draw the
 // same GGX reflection, so it reads as one GGX lobe of probability m + (1 − m) p_coat and the

@@ -23,8 +23,10 @@ enum class MaterialType {
     // reflection of reflectance F_Schlick(albedo, cos θ)
     SmoothConductor,
     Plastic,     // diffuse albedo under a rough GGX dielectric coat of index ior
-    // glTF 2.0's metallic-roughness BRDF (spec Appendix B): metallic × Conductor + (1 − metallic)
-    // × Plastic, both with the base colour as albedo, one roughness, the coat of index ior
+    // glTF 2.0's metallic-roughness mix (spec Appendix B): metallic × Conductor + (1 − metallic)
+    // × Plastic, both with the base colour as albedo, one roughness, the coat of index ior. The
+    // dielectric half is the energy-conserving Plastic, not Appendix B's fresnel_mix, which
+    // reflects more than 1 at grazing angles (docs/gltf.md gives the difference)
     MetallicRoughness,
 };
 

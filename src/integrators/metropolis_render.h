@@ -13,7 +13,10 @@
 // 3. Passes. In each pass every chain takes m = ⌈P / C⌉ steps (P pixels): about one step per pixel,
 //    so --spp counts steps per pixel. The contributions of length k's n_k chains are scaled by
 //    b_k / (n_k m) per pass: the film's sum over its passes, divided by them (film.h), is then
-//    Σ_k b_k / M_k Σ (contributions), M_k being length k's steps, which converges to the image.
+//    Σ_k b_k / M_k Σ (contributions), M_k being length k's steps: an estimate of the image whose
+//    expectation over runs is the image (unbiased), but which within one run converges to the
+//    image scaled per length by b_k / E[L(C_k)], since b_k is not refined as the chains run (not
+//    consistent in a run; see the last paragraph).
 //
 // Streams: bootstrap sample j and chain i draw from (seed, a Metropolis domain, an index made of
 // the run and j or i, step by step), never from a thread's or a rank's. The run is the pass

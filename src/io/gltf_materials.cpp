@@ -3,7 +3,9 @@
 // Material mapping, from pbrMetallicRoughness, tested in this order:
 //   KHR_materials_transmission.transmissionFactor > 0   → Dielectric (smooth glass), albedo = baseColor,
 //                                                          ior = KHR_materials_ior.ior (default 1.5)
-//   a metallicRoughnessTexture                          → MetallicRoughness (glTF's BRDF, Appendix B)
+//   a metallicRoughnessTexture                          → MetallicRoughness (glTF's metal/dielectric mix;
+//                                                          its dielectric the energy-conserving Plastic,
+//                                                          not Appendix B's fresnel_mix: docs/gltf.md)
 //   metallicFactor 1 and roughnessFactor 0              → SmoothConductor, F0 = baseColor (the BRDF's limit:
 //                                                          Schlick's Fresnel); Mirror, reflectance =
 //                                                          baseColor, when marked so (mirrorMarker)

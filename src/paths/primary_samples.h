@@ -1,5 +1,5 @@
 // A point in primary sample space: the unit hypercube whose coordinates the walks read in place of
-// a random stream (Kelemen et al. 2002), and the moves a Markov chain makes in it (metropolis.h).
+// a random stream (Kelemen et al. 2002), and the moves a Markov chain makes in it (markov_chain.h).
 //
 // A proposal either draws every coordinate afresh (a large step) or moves each by a Gaussian step
 // of standard deviation kSmallStepSigma wrapped around [0, 1), the coordinate space being a torus
