@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "io/gltf_loader.h"
+#include "scenes/scene_builder.h"
 #include "support.h"
 #include "textured_scenes.h"
 
@@ -254,6 +255,36 @@ TEST_F(Textures, HalfMetallicLiesHalfwayUnderUniformRadiance) {
             std::sqrt(half.stderr_ * half.stderr_ + 0.25 * (m0.stderr_ * m0.stderr_ + m1.stderr_ * m1.stderr_));
         EXPECT_NEAR(half.mean, 0.5 * (m0.mean + m1.mean), 5 * sigma) << "block " << k;
         EXPECT_GT(std::abs(m1.mean - m0.mean), 8 * sigma) << "block " << k << ": the ends do not differ";
+    }
+}
+
+// A smooth metal (metallic 1, roughness 0) seen at 45° through a normal map tilted 30° away from
+// the camera, inside a box of uniform radiance L = 1: about the shading normal its mirror
+// direction would leave 15° below the geometric surface, which a plain leak mask drops (a black
+// rim). The shading normal bends back just enough to keep the reflection above the surface
+// (shading_normal.h), so the quad reads its Fresnel reflectance times L: between F0 = 0.9 and 1,
+// for pt and for bdpt. Catches a walk that masks the reflection instead of bending it.
+TEST_F(Textures, SmoothMetalThroughATiltedNormalMapKeepsItsReflection) {
+    writePng(file("tilt.png"), 1, 1, 3, std::vector<uint8_t>{128, 191, 238});  // (0, sin 30°, cos 30°)
+    TexturedScene s;
+    s.addGlowingBox(3, 1);
+    nlohmann::json m = whiteMaterial(1, 0);
+    m["pbrMetallicRoughness"]["baseColorFactor"] = {0.9, 0.9, 0.9, 1};
+    m["normalTexture"] = {{"index", s.addTexture("tilt.png")}};
+    s.addQuad({.material = s.addMaterial(m)});
+    s.setCamera(2);
+    SceneDesc desc = loadGltf(s.write(file("scene.gltf")), [](const std::string&) {});
+    desc.camera = build::lookAt({0, -2, 2}, {0, 0, 0}, 0.2f);  // 45° from the quad's normal, from −y
+    const Scene scene(desc, kSize, kSize);
+    for (const char* integrator : {"pt", "bdpt"}) {
+        RenderRequest r = texelRequest(integrator);
+        r.spp = 32;
+        std::vector<double> means;
+        for (const Image& img : renderRuns(scene, r, 16, 800)) means.push_back(blockMean(img, 2, 2, 4, 4, 1));
+        const MeanError e = meanAndError(means);
+        EXPECT_GT(e.mean, 0.9 - 5 * e.stderr_) << integrator;
+        EXPECT_LT(e.mean, 1.0 + 5 * e.stderr_) << integrator;
+        EXPECT_LT(e.stderr_, 0.01) << integrator;
     }
 }
 

@@ -15,14 +15,18 @@ bool LocalScattering::emits() const {
 Spectrum LocalScattering::value() const {
     if (v_.kind == Vertex::Kind::Sensor) return Spectrum(hasLight_ ? scene_.camera().importance(light_) : 0.0f);
     if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, camera_, v_.bary);
-    if (!sidesAgree(v_, light_) || !sidesAgree(v_, camera_)) return Spectrum(0.0f);
-    return evalBsdf(bsdf(), cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, light_);
+    // About the pair's normal: the bent one nearer ng.
+    const bool aboutLight = dot(nLight_, v_.ng) >= dot(nCamera_, v_.ng);
+    const Vec3 n = aboutLight ? nLight_ : nCamera_;
+    const LocalDirections& d = aboutLight ? aboutLight_ : aboutCamera_;
+    if (!sidesAgree(v_, n, light_) || !sidesAgree(v_, n, camera_)) return Spectrum(0.0f);
+    return evalBsdf(bsdf(), d.camera, d.light, TransportMode::Radiance) * shadingCorrection(v_, n, light_);
 }
 
 float LocalScattering::pdfTowardCamera() const {
     if (v_.kind == Vertex::Kind::Sensor) return 0.0f;  // the path's end: nothing lies beyond it
     if (emits()) return scene_.emitters().directionPdf(v_.emitter, v_.ng, camera_);
-    return pdfBsdf(bsdf(), lightLocal_, cameraLocal_);
+    return pdfBsdf(bsdf(), aboutLight_.light, aboutLight_.camera);
 }
 
 float LocalScattering::pdfTowardLight(double lightPaths) const {
@@ -37,7 +41,7 @@ float LocalScattering::pdfTowardLight(double lightPaths) const {
         return cam.pixelDensity(light_) / static_cast<float>(lightPaths);
     }
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
-    return pdfBsdf(bsdf(), cameraLocal_, lightLocal_);
+    return pdfBsdf(bsdf(), aboutCamera_.camera, aboutCamera_.light);
 }
 
 float g(const Scene& scene, const Vertex& x, const Vertex& xp) { return visible(scene, x, xp) ? g(Segment(x, xp)) : 0.0f; }

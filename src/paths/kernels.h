@@ -26,6 +26,7 @@
 #include <cmath>
 #include <optional>
 
+#include "paths/shading_normal.h"
 #include "paths/vertex.h"
 
 namespace tripath {
@@ -87,26 +88,28 @@ private:
 // Visibility V(a, b): a shadow ray between the two, offset off their surfaces.
 bool visible(const Scene& scene, const Vertex& a, const Vertex& b);
 
-// Shading-normal factor |ns·ℓ| / |ng·ℓ| for a surface vertex, ℓ toward the light side (1 elsewhere).
-inline float shadingCorrection(const Vertex& v, Vec3 towardLight) {
+// Shading-normal factor |n·ℓ| / |ng·ℓ| for a surface vertex scattering about the shading normal n
+// (shading_normal.h), ℓ toward the light side (1 elsewhere).
+inline float shadingCorrection(const Vertex& v, Vec3 n, Vec3 towardLight) {
     if (v.kind != Vertex::Kind::Surface) return 1.0f;
     const float cosG = absDot(v.ng, towardLight);
-    return cosG > 0 ? absDot(v.ns, towardLight) / cosG : 0.0f;
+    return cosG > 0 ? absDot(n, towardLight) / cosG : 0.0f;
 }
 
-// Leak mask: whether unit w lies on the same side of a surface vertex under its shading normal
-// as under its geometric one. Near the silhouettes of coarse smooth meshes the two disagree, and a
+// Leak mask: whether unit w lies on the same side of a surface vertex under the shading normal n
+// it scatters about (shading_normal.h) as under its geometric one. Near the silhouettes of coarse smooth meshes the two disagree, and a
 // BSDF evaluated in the shading frame alone would let light through the surface (or reflect it
 // off the back). A surface vertex scatters only between directions that both pass this test, in
 // either transport mode: the mask is symmetric in the two directions, so the adjoint BSDF of
 // light subpaths stays exactly the radiance BSDF's adjoint (Veach §5.3) and pt, lt and bdpt keep
 // agreeing on smooth meshes.
-inline bool sidesAgree(const Vertex& v, Vec3 w) { return dot(v.ng, w) * dot(v.ns, w) > 0; }
+inline bool sidesAgree(const Vertex& v, Vec3 n, Vec3 w) { return dot(v.ng, w) * dot(n, w) > 0; }
 
 // Vertex v between its light-side and camera-side neighbours: the factor it contributes to the
 // regrouped product, and the pdfs with which it generates either neighbour. The directions to
-// the neighbours and, on a surface, the shading frame and local directions are computed once for
-// all of them; `connect` evaluates every one at both ends of the connecting segment. Walks and
+// the neighbours and, on a surface, the shading frames and local directions are computed once for
+// all of them (a pdf about the normal bent for the direction it is generated from, f_r about the
+// pair's: shading_normal.h); `connect` evaluates every one at both ends of the connecting segment. Walks and
 // connections both take their pdfs from here, with directions from the points alone (never the
 // sampled direction, which an offset ray origin bends on short segments), so that every
 // strategy's pdf of a path is computed the same way: the MIS weights depend on it.
@@ -122,9 +125,16 @@ public:
         : scene_(scene), v_(v), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr),
           light_(hasLight_ ? *towardLight : Vec3()), camera_(hasCamera_ ? *towardCamera : Vec3()) {
         if (v.kind == Vertex::Kind::Surface && hasLight_ && hasCamera_) {
-            const Frame frame(v.ns);
-            lightLocal_ = frame.toLocal(*towardLight);
-            cameraLocal_ = frame.toLocal(*towardCamera);
+            nLight_ = bentNormal(v.ns, v.ng, *towardLight);
+            nCamera_ = bentNormal(v.ns, v.ng, *towardCamera);
+            const Frame fromLight(nLight_);
+            aboutLight_ = {fromLight.toLocal(*towardLight), fromLight.toLocal(*towardCamera)};
+            if (nCamera_ == nLight_) {
+                aboutCamera_ = aboutLight_;
+            } else {
+                const Frame fromCamera(nCamera_);
+                aboutCamera_ = {fromCamera.toLocal(*towardLight), fromCamera.toLocal(*towardCamera)};
+            }
             if (v.material->textures)
                 textured_ = v.material->textures->at(*v.material, scene.texCoords(v.triangle, v.bary));
         }
@@ -151,7 +161,13 @@ private:
     const Vertex& v_;
     bool hasLight_, hasCamera_;
     Vec3 light_, camera_;
-    Vec3 lightLocal_, cameraLocal_;  // in v's shading frame (surfaces between two neighbours)
+    // Surfaces between two neighbours: the normals bent for the light-side and the camera-side
+    // direction, and both directions in the frame of each.
+    struct LocalDirections {
+        Vec3 light, camera;
+    };
+    Vec3 nLight_, nCamera_;
+    LocalDirections aboutLight_, aboutCamera_;
     std::optional<BsdfParams> textured_;
 };
 

@@ -35,6 +35,25 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     return v;
 }
 
+// f_r × shading correction at v for the directions (wo, wi) of a sample s drawn about the normal
+// n: about the pair's normal (shading_normal.h), 0 where the leak mask under it drops either
+// direction. That normal is the sampler's for a delta lobe (a mirror reflection's own bend is
+// never the stronger; a refraction has none) and for most glossy pairs, whose f_r the sample
+// holds already; the others are evaluated afresh. No direction is dropped before this: the pdf
+// MIS takes for the sample is the sampler's about n, and must be the density of what the walk
+// goes on with.
+Spectrum scattered(const BsdfParams& bsdf, const Vertex& v, Vec3 n, const BsdfSample& s, Vec3 wo, Vec3 wi,
+                   Vec3 towardLight, TransportMode mode) {
+    const Vec3 pair = s.delta ? n : bentNormal(v.ns, v.ng, wo, wi);
+    if (!sidesAgree(v, pair, wo) || !sidesAgree(v, pair, wi)) return Spectrum(0.0f);
+    Spectrum f = s.f;
+    if (!(pair == n)) {
+        const Frame frame(pair);
+        f = evalBsdf(bsdf, frame.toLocal(wo), frame.toLocal(wi), mode);
+    }
+    return f * shadingCorrection(v, pair, towardLight);
+}
+
 // Where a camera walk's ray that leaves the scene ends: the environment, in the direction `dir`.
 Vertex environmentVertex(const Scene& scene, Vec3 dir) {
     Vertex v;
@@ -137,8 +156,8 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
         if (path.size() == maxVertices || (mode == TransportMode::Radiance && settings.cameraUntilNonDelta && !v.delta)) return;
 
         const Vec3 wo = normalize(path[path.size() - 2].p - v.p);
-        if (!sidesAgree(v, wo)) return;  // arrived through the surface's shading hemisphere: leak mask
-        const Frame frame(v.ns);
+        const Vec3 n = bentNormal(v.ns, v.ng, wo);  // the sampler's normal (shading_normal.h)
+        const Frame frame(n);
         // Every draw in its own statement: the order of a call's arguments is unspecified, and
         // the image a seed gives must not depend on the compiler.
         const Vec2 u = uniform2(rng);
@@ -146,12 +165,11 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
         std::optional<BsdfParams> textured;
         const BsdfParams& bsdf = scene.bsdfAt(*v.material, v.triangle, v.bary, textured);
         const auto bs = sampleBsdf(bsdf, frame.toLocal(wo), u, uc, mode);
-        if (!bs || !(bs->pdf > 0) || isBlack(bs->f)) return;
+        if (!bs || !(bs->pdf > 0)) return;
         const Vec3 wi = frame.toWorld(bs->wi);
-        if (!sidesAgree(v, wi)) return;
         // Radiance flows against a camera walk (light arrives along wi) and with a light walk.
         const Vec3 towardLight = mode == TransportMode::Radiance ? wi : wo;
-        scatter = bs->f * shadingCorrection(v, towardLight);
+        scatter = scattered(bsdf, v, n, *bs, wo, wi, towardLight, mode);
         pdf = bs->pdf;
         beta = path.back().beta;
         const float q = Roulette{settings.rrDepth}.continuation(v, static_cast<int>(path.size()) - 1);
