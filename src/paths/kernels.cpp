@@ -12,21 +12,37 @@ bool LocalScattering::emits() const {
     return v_.kind == Vertex::Kind::Emitter || (v_.kind == Vertex::Kind::Surface && !hasLight_);
 }
 
+void LocalScattering::bendFrames(Vec3 towardLight, Vec3 towardCamera) {
+    const Vec3 nLight = bentNormal(v_.ns, v_.ng, towardLight), nCamera = bentNormal(v_.ns, v_.ng, towardCamera);
+    const Frame frame(nLight);
+    lightLocal_ = frame.toLocal(towardLight);
+    cameraLocal_ = frame.toLocal(towardCamera);
+    normal_ = nLight;
+    if (!(nCamera == nLight)) apart_ = BentApart(nCamera, towardLight, towardCamera);
+}
+
 Spectrum LocalScattering::value() const {
     if (v_.kind == Vertex::Kind::Sensor) return Spectrum(hasLight_ ? scene_.camera().importance(light_) : 0.0f);
     if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, camera_, v_.bary);
-    // About the pair's normal: the bent one nearer ng.
-    const bool aboutLight = dot(nLight_, v_.ng) >= dot(nCamera_, v_.ng);
-    const Vec3 n = aboutLight ? nLight_ : nCamera_;
-    const LocalDirections& d = aboutLight ? aboutLight_ : aboutCamera_;
+    if (apart_) [[unlikely]] return valueAboutThePairsNormal();
+    if (!sidesAgree(v_, normal_, light_) || !sidesAgree(v_, normal_, camera_)) return Spectrum(0.0f);
+    return evalBsdf(bsdf(), cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, normal_, light_);
+}
+
+// f_r × shading correction where the two directions' bent normals differ: about the one nearer ng.
+Spectrum LocalScattering::valueAboutThePairsNormal() const {
+    const bool aboutCamera = dot(apart_->normal, v_.ng) > dot(normal_, v_.ng);
+    const Vec3 n = aboutCamera ? apart_->normal : normal_;
     if (!sidesAgree(v_, n, light_) || !sidesAgree(v_, n, camera_)) return Spectrum(0.0f);
-    return evalBsdf(bsdf(), d.camera, d.light, TransportMode::Radiance) * shadingCorrection(v_, n, light_);
+    const Spectrum f = aboutCamera ? evalBsdf(bsdf(), apart_->cameraLocal, apart_->lightLocal, TransportMode::Radiance)
+                                   : evalBsdf(bsdf(), cameraLocal_, lightLocal_, TransportMode::Radiance);
+    return f * shadingCorrection(v_, n, light_);
 }
 
 float LocalScattering::pdfTowardCamera() const {
     if (v_.kind == Vertex::Kind::Sensor) return 0.0f;  // the path's end: nothing lies beyond it
     if (emits()) return scene_.emitters().directionPdf(v_.emitter, v_.ng, camera_);
-    return pdfBsdf(bsdf(), aboutLight_.light, aboutLight_.camera);
+    return pdfBsdf(bsdf(), lightLocal_, cameraLocal_);
 }
 
 float LocalScattering::pdfTowardLight(double lightPaths) const {
@@ -41,7 +57,7 @@ float LocalScattering::pdfTowardLight(double lightPaths) const {
         return cam.pixelDensity(light_) / static_cast<float>(lightPaths);
     }
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
-    return pdfBsdf(bsdf(), aboutCamera_.camera, aboutCamera_.light);
+    return apart_ ? pdfBsdf(bsdf(), apart_->cameraLocal, apart_->lightLocal) : pdfBsdf(bsdf(), cameraLocal_, lightLocal_);
 }
 
 float g(const Scene& scene, const Vertex& x, const Vertex& xp) { return visible(scene, x, xp) ? g(Segment(x, xp)) : 0.0f; }

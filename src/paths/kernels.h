@@ -125,15 +125,13 @@ public:
         : scene_(scene), v_(v), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr),
           light_(hasLight_ ? *towardLight : Vec3()), camera_(hasCamera_ ? *towardCamera : Vec3()) {
         if (v.kind == Vertex::Kind::Surface && hasLight_ && hasCamera_) {
-            nLight_ = bentNormal(v.ns, v.ng, *towardLight);
-            nCamera_ = bentNormal(v.ns, v.ng, *towardCamera);
-            const Frame fromLight(nLight_);
-            aboutLight_ = {fromLight.toLocal(*towardLight), fromLight.toLocal(*towardCamera)};
-            if (nCamera_ == nLight_) {
-                aboutCamera_ = aboutLight_;
+            if (v.ns == v.ng) [[likely]] {  // flat shading: one frame, nothing bent
+                const Frame frame(v.ns);
+                lightLocal_ = frame.toLocal(*towardLight);
+                cameraLocal_ = frame.toLocal(*towardCamera);
+                normal_ = v.ns;
             } else {
-                const Frame fromCamera(nCamera_);
-                aboutCamera_ = {fromCamera.toLocal(*towardLight), fromCamera.toLocal(*towardCamera)};
+                bendFrames(*towardLight, *towardCamera);
             }
             if (v.material->textures)
                 textured_ = v.material->textures->at(*v.material, scene.texCoords(v.triangle, v.bary));
@@ -155,19 +153,28 @@ public:
 
 private:
     bool emits() const;  // an emitter end: no light side
+    // The frames of a surface whose shading normal differs from its geometric one (shading_normal.h).
+    void bendFrames(Vec3 towardLight, Vec3 towardCamera);
+    Spectrum valueAboutThePairsNormal() const;
     // The BSDF at v: its material's, or a textured material's parameters at v.
     const BsdfParams& bsdf() const { return textured_ ? *textured_ : *v_.material; }
     const Scene& scene_;
     const Vertex& v_;
     bool hasLight_, hasCamera_;
     Vec3 light_, camera_;
-    // Surfaces between two neighbours: the normals bent for the light-side and the camera-side
-    // direction, and both directions in the frame of each.
-    struct LocalDirections {
-        Vec3 light, camera;
+    // Surfaces between two neighbours: both directions in the frame of the normal bent for the
+    // light-side one (normal_), and, where the camera-side one's differs, that normal and the
+    // directions in its frame.
+    struct BentApart {
+        BentApart(Vec3 n, Vec3 towardLight, Vec3 towardCamera) : normal(n) {
+            const Frame frame(n);
+            lightLocal = frame.toLocal(towardLight);
+            cameraLocal = frame.toLocal(towardCamera);
+        }
+        Vec3 normal, lightLocal, cameraLocal;
     };
-    Vec3 nLight_, nCamera_;
-    LocalDirections aboutLight_, aboutCamera_;
+    Vec3 normal_, lightLocal_, cameraLocal_;
+    std::optional<BentApart> apart_;
     std::optional<BsdfParams> textured_;
 };
 

@@ -36,6 +36,7 @@ Vec3 bendTowardGeometric(Vec3 ns, Vec3 ng, Vec3 w);
 // w's side (or no normal between ns and ng can achieve it: w grazes the plane); otherwise the
 // normal on the great circle from ns to ng nearest ns that achieves it. On ns's side of the plane.
 inline Vec3 bentNormal(Vec3 ns, Vec3 ng, Vec3 w) {
+    if (ns == ng) [[likely]] return ns;  // flat shading: nothing to bend
     const float wz = dot(w, ng), nz = dot(ns, ng);
     const float reflected = 2 * dot(ns, w) * nz - wz;  // the reflection's cosine with ng
     if (wz >= 0 ? reflected >= kMinReflectionCosine : reflected <= -kMinReflectionCosine) return ns;

@@ -42,16 +42,18 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
 // holds already; the others are evaluated afresh. No direction is dropped before this: the pdf
 // MIS takes for the sample is the sampler's about n, and must be the density of what the walk
 // goes on with.
-Spectrum scattered(const BsdfParams& bsdf, const Vertex& v, Vec3 n, const BsdfSample& s, Vec3 wo, Vec3 wi,
-                   Vec3 towardLight, TransportMode mode) {
-    const Vec3 pair = s.delta ? n : bentNormal(v.ns, v.ng, wo, wi);
-    if (!sidesAgree(v, pair, wo) || !sidesAgree(v, pair, wi)) return Spectrum(0.0f);
-    Spectrum f = s.f;
-    if (!(pair == n)) {
-        const Frame frame(pair);
-        f = evalBsdf(bsdf, frame.toLocal(wo), frame.toLocal(wi), mode);
+[[gnu::always_inline]] inline Spectrum scattered(const BsdfParams& bsdf, const Vertex& v, Vec3 n, const BsdfSample& s,
+                                                 Vec3 wo, Vec3 wi, Vec3 towardLight, TransportMode mode) {
+    if (!s.delta && !(v.ns == v.ng)) [[unlikely]] {
+        const Vec3 other = bentNormal(v.ns, v.ng, wi);
+        if (dot(other, v.ng) > dot(n, v.ng)) {
+            if (!sidesAgree(v, other, wo) || !sidesAgree(v, other, wi)) return Spectrum(0.0f);
+            const Frame frame(other);
+            return evalBsdf(bsdf, frame.toLocal(wo), frame.toLocal(wi), mode) * shadingCorrection(v, other, towardLight);
+        }
     }
-    return f * shadingCorrection(v, pair, towardLight);
+    if (!sidesAgree(v, n, wo) || !sidesAgree(v, n, wi)) return Spectrum(0.0f);
+    return s.f * shadingCorrection(v, n, towardLight);
 }
 
 // Where a camera walk's ray that leaves the scene ends: the environment, in the direction `dir`.
