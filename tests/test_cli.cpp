@@ -476,8 +476,30 @@ TEST_F(Cli, ExportRefusesBadInput) {
     EXPECT_EQ(o.exitCode, 0) << o.err;
     EXPECT_TRUE(fs::exists(path("contact.gltf")));
     expectRefused("export --scene contact --out '" + path("missing/contact.gltf") + "'", "does not exist");
-    expectRefused("export --scene contact --out '" + path("contact.glb") + "'", ".gltf");
+    expectRefused("export --scene contact --out '" + path("contact.obj") + "'", "ends in .gltf or .glb");
+    expectRefused("export --scene contact --embed --out '" + path("contact.glb") + "'", "--embed");
     expectRefused("export --scene no-such-scene --out '" + path("x.gltf") + "'", "no-such-scene");
+}
+
+// What --out ends in says what export writes: a .glb alone; a .gltf and a .bin of its name beside
+// it; with --embed, a .gltf alone.
+TEST_F(Cli, ExportWritesAGlbOrAGltfWithItsBin) {
+    const Outcome glb = run("export --scene contact --out '" + path("contact.glb") + "'");
+    EXPECT_EQ(glb.exitCode, 0) << glb.err;
+    std::string magic(4, ' ');
+    std::ifstream(path("contact.glb"), std::ios::binary).read(magic.data(), 4);
+    EXPECT_EQ(magic, "glTF");
+    EXPECT_FALSE(fs::exists(path("contact.bin")));
+    const Outcome gltf = run("export --scene contact --out '" + path("contact.gltf") + "'");
+    EXPECT_EQ(gltf.exitCode, 0) << gltf.err;
+    EXPECT_TRUE(fs::exists(path("contact.bin")));
+    EXPECT_NE(gltf.err.find("contact.bin"), std::string::npos) << gltf.err;
+    const Outcome embedded = run("export --scene contact --embed --out '" + path("embedded.gltf") + "'");
+    EXPECT_EQ(embedded.exitCode, 0) << embedded.err;
+    EXPECT_TRUE(fs::exists(path("embedded.gltf")));
+    EXPECT_FALSE(fs::exists(path("embedded.bin")));
+    const Outcome reloaded = run("export --scene '" + path("contact.glb") + "' --out '" + path("again.gltf") + "'");
+    EXPECT_EQ(reloaded.exitCode, 0) << reloaded.err;
 }
 
 // A checkpoint is continued only with the settings it was made with (a reference's state, found

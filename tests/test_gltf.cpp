@@ -135,7 +135,7 @@ public:
             out.scenes.emplace_back().nodes = roots;
             out.defaultScene = 0;
         }
-        writeGltfModel(out, file.string());
+        writeGltfModel(out, file.string(), GltfBuffer::Embedded);
         return file.string();
     }
     // The binary data in `binFile` (folders created) and a .gltf whose buffer has the given uri:

@@ -295,11 +295,14 @@ TEST_F(Instancing, EmissiveCopiesAreEmittersEach) {
     EXPECT_NEAR(area, expected, 1e-5 * expected);
 }
 
+// The same meshes and instances; normals within 1e-6, the loader normalising them again.
 void expectSameDesc(const SceneDesc& a, const SceneDesc& b) {
     ASSERT_EQ(a.meshes.size(), b.meshes.size());
     for (size_t i = 0; i < a.meshes.size(); ++i) {
         EXPECT_EQ(a.meshes[i].positions, b.meshes[i].positions);
-        EXPECT_EQ(a.meshes[i].normals, b.meshes[i].normals);
+        ASSERT_EQ(a.meshes[i].normals.size(), b.meshes[i].normals.size());
+        for (size_t k = 0; k < a.meshes[i].normals.size(); ++k)
+            ASSERT_NEAR(length(a.meshes[i].normals[k] - b.meshes[i].normals[k]), 0.0f, 1e-6f) << "mesh " << i;
         EXPECT_EQ(a.meshes[i].indices, b.meshes[i].indices);
         EXPECT_EQ(a.meshes[i].material, b.meshes[i].material);
     }
@@ -328,24 +331,96 @@ TEST_F(Instancing, ExportWritesTheMeshOnceAndLoadsBackTheSame) {
     }
 }
 
+// What a .gltf takes on disk: the file and the .bin beside it.
+uintmax_t gltfBytes(const fs::path& file) {
+    const fs::path bin = binBeside(file.string());
+    return fs::file_size(file) + (fs::exists(bin) ? fs::file_size(bin) : 0);
+}
+
+Geometry sphere(int rings) {
+    SceneDesc s;
+    s.materials.push_back(Material{});
+    build::addSphere(s, "sphere", 0, Vec3(0.0f), 1.0f, rings, false, false);
+    return {s.meshes[0].positions, s.meshes[0].normals, s.meshes[0].indices};
+}
+
 // A mesh of 2000 triangles placed 60 times: the source holds it once, and so must the export.
 TEST_F(Instancing, ExportOfAnInstancedModelStaysUnderTwiceTheSource) {
-    SceneDesc sphere;
-    sphere.materials.push_back(Material{});
-    build::addSphere(sphere, "sphere", 0, Vec3(0.0f), 1.0f, 32, false, false);
     std::vector<Trs> copies;
     for (int i = 0; i < 60; ++i) copies.push_back({{i * 0.1, 0, 0}, {0, 0, 0, 1}, {1, 1, 1}});
     Document d;
     d.model.materials = {material("m", {0.5, 0.5, 0.5})};
-    const int mesh = d.mesh({sphere.meshes[0].positions, sphere.meshes[0].normals, sphere.meshes[0].indices}, 0);
+    const int mesh = d.mesh(sphere(32), 0);
     for (const Trs& c : copies) d.roots.push_back(d.node(mesh, &c));
     const std::string source = d.write(file("source.gltf"));
     const fs::path out = file("exported.gltf");
     writeGltf(loadGltf(source, nullptr), out.string(), nullptr);
-    EXPECT_LT(fs::file_size(out), 2 * fs::file_size(source)) << fs::file_size(out) << " vs " << fs::file_size(source);
+    EXPECT_LT(gltfBytes(out), 2 * gltfBytes(source)) << gltfBytes(out) << " vs " << gltfBytes(source);
     const std::string extSource = writeScene(Form::Extension, file("ext.gltf"));
     writeGltf(loadGltf(extSource, nullptr), out.string(), nullptr);
-    EXPECT_LT(fs::file_size(out), 2 * fs::file_size(extSource));
+    EXPECT_LT(gltfBytes(out), 2 * gltfBytes(extSource));
+}
+
+// One sphere's accessors read by a mesh per material, each mesh placed once (as in Khronos'
+// MetalRoughSpheresNoTextures): the file holds the sphere once, and so must the export, which
+// loads back the same.
+TEST_F(Instancing, MeshesSharingTheirAccessorsAreExportedOnce) {
+    const Geometry shape = sphere(64);
+    auto sizes = [&](int copies) {
+        Document d;
+        const int first = d.mesh(shape, 0);
+        for (int i = 0; i < copies; ++i) {
+            d.model.materials.push_back(material("m", {0.1 + 0.8 * i / copies, 0.5, 0.5}));
+            if (i > 0) {
+                d.model.meshes.push_back(d.model.meshes[size_t(first)]);
+                d.model.meshes.back().primitives[0].material = i;
+            }
+            const Trs at{{2.5 * i, 0.5, 0}, {0, 0, 0, 1}, {1, 1, 1}};
+            d.roots.push_back(d.node(int(d.model.meshes.size()) - 1, &at));
+        }
+        const std::string source = d.write(file("shared-" + std::to_string(copies) + ".gltf"));
+        const SceneDesc loaded = loadGltf(source, nullptr);
+        const fs::path out = file("exported-" + std::to_string(copies) + ".gltf");
+        writeGltf(loaded, out.string(), nullptr);
+        expectSameDesc(loaded, loadGltf(out.string(), nullptr));
+        return std::pair{gltfBytes(source), gltfBytes(out)};
+    };
+    const auto [oneSource, one] = sizes(1);
+    const auto [source, many] = sizes(24);
+    // A further copy adds a material, a mesh and a node to the JSON, and no array: the 23 of them
+    // add less than one copy of the sphere's arrays (float positions and normals, short indices).
+    const size_t arrays = 12 * (shape.positions.size() + shape.normals.size()) + 2 * shape.indices.size();
+    EXPECT_LT(many - one, arrays) << one << " bytes for one copy, " << many << " for 24";
+    EXPECT_LT(many, 2 * source) << source << " bytes in the source";
+}
+
+// Copies of a mesh in world space at different places (no instances): each writes its own
+// positions, but the normals and indices they have in common once.
+TEST_F(Instancing, ArraysTheSceneRepeatsAreWrittenOnce) {
+    const Geometry shape = sphere(64);
+    auto exported = [&](int copies) {
+        SceneDesc d;
+        d.name = "copies";
+        d.materials.push_back(Material{});
+        for (int i = 0; i < copies; ++i) {
+            MeshDesc m{"copy", shape.positions, shape.normals, shape.indices, 0};
+            for (Vec3& p : m.positions) p = p + Vec3(2.5f * float(i), 0, 0);
+            d.meshes.push_back(m);
+        }
+        // Written once so that the loader drops the sphere's degenerate triangles at its poles, then again.
+        const fs::path first = file("copies-" + std::to_string(copies) + ".gltf");
+        writeGltf(d, first.string(), nullptr);
+        const SceneDesc loaded = loadGltf(first.string(), nullptr);
+        const fs::path out = file("copies-again-" + std::to_string(copies) + ".gltf");
+        writeGltf(loaded, out.string(), nullptr);
+        expectSameDesc(loaded, loadGltf(out.string(), nullptr));
+        return gltfBytes(out);
+    };
+    const uintmax_t one = exported(1), many = exported(24);
+    // Each further copy adds its positions and a mesh and a node to the JSON, which is less than
+    // its positions and normals.
+    const size_t positionsAndNormals = 12 * (shape.positions.size() + shape.normals.size());
+    EXPECT_LT(many - one, 23 * positionsAndNormals) << one << " bytes for one copy, " << many << " for 24";
 }
 
 // ---- bad instancing data -------------------------------------------------------------------------

@@ -10,9 +10,13 @@
 // than 4 standard errors of the difference. Seeds are fixed, so the outcome is reproducible.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -602,45 +606,121 @@ void expectSameScene(const SceneDesc& original, const SceneDesc& loaded, const s
     EXPECT_EQ(sa.emitters().all().size(), sb.emitters().all().size()) << what;
 }
 
-TEST(GltfExport, EveryBuiltinRoundTrips) {
-    const fs::path dir = fs::temp_directory_path() / ("tripath-export-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+fs::path exportFolder() {
+    const fs::path dir =
+        fs::temp_directory_path() / ("tripath-export-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
     fs::create_directories(dir);
-    for (const BuiltinInfo& info : builtinScenes()) {
-        const SceneDesc original = builtinScene(info.name);
-        const std::string path = (dir / (info.name + ".gltf")).string();
-        std::vector<std::string> warnings;
-        writeGltf(original, path, [&](const std::string& w) { warnings.push_back(w); });
-        SceneDesc loaded = loadGltf(path, silent);
-        // What export leaves out, it says: a built-in's environment (glTF has none; --environment gives
-        // it back) and its procedural textures (written by reference only where there is a file).
-        auto said = [&](const std::string& what) {
-            const auto it = std::find_if(warnings.begin(), warnings.end(),
-                                         [&](const std::string& w) { return w.find(what) != std::string::npos; });
-            if (it == warnings.end()) return false;
-            warnings.erase(it);
-            return true;
-        };
-        if (original.environment.present()) {
-            EXPECT_TRUE(said("environment is left out")) << info.name;
-            loaded.environment = original.environment;
-        }
-        for (size_t m = 0; m < original.materials.size(); ++m)
-            if (original.materials[m].textures) {
-                EXPECT_TRUE(said("its textures are left out")) << info.name;
-                loaded.materials[m].textures = original.materials[m].textures;
+    return dir;
+}
+
+std::string slurp(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The three ways a scene is written: a .gltf with its .bin, a .gltf with its buffer inside, a .glb.
+struct ExportForm {
+    const char* suffix;
+    GltfBuffer buffer;
+};
+const ExportForm kExportForms[] = {
+    {".gltf", GltfBuffer::Beside}, {"-embedded.gltf", GltfBuffer::Embedded}, {".glb", GltfBuffer::Beside}};
+
+TEST(GltfExport, EveryBuiltinRoundTrips) {
+    const fs::path dir = exportFolder();
+    for (const BuiltinInfo& info : builtinScenes())
+        for (const ExportForm& form : kExportForms) {
+            const SceneDesc original = builtinScene(info.name);
+            const std::string path = (dir / (info.name + form.suffix)).string();
+            std::vector<std::string> warnings;
+            writeGltf(original, path, [&](const std::string& w) { warnings.push_back(w); }, form.buffer);
+            SceneDesc loaded = loadGltf(path, silent);
+            // What export leaves out, it says: a built-in's environment (glTF has none; --environment gives
+            // it back) and its procedural textures (written by reference only where there is a file).
+            auto said = [&](const std::string& what) {
+                const auto it = std::find_if(warnings.begin(), warnings.end(),
+                                             [&](const std::string& w) { return w.find(what) != std::string::npos; });
+                if (it == warnings.end()) return false;
+                warnings.erase(it);
+                return true;
+            };
+            if (original.environment.present()) {
+                EXPECT_TRUE(said("environment is left out")) << info.name;
+                loaded.environment = original.environment;
             }
-        EXPECT_TRUE(warnings.empty()) << info.name << ": " << (warnings.empty() ? "" : warnings.front());
-        expectSameScene(original, loaded, info.name);
-    }
+            for (size_t m = 0; m < original.materials.size(); ++m)
+                if (original.materials[m].textures) {
+                    EXPECT_TRUE(said("its textures are left out")) << info.name;
+                    loaded.materials[m].textures = original.materials[m].textures;
+                }
+            EXPECT_TRUE(warnings.empty()) << path << ": " << (warnings.empty() ? "" : warnings.front());
+            expectSameScene(original, loaded, path);
+        }
     fs::remove_all(dir);
 }
 
-// scenes/<name>.gltf are the files users load; they must still be what the built-ins are.
-// Regenerate with `tripath export --scene NAME --out scenes/NAME.gltf`.
+// A .gltf keeps its buffer in a .bin of its own name beside it (the uri percent-encoded), and its
+// JSON no base64; with GltfBuffer::Embedded it is one file with a data: URI.
+TEST(GltfExport, AGltfKeepsItsBufferInABinBesideIt) {
+    const fs::path dir = exportFolder();
+    const SceneDesc scene = builtinScene("contact");
+    const fs::path gltf = dir / "the scene.gltf", bin = dir / "the scene.bin";
+    writeGltf(scene, gltf.string(), silent);
+    ASSERT_TRUE(fs::exists(bin));
+    EXPECT_EQ(binBeside(gltf.string()), bin.string());
+    const nlohmann::json json = nlohmann::json::parse(slurp(gltf));
+    ASSERT_EQ(json["buffers"].size(), 1u);
+    EXPECT_EQ(json["buffers"][0]["uri"], "the%20scene.bin");
+    EXPECT_EQ(json["buffers"][0]["byteLength"], fs::file_size(bin));
+    EXPECT_EQ(slurp(gltf).find("base64"), std::string::npos);
+    expectSameScene(scene, loadGltf(gltf.string(), silent), gltf.string());
+    const fs::path embedded = dir / "embedded.gltf";
+    writeGltf(scene, embedded.string(), silent, GltfBuffer::Embedded);
+    EXPECT_FALSE(fs::exists(dir / "embedded.bin"));
+    EXPECT_NE(slurp(embedded).find("\"data:application/octet-stream;base64,"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+// A .glb is one file as glTF 2.0's "Binary glTF Layout" has it: a 12-byte header (magic, version 2,
+// total length), then a JSON chunk and a BIN chunk, each a length, a type and data padded to a
+// multiple of 4 bytes; buffer 0 has no uri and fits in the BIN chunk.
+TEST(GltfExport, AGlbIsAHeaderAJsonChunkAndABinChunk) {
+    const fs::path dir = exportFolder();
+    const fs::path glb = dir / "contact.glb";
+    writeGltf(builtinScene("contact"), glb.string(), silent);
+    EXPECT_FALSE(fs::exists(dir / "contact.bin"));
+    const std::string bytes = slurp(glb);
+    auto word = [&](size_t at) {
+        uint32_t w = 0;
+        EXPECT_LE(at + 4, bytes.size());
+        if (at + 4 <= bytes.size()) std::memcpy(&w, bytes.data() + at, 4);
+        return w;
+    };
+    ASSERT_GE(bytes.size(), 28u);
+    EXPECT_EQ(word(0), 0x46546C67u);  // "glTF"
+    EXPECT_EQ(word(4), 2u);
+    EXPECT_EQ(word(8), bytes.size());
+    const uint32_t jsonLength = word(12), binAt = 20 + jsonLength;
+    EXPECT_EQ(word(16), 0x4E4F534Au);  // "JSON"
+    EXPECT_EQ(jsonLength % 4, 0u);
+    const uint32_t binLength = word(binAt);
+    EXPECT_EQ(word(binAt + 4), 0x004E4942u);  // "BIN\0"
+    EXPECT_EQ(binLength % 4, 0u);
+    EXPECT_EQ(binAt + 8 + binLength, bytes.size());
+    const nlohmann::json json = nlohmann::json::parse(bytes.substr(20, jsonLength));
+    EXPECT_FALSE(json["buffers"][0].contains("uri"));
+    EXPECT_LE(json["buffers"][0]["byteLength"].get<uint32_t>(), binLength);
+    fs::remove_all(dir);
+}
+
+// scenes/<name>.gltf are the files users load; they must still be what the built-ins are, each
+// one self-contained file. Regenerate with `tripath export --scene NAME --embed --out scenes/NAME.gltf`.
 TEST(GltfExport, ShippedCopiesMatchTheBuiltins) {
     for (const std::string& name : kFailureScenes) {
         const fs::path path = fs::path(TRIPATH_SOURCE_DIR) / "scenes" / (name + ".gltf");
         ASSERT_TRUE(fs::exists(path)) << path;
+        EXPECT_FALSE(fs::exists(binBeside(path.string()))) << path;
+        EXPECT_NE(slurp(path).find("\"data:application/octet-stream;base64,"), std::string::npos) << path;
         expectSameScene(builtinScene(name), loadGltf(path.string(), silent), path.string());
     }
 }

@@ -1,6 +1,8 @@
 // The policy for files named by glTF buffer URIs (see external_files.h for the rules and why).
 #include "io/external_files.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <system_error>
@@ -51,6 +53,17 @@ std::string decodeUriPath(const std::string& uri) {
         } else {
             out += uri[i];
         }
+    }
+    return out;
+}
+
+std::string encodeUriPath(const std::string& path) {
+    std::string out;
+    for (const char c : path) {
+        if (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/')
+            out += c;
+        else
+            out += fmt::format("%{:02X}", static_cast<unsigned char>(c));
     }
     return out;
 }

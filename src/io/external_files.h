@@ -16,6 +16,10 @@ std::string uriScheme(const std::string& uri);
 // up. A '%' not followed by two hex digits stays as it is.
 std::string decodeUriPath(const std::string& uri);
 
+// The URI reference of a relative path: every byte but an unreserved one (letters, digits, '-',
+// '.', '_', '~') and '/' as a %XX escape, so decodeUriPath gives the path back.
+std::string encodeUriPath(const std::string& path);
+
 // Where a decoded URI points, and whether it may be read.
 struct ExternalFile {
     std::filesystem::path path;  // absolute and with symlinks resolved (as given when refused for being absolute)

@@ -11,8 +11,9 @@
 // inverse transpose. Mirroring transforms (negative determinant) reverse the winding so the front
 // face stays where the file put it. Triangles that are degenerate in world space are dropped.
 // Instancing: a mesh placed more than once (by several nodes, or by a node's
-// EXT_mesh_gpu_instancing, gltf_instancing.h) is kept once in its own space, its triangles
-// degenerate there dropped, with a transform per copy (SceneDesc::instances).
+// EXT_mesh_gpu_instancing, gltf_instancing.h), or whose POSITION accessor another placed mesh
+// reads too, is kept once in its own space, its triangles degenerate there dropped, with a
+// transform per copy (SceneDesc::instances).
 // Primitives whose material has textures also keep TEXCOORD_0, TEXCOORD_1 and TANGENT (its xyz by
 // the full matrix's linear part, its sign flipped by a mirroring one); the textures themselves are
 // read with the materials (gltf_textures.cpp).
@@ -22,9 +23,11 @@
 #include <glm/glm.hpp>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -83,6 +86,14 @@ std::string primitiveModeName(int mode) {
         case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
         default: return "mode " + std::to_string(mode);
     }
+}
+
+// The POSITION accessors a mesh's primitives read.
+std::set<int> positionAccessors(const tinygltf::Mesh& mesh) {
+    std::set<int> out;
+    for (const tinygltf::Primitive& prim : mesh.primitives)
+        if (const auto it = prim.attributes.find("POSITION"); it != prim.attributes.end()) out.insert(it->second);
+    return out;
 }
 
 class Loader {
@@ -246,16 +257,27 @@ glm::dmat4 Loader::visitNode(int index, const glm::dmat4& parent) {
 // ---------------------------------------------------------------------------------------------
 // Meshes
 
-// In the order the nodes placed them: a mesh placed once as world-space triangles, one placed more
-// often in its own space (where it is first placed) with its copies' transforms.
+// In the order the nodes placed them: a mesh that is one copy of its vertices as world-space
+// triangles; one placed more often, or whose POSITION accessor another placed mesh reads too (a
+// sphere under a material per mesh, say), in its own space (where it is first placed) with its
+// copies' transforms, so that what the file shares stays recognisable (an export writes it once).
 void Loader::addMeshes() {
     std::vector<size_t> copies(model_.meshes.size(), 0);
     for (const Placement& p : placements_)
         if (size_t(p.mesh) < copies.size()) copies[size_t(p.mesh)] += p.instances ? p.instances->size() : 1;
+    std::map<int, size_t> vertexCopies;  // per POSITION accessor, the copies of the meshes that read it
+    for (size_t m = 0; m < copies.size(); ++m)
+        for (int accessor : positionAccessors(model_.meshes[m])) vertexCopies[accessor] += copies[m];
+    auto placedOnce = [&](const Placement& p) {
+        if (size_t(p.mesh) >= copies.size()) return true;  // addMesh reports it
+        const std::set<int> positions = positionAccessors(model_.meshes[size_t(p.mesh)]);
+        return copies[size_t(p.mesh)] == 1 && !p.instances &&
+               std::none_of(positions.begin(), positions.end(), [&](int a) { return vertexCopies[a] > 1; });
+    };
     constexpr size_t kNone = std::numeric_limits<size_t>::max();
     std::vector<std::pair<size_t, size_t>> objectSpace(model_.meshes.size(), {kNone, kNone});  // MeshDesc range
     for (const Placement& p : placements_) {
-        if (size_t(p.mesh) >= copies.size() || (copies[size_t(p.mesh)] == 1 && !p.instances)) {
+        if (placedOnce(p)) {
             addMesh(p.mesh, p.world, p.node);
             continue;
         }

@@ -9,6 +9,8 @@
 #include <optional>
 #include <set>
 #include <span>
+#include <string_view>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "io/gltf_materials.h"
@@ -89,6 +91,7 @@ private:
         if (warn_) warn_(scene_.name + ": " + what);
     }
     int addArray(const void* data, size_t bytes, int componentType, size_t count, int type);
+    int addIndices(const std::vector<uint32_t>& indices);
     tinygltf::Material material(const Material& m);
     void addMeshes();
     std::optional<tinygltf::Primitive> primitive(const MeshDesc& m);
@@ -102,10 +105,39 @@ private:
     const WarningSink& warn_;
     tinygltf::Model model_;
     std::set<std::string> extensions_;
+    std::unordered_multimap<size_t, int> written_;  // accessors by the hash of their bytes
 };
 
+// An array with the type, count and bytes of one already written is that accessor again, so
+// what the scene repeats (the vertices of meshes kept apart for their materials, say) is written
+// once.
 int ModelBuilder::addArray(const void* data, size_t bytes, int componentType, size_t count, int type) {
-    return appendAccessor(model_, appendBufferView(model_, data, bytes), componentType, count, type);
+    const std::string_view content(static_cast<const char*>(data), bytes);
+    const size_t hash = std::hash<std::string_view>{}(content);
+    const auto [first, last] = written_.equal_range(hash);
+    for (auto it = first; it != last; ++it) {
+        const tinygltf::Accessor& a = model_.accessors[size_t(it->second)];
+        const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
+        const auto* stored = reinterpret_cast<const char*>(model_.buffers[0].data.data()) + view.byteOffset;
+        if (a.componentType == componentType && a.type == type && a.count == count &&
+            std::string_view(stored, view.byteLength) == content)
+            return it->second;
+    }
+    const int accessor = appendAccessor(model_, appendBufferView(model_, data, bytes), componentType, count, type);
+    written_.emplace(hash, accessor);
+    return accessor;
+}
+
+// Unsigned shorts when every index is below 65535 (glTF reserves each type's largest value), as
+// exporters commonly write them; unsigned ints otherwise.
+int ModelBuilder::addIndices(const std::vector<uint32_t>& indices) {
+    if (*std::max_element(indices.begin(), indices.end()) < 65535) {
+        const std::vector<uint16_t> shorts(indices.begin(), indices.end());
+        return addArray(shorts.data(), shorts.size() * sizeof(uint16_t), TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                        shorts.size(), TINYGLTF_TYPE_SCALAR);
+    }
+    return addArray(indices.data(), indices.size() * sizeof(uint32_t), TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                    indices.size(), TINYGLTF_TYPE_SCALAR);
 }
 
 tinygltf::Material ModelBuilder::material(const Material& m) {
@@ -179,8 +211,7 @@ std::optional<tinygltf::Primitive> ModelBuilder::primitive(const MeshDesc& m) {
     if (!m.normals.empty())
         primitive.attributes["NORMAL"] = addArray(m.normals.data(), m.normals.size() * sizeof(Vec3),
                                                   TINYGLTF_COMPONENT_TYPE_FLOAT, m.normals.size(), TINYGLTF_TYPE_VEC3);
-    primitive.indices = addArray(m.indices.data(), m.indices.size() * sizeof(uint32_t),
-                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, m.indices.size(), TINYGLTF_TYPE_SCALAR);
+    primitive.indices = addIndices(m.indices);
     primitive.material = m.material;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     return primitive;
@@ -328,8 +359,8 @@ tinygltf::Model ModelBuilder::build() {
 
 }  // namespace
 
-void writeGltf(const SceneDesc& scene, const std::string& path, const WarningSink& warn) {
-    writeGltfModel(ModelBuilder(scene, warn).build(), path);
+void writeGltf(const SceneDesc& scene, const std::string& path, const WarningSink& warn, GltfBuffer buffer) {
+    writeGltfModel(ModelBuilder(scene, warn).build(), path, buffer);
 }
 
 }  // namespace tripath
