@@ -97,7 +97,7 @@ void checkExrFileSize(const std::string& path, const OIIO::ImageInput& in) {
     const uintmax_t size = fs::file_size(path, ec);
     const uint64_t least = leastExrBytes(layout);
     if (!ec && size < least)
-        throw InputError(fmt::format("cannot read '{}': its header claims {}x{} pixels ({} compression), which take "
+        throw InputError(fmt::format("cannot read '{}': its header claims {}x{} pixels (compression: {}), which take "
                                      "at least {} bytes, and the file has {}",
                                      path, spec.width, spec.height, layout.compression, least, size));
 }
