@@ -19,6 +19,7 @@
 #include "evaluation/error_map.h"
 #include "image/exposure.h"
 #include "evaluation/metrics.h"
+#include "png_bytes.h"
 
 namespace fs = std::filesystem;
 using namespace tripath;
@@ -330,10 +331,11 @@ std::string exrHeaderOnly(int width, int height, char compression, int chunks) {
            attribute("screenWindowWidth", "float", f1) + '\0' + std::string(size_t(8) * size_t(chunks), '\0');
 }
 
-// A 131 KB file whose header claims 32768 × 16384 uncompressed pixels (3.2 GB of halves) is refused
-// by its size before anything is allocated, naming what it claims; a constant image, which ZIP
-// shrinks about 400 times, reads back as it was written.
-TEST_F(ImageIoTest, ExrFarTooSmallForItsHeaderIsRefusedUnread) {
+// A 131 KB OpenEXR file whose header claims 32768 × 16384 uncompressed pixels (3.2 GB of halves),
+// and a 200-byte PNG claiming as many RGB pixels, are refused by their size before anything is
+// allocated, naming what they claim; a constant image, which ZIP shrinks about 400 times, reads
+// back as it was written.
+TEST_F(ImageIoTest, FileFarTooSmallForItsHeaderIsRefusedUnread) {
     const std::string huge = path("huge.exr");
     std::ofstream(huge, std::ios::binary) << exrHeaderOnly(32768, 16384, 0, 16384);
     EXPECT_LT(fs::file_size(huge), 140000u);
@@ -341,6 +343,15 @@ TEST_F(ImageIoTest, ExrFarTooSmallForItsHeaderIsRefusedUnread) {
     const std::string zip = path("zip.exr");
     std::ofstream(zip, std::ios::binary) << exrHeaderOnly(32768, 16384, 3, 1024);
     expectInputError([&] { readImage(zip); }, "(compression: zip), which take at least");
+    std::string ihdr;
+    test::png_detail::bigEndian(ihdr, 32768);
+    test::png_detail::bigEndian(ihdr, 16384);
+    ihdr += std::string("\x08\x02\0\0\0", 5);  // 8 bits, RGB, deflate, adaptive filters, not interlaced
+    const std::string png = path("huge.png");
+    std::ofstream(png, std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8) + test::png_detail::chunk("IHDR", ihdr) +
+                                                test::png_detail::chunk("IDAT", test::png_detail::storedZlib(std::string(99, '\0'))) +
+                                                test::png_detail::chunk("IEND", "");
+    expectInputError([&] { readImage(png); }, png + "': its header claims 32768x16384 pixels, which take at least");
     const std::string constant = path("constant.exr");
     writeExr(constant, filled(1024, 512, 0.25f, 0.5f, 2.0f), {});
     EXPECT_LT(fs::file_size(constant), 1024u * 512 * 12 / 100);
