@@ -19,6 +19,7 @@
 #include "evaluation/error_map.h"
 #include "image/exposure.h"
 #include "evaluation/metrics.h"
+#include "png_bytes.h"
 
 namespace fs = std::filesystem;
 using namespace tripath;
@@ -307,6 +308,55 @@ TEST_F(ImageIoTest, ReadErrorsAreOneLineInputErrors) {
     writePng(path("p.png"), filled(2, 2, 0.5f, 0.5f, 0.5f));
     expectInputError([&] { readExr(path("p.png")); }, "p.png");
     expectInputError([&] { readExr(dir_.string()); }, dir_.string());
+}
+
+// The bytes of an OpenEXR scan-line file whose header claims width × height pixels of half R, G, B
+// with compression `compression` (OpenEXR's code: 0 none, 3 zip), followed by `chunks` zero
+// offsets and nothing else: a header with no pixel data.
+std::string exrHeaderOnly(int width, int height, char compression, int chunks) {
+    auto i32 = [](int32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    auto attribute = [&](const std::string& name, const std::string& type, const std::string& value) {
+        return name + '\0' + type + '\0' + i32(int32_t(value.size())) + value;
+    };
+    std::string channels;
+    for (const char* c : {"B", "G", "R"}) channels += std::string(c) + '\0' + i32(1) + std::string(4, '\0') + i32(1) + i32(1);
+    channels += '\0';
+    const std::string box = i32(0) + i32(0) + i32(width - 1) + i32(height - 1);
+    const float one = 1, zero = 0;
+    const std::string f1(reinterpret_cast<const char*>(&one), 4), f0(reinterpret_cast<const char*>(&zero), 4);
+    return std::string("\x76\x2f\x31\x01", 4) + i32(2) + attribute("channels", "chlist", channels) +
+           attribute("compression", "compression", std::string(1, compression)) + attribute("dataWindow", "box2i", box) +
+           attribute("displayWindow", "box2i", box) + attribute("lineOrder", "lineOrder", std::string(1, '\0')) +
+           attribute("pixelAspectRatio", "float", f1) + attribute("screenWindowCenter", "v2f", f0 + f0) +
+           attribute("screenWindowWidth", "float", f1) + '\0' + std::string(size_t(8) * size_t(chunks), '\0');
+}
+
+// A 131 KB OpenEXR file whose header claims 32768 × 16384 uncompressed pixels (3.2 GB of halves),
+// and a 200-byte PNG claiming as many RGB pixels, are refused by their size before anything is
+// allocated, naming what they claim; a constant image, which ZIP shrinks about 400 times, reads
+// back as it was written.
+TEST_F(ImageIoTest, FileFarTooSmallForItsHeaderIsRefusedUnread) {
+    const std::string huge = path("huge.exr");
+    std::ofstream(huge, std::ios::binary) << exrHeaderOnly(32768, 16384, 0, 16384);
+    EXPECT_LT(fs::file_size(huge), 140000u);
+    expectInputError([&] { readImage(huge); }, huge + "': its header claims 32768x16384 pixels");
+    const std::string zip = path("zip.exr");
+    std::ofstream(zip, std::ios::binary) << exrHeaderOnly(32768, 16384, 3, 1024);
+    expectInputError([&] { readImage(zip); }, "(compression: zip), which take at least");
+    std::string ihdr;
+    test::png_detail::bigEndian(ihdr, 32768);
+    test::png_detail::bigEndian(ihdr, 16384);
+    ihdr += std::string("\x08\x02\0\0\0", 5);  // 8 bits, RGB, deflate, adaptive filters, not interlaced
+    const std::string png = path("huge.png");
+    std::ofstream(png, std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8) + test::png_detail::chunk("IHDR", ihdr) +
+                                                test::png_detail::chunk("IDAT", test::png_detail::storedZlib(std::string(99, '\0'))) +
+                                                test::png_detail::chunk("IEND", "");
+    expectInputError([&] { readImage(png); }, png + "': its header claims 32768x16384 pixels, which take at least");
+    const std::string constant = path("constant.exr");
+    writeExr(constant, filled(1024, 512, 0.25f, 0.5f, 2.0f), {});
+    EXPECT_LT(fs::file_size(constant), 1024u * 512 * 12 / 100);
+    const Image back = readImage(constant);
+    EXPECT_EQ(back.rgb, filled(1024, 512, 0.25f, 0.5f, 2.0f).rgb);
 }
 
 TEST_F(ImageIoTest, CheckWritable) {

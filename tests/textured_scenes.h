@@ -53,6 +53,10 @@ public:
         embedded_.push_back({int(doc_["images"].size()), bytes});
         return addImageTexture({{"mimeType", "image/png"}}, true, false);
     }
+    // A second texture over the image of texture `texture`, with a sampler of its own.
+    int addTextureSharingImage(int texture, bool nearest, bool repeat = false) {
+        return addSampledTexture(doc_["textures"][size_t(texture)]["source"].get<int>(), nearest, repeat);
+    }
     void addQuad(const Quad& q) { quads_.push_back(q); }
     // An emissive box [−h, h]³ (albedo 0, emitting `radiance` from both faces) around everything.
     void addGlowingBox(float h, float radiance) {
@@ -148,11 +152,13 @@ public:
 private:
     int addImageTexture(nlohmann::json image, bool nearest, bool repeat) {
         doc_["images"].push_back(std::move(image));
+        return addSampledTexture(int(doc_["images"].size()) - 1, nearest, repeat);
+    }
+    int addSampledTexture(int image, bool nearest, bool repeat) {
         const int filter = nearest ? 9728 : 9729, wrap = repeat ? 10497 : 33071;
         doc_["samplers"].push_back({{"magFilter", filter}, {"minFilter", filter}, {"wrapS", wrap}, {"wrapT", wrap}});
-        const int n = int(doc_["images"].size()) - 1;
-        doc_["textures"].push_back({{"source", n}, {"sampler", n}});
-        return n;
+        doc_["textures"].push_back({{"source", image}, {"sampler", int(doc_["samplers"].size()) - 1}});
+        return int(doc_["textures"].size()) - 1;
     }
     static std::string base64(const std::string& bytes) {
         static const char* const kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";

@@ -33,10 +33,6 @@ double texelCoordinate(float c, int n) {
     return std::isfinite(x) ? std::clamp(x, -0x1p40, 0x1p40) : 0.0;
 }
 
-Texel channelMax(const Texel& a, const Texel& b) {
-    return {std::max(a[0], b[0]), std::max(a[1], b[1]), std::max(a[2], b[2]), std::max(a[3], b[3])};
-}
-
 // Whether the triangle t (texel units) and the box [x0, x1] × [y0, y1] overlap, by separating
 // axes: the box's own (the caller's range) and each edge's normal. Conservative: a degenerate
 // edge separates nothing, and the box is widened by a thousandth of a texel against rounding.
@@ -64,33 +60,45 @@ Texel lerp(const Texel& a, const Texel& b, float t) {
 
 }  // namespace
 
+Texture::Texture(std::shared_ptr<const TextureImage> image, TextureWrap wrapU, TextureWrap wrapV, TextureFilter filter)
+    : image_(std::move(image)), wrapU_(wrapU), wrapV_(wrapV), filter_(filter) {}
+
 Texture::Texture(int width, int height, std::vector<Texel> texels, TextureWrap wrapU, TextureWrap wrapV,
                  TextureFilter filter)
-    : width_(width), height_(height), texels_(std::move(texels)), maxTexel_{}, wrapU_(wrapU), wrapV_(wrapV),
-      filter_(filter) {
-    for (const Texel& t : texels_) maxTexel_ = channelMax(maxTexel_, t);
+    : Texture(std::make_shared<const TextureImage>(width, height, std::move(texels)), wrapU, wrapV, filter) {}
+
+Texel Texture::lookup(Vec2 uv, ColourSpace space) const {
+    return image_->visit([&](const auto& texels) { return lookupIn(texels, uv, space); });
 }
 
-Texel Texture::texel(int x, int y) const { return texels_[size_t(y) * size_t(width_) + size_t(x)]; }
-
-Texel Texture::lookup(Vec2 uv) const {
-    const double x = texelCoordinate(uv.x, width_), y = texelCoordinate(uv.y, height_);
+template <class T>
+Texel Texture::lookupIn(const TexelArray<T>& texels, Vec2 uv, ColourSpace space) const {
+    const int w = width(), h = height();
+    // The texel at x, y (already wrapped into the image), as it reads.
+    auto at = [&](int x, int y) { return decodedTexel(texels[size_t(y) * size_t(w) + size_t(x)], space); };
+    const double x = texelCoordinate(uv.x, w), y = texelCoordinate(uv.y, h);
     if (filter_ == TextureFilter::Nearest)
-        return texel(wrapIndex(int64_t(std::floor(x)), width_, wrapU_),
-                     wrapIndex(int64_t(std::floor(y)), height_, wrapV_));
+        return at(wrapIndex(int64_t(std::floor(x)), w, wrapU_), wrapIndex(int64_t(std::floor(y)), h, wrapV_));
     const double x0 = std::floor(x - 0.5), y0 = std::floor(y - 0.5);
     const float fx = float(x - 0.5 - x0), fy = float(y - 0.5 - y0);
-    const int xa = wrapIndex(int64_t(x0), width_, wrapU_), xb = wrapIndex(int64_t(x0) + 1, width_, wrapU_);
-    const int ya = wrapIndex(int64_t(y0), height_, wrapV_), yb = wrapIndex(int64_t(y0) + 1, height_, wrapV_);
-    return lerp(lerp(texel(xa, ya), texel(xb, ya), fx), lerp(texel(xa, yb), texel(xb, yb), fx), fy);
+    const int xa = wrapIndex(int64_t(x0), w, wrapU_), xb = wrapIndex(int64_t(x0) + 1, w, wrapU_);
+    const int ya = wrapIndex(int64_t(y0), h, wrapV_), yb = wrapIndex(int64_t(y0) + 1, h, wrapV_);
+    return lerp(lerp(at(xa, ya), at(xb, ya), fx), lerp(at(xa, yb), at(xb, yb), fx), fy);
 }
 
-Texel Texture::maxOver(const std::array<Vec2, 3>& corners) const {
+Texel Texture::maxOver(const std::array<Vec2, 3>& corners, ColourSpace space) const {
+    return image_->visit([&](const auto& texels) { return maxIn(texels, corners, space); });
+}
+
+// The largest stored values first, then read: reading is nondecreasing (texture_image.h).
+template <class T>
+Texel Texture::maxIn(const TexelArray<T>& texels, const std::array<Vec2, 3>& corners, ColourSpace space) const {
+    const int w = width(), h = height();
     std::array<Vec2, 3> t;  // the corners in texel units
     double x0 = 0x1p40, y0 = 0x1p40, x1 = -0x1p40, y1 = -0x1p40;
     for (size_t k = 0; k < 3; ++k) {
-        if (!std::isfinite(corners[k].x) || !std::isfinite(corners[k].y)) return maxTexel_;
-        t[k] = {float(texelCoordinate(corners[k].x, width_)), float(texelCoordinate(corners[k].y, height_))};
+        if (!std::isfinite(corners[k].x) || !std::isfinite(corners[k].y)) return image_->largest(space);
+        t[k] = {float(texelCoordinate(corners[k].x, w)), float(texelCoordinate(corners[k].y, h))};
         x0 = std::min(x0, double(t[k].x)), x1 = std::max(x1, double(t[k].x));
         y0 = std::min(y0, double(t[k].y)), y1 = std::max(y1, double(t[k].y));
     }
@@ -99,17 +107,17 @@ Texel Texture::maxOver(const std::array<Vec2, 3>& corners) const {
     const auto i0 = int64_t(std::floor(x0 - widen)), i1 = int64_t(std::floor(x1 + widen));
     const auto j0 = int64_t(std::floor(y0 - widen)), j1 = int64_t(std::floor(y1 + widen));
     const double cells = double(i1 - i0 + 1) * double(j1 - j0 + 1);
-    if (cells > std::min(4.0 * width_ * height_ + 64, 0x1p20)) return maxTexel_;
-    Texel m{};
+    if (cells > std::min(4.0 * w * h + 64, 0x1p20)) return image_->largest(space);
+    std::array<T, 4> m{};
     for (int64_t j = j0; j <= j1; ++j)
         for (int64_t i = i0; i <= i1; ++i)
             if (overlaps(t, double(i) - widen, double(j) - widen, double(i) + 1 + widen, double(j) + 1 + widen))
-                m = channelMax(m, texel(wrapIndex(i, width_, wrapU_), wrapIndex(j, height_, wrapV_)));
-    return m;
+                m = channelMax(m, texels[size_t(wrapIndex(j, h, wrapV_)) * size_t(w) + size_t(wrapIndex(i, w, wrapU_))]);
+    return decodedTexel(m, space);
 }
 
 Texel TextureSlot::maxOver(const TexCoords corners[3]) const {
-    return texture->maxOver({transformed(corners[0]), transformed(corners[1]), transformed(corners[2])});
+    return texture->maxOver({transformed(corners[0]), transformed(corners[1]), transformed(corners[2])}, colourSpace);
 }
 
 Vec2 TextureSlot::transformed(const TexCoords& uv) const {
@@ -118,7 +126,7 @@ Vec2 TextureSlot::transformed(const TexCoords& uv) const {
     return {m[0] * c.x + m[1] * c.y + m[2], m[3] * c.x + m[4] * c.y + m[5]};
 }
 
-Texel TextureSlot::lookup(const TexCoords& uv) const { return texture->lookup(transformed(uv)); }
+Texel TextureSlot::lookup(const TexCoords& uv) const { return texture->lookup(transformed(uv), colourSpace); }
 
 BsdfParams MaterialTextures::at(const BsdfParams& factors, const TexCoords& uv) const {
     BsdfParams p = factors;

@@ -1,10 +1,11 @@
 // Textures and what a textured material reads from them (glTF 2.0 §3.8 and §5.29, the
-// KHR_texture_transform extension). A Texture is an image of linear RGBA floats -- colour textures
-// are decoded from sRGB when they are read (io/gltf_textures.cpp), so lookups do no decoding --
-// looked up at glTF texture coordinates (u to the right, v downward from the image's top-left
-// corner) with the sampler's wrap modes and a nearest or bilinear filter. A TextureSlot is one use
-// of a texture by a material: which coordinate set, and the affine transform to apply first.
-// MaterialTextures gathers a material's slots and turns them into the parameters at a point.
+// KHR_texture_transform extension). A Texture is an image (texture_image.h: texels as the file
+// stores them) with a sampler: looked up at glTF texture coordinates (u to the right, v downward
+// from the image's top-left corner) with the sampler's wrap modes and a nearest or bilinear
+// filter, which weighs texels as they read in the colour space asked for. A TextureSlot is one
+// use of a texture by a material: which coordinate set, the affine transform to apply first, and
+// the colour space its colour channels are read in. MaterialTextures gathers a material's slots
+// and turns them into the parameters at a point.
 //
 // Everything here is plain data built by the io layer; the geometry layer only reads it.
 #pragma once
@@ -13,36 +14,39 @@
 #include <vector>
 
 #include "geometry/material.h"
+#include "geometry/texture_image.h"
 #include "core/vec.h"
 
 namespace tripath {
-
-using Texel = std::array<float, 4>;  // linear RGBA
 
 enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
 enum class TextureFilter { Nearest, Linear };
 
 class Texture {
 public:
-    // texels: width × height, row by row from the image's top row.
+    Texture(std::shared_ptr<const TextureImage> image, TextureWrap wrapU, TextureWrap wrapV, TextureFilter filter);
+    // A texture of linear float texels: width × height, row by row from the image's top row.
     Texture(int width, int height, std::vector<Texel> texels, TextureWrap wrapU, TextureWrap wrapV,
             TextureFilter filter);
-    int width() const { return width_; }
-    int height() const { return height_; }
-    // The filtered texel at texture coordinates uv.
-    Texel lookup(Vec2 uv) const;
-    // Per channel, the largest value a lookup anywhere on the triangle of texture coordinates
-    // `corners` can return: the largest among the texels it can read (those whose cell, widened
-    // by half a texel for bilinear filtering, the triangle overlaps); the whole image's largest
-    // when the triangle's bounds span more cells than four images' worth (or 2^20), where
-    // finding them would cost more than the answer is worth.
-    Texel maxOver(const std::array<Vec2, 3>& corners) const;
+    int width() const { return image_->width(); }
+    int height() const { return image_->height(); }
+    const std::shared_ptr<const TextureImage>& image() const { return image_; }
+    // The filtered texel at texture coordinates uv, its texels read in colour space `space`.
+    Texel lookup(Vec2 uv, ColourSpace space = ColourSpace::Linear) const;
+    // Per channel, the largest value a lookup in colour space `space` anywhere on the triangle of
+    // texture coordinates `corners` can return: the largest among the texels it can read (those
+    // whose cell, widened by half a texel for bilinear filtering, the triangle overlaps); the
+    // whole image's largest when the triangle's bounds span more cells than four images' worth
+    // (or 2^20), where finding them would cost more than the answer is worth.
+    Texel maxOver(const std::array<Vec2, 3>& corners, ColourSpace space = ColourSpace::Linear) const;
 
 private:
-    Texel texel(int x, int y) const;  // x, y already wrapped into the image
-    int width_, height_;
-    std::vector<Texel> texels_;
-    Texel maxTexel_;  // per channel, over the whole image
+    template <class T>
+    Texel lookupIn(const TexelArray<T>& texels, Vec2 uv, ColourSpace space) const;
+    template <class T>
+    Texel maxIn(const TexelArray<T>& texels, const std::array<Vec2, 3>& corners, ColourSpace space) const;
+
+    std::shared_ptr<const TextureImage> image_;
     TextureWrap wrapU_, wrapV_;
     TextureFilter filter_;
 };
@@ -56,6 +60,7 @@ struct TextureSlot {
     int texCoord = 0;                        // 0 or 1
     // uv' = M · (u, v, 1): the extension's translation · rotation · scale, identity without it.
     std::array<float, 6> transform{1, 0, 0, 0, 1, 0};
+    ColourSpace colourSpace = ColourSpace::Linear;  // of the colour channels; alpha reads linear
 
     explicit operator bool() const { return texture != nullptr; }
     Texel lookup(const TexCoords& uv) const;

@@ -7,12 +7,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string_view>
 #include <system_error>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "image/least_file_size.h"
 
 namespace tripath {
 
@@ -85,6 +87,33 @@ void openAndWrite(OIIO::ImageOutput& out, const std::string& tmp, const std::str
         throw InputError(fmt::format("cannot write '{}': {}", path, oiioError(&out)));
 }
 
+// Refuses an OpenEXR or PNG file too small to hold the pixels its header claims
+// (least_file_size.h).
+void checkFileSize(const std::string& path, const OIIO::ImageInput& in) {
+    const std::string_view format = in.format_name();
+    const OIIO::ImageSpec& spec = in.spec();
+    uint64_t least = 0;
+    std::string how;
+    if (format == "openexr") {
+        const ExrLayout layout{uint64_t(spec.width), uint64_t(spec.height), uint64_t(std::max(spec.tile_width, 0)),
+                               uint64_t(std::max(spec.tile_height, 0)), uint64_t(spec.pixel_bytes(true)),
+                               spec.get_string_attribute("compression")};
+        least = leastExrBytes(layout);
+        how = " (compression: " + layout.compression + ")";
+    } else if (format == "png") {
+        std::string start(29, '\0');
+        std::ifstream file(path, std::ios::binary);
+        file.read(start.data(), std::streamsize(start.size()));
+        least = leastPngBytes(std::string_view(start.data(), size_t(file.gcount())));
+    }
+    std::error_code ec;
+    const uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size < least)
+        throw InputError(fmt::format("cannot read '{}': its header claims {}x{} pixels{}, which take at least {} "
+                                     "bytes, and the file has {}",
+                                     path, spec.width, spec.height, how, least, size));
+}
+
 Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::size_t maxPixels = SIZE_MAX) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(fmt::format("cannot read '{}': file does not exist", path));
@@ -109,6 +138,7 @@ Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::siz
     if (std::size_t(spec.width) * std::size_t(spec.height) > maxPixels)
         throw InputError(fmt::format("cannot read '{}': {}x{} pixels is more than the {} allowed", path, spec.width,
                                      spec.height, maxPixels));
+    checkFileSize(path, *in);
 
     // Only the data window is read; an EXR whose data window is offset from
     // its display window is taken as-is (tripath never writes one).

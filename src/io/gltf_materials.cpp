@@ -107,14 +107,14 @@ std::shared_ptr<const MaterialTextures> MaterialConverter::readTextures(const ti
                                                                         const std::string& context) {
     const auto& pbr = g.pbrMetallicRoughness;
     MaterialTextures t;
-    auto read = [&](const auto& info, bool srgb) {
+    auto read = [&](const auto& info, ColourSpace space) {
         if (info.index < 0) return TextureSlot{};
-        return textures_.slot(info.index, info.texCoord, info.extensions, srgb, context);
+        return textures_.slot(info.index, info.texCoord, info.extensions, space, context);
     };
-    t.baseColor = read(pbr.baseColorTexture, true);
-    t.metallicRoughness = read(pbr.metallicRoughnessTexture, false);
-    t.normal = read(g.normalTexture, false);
-    t.emissive = read(g.emissiveTexture, true);
+    t.baseColor = read(pbr.baseColorTexture, ColourSpace::Srgb);
+    t.metallicRoughness = read(pbr.metallicRoughnessTexture, ColourSpace::Linear);
+    t.normal = read(g.normalTexture, ColourSpace::Linear);
+    t.emissive = read(g.emissiveTexture, ColourSpace::Srgb);
     t.normalScale = float(g.normalTexture.scale);
     if (!std::isfinite(t.normalScale)) report_.fail(context + "normalTexture.scale is not finite");
     t.baseAlpha = pbr.baseColorFactor.size() == 4 ? float(pbr.baseColorFactor[3]) : 1.0f;

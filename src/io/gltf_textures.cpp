@@ -3,11 +3,14 @@
 // An image's bytes come from its bufferView, its data: URI or the file its URI names (refused
 // unless resolveExternalFile lets it through, as buffer files are), and OpenImageIO reads them
 // from memory (an IOMemReader), as PNG or JPEG by their magic bytes. The header is checked before
-// any texel is read, so a file claiming 100000 × 100000 texels costs nothing. Colour textures
-// (base colour, emission) are decoded from sRGB to linear as they are stored; data textures
-// (metallic-roughness, normals) are stored as read. Alpha is read unassociated, as stored. Samplers: wrapS/wrapT as given, the
-// magnification filter for every lookup (no mipmaps: a minification filter's mipmap part reads
-// as its base filter), linear when the sampler names none.
+// any texel is read, so a file claiming 100000 × 100000 texels costs nothing. The texels are read
+// straight into the stored RGBA array, 8 or 16 bits a channel as the file has them (grey
+// replicated, a missing alpha set to its largest value), so what the reader holds beyond them is
+// the compressed file and OpenImageIO's own buffer. Whether colour is sRGB (base colour,
+// emission) or data (metallic-roughness, normals) is the slot's to say, when it is read. Alpha is
+// read unassociated, as stored. Samplers: wrapS/wrapT as given, the magnification filter for
+// every lookup (no mipmaps: a minification filter's mipmap part reads as its base filter), linear
+// when the sampler names none.
 #include "io/gltf_textures.h"
 
 #include <OpenImageIO/filesystem.h>
@@ -20,8 +23,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
-#include "core/srgb.h"
 #include "io/external_files.h"
 
 namespace tripath::gltf {
@@ -32,17 +35,18 @@ namespace {
 // size, compressed, is far smaller).
 constexpr uintmax_t kMaxImageFileBytes = uintmax_t(1) << 30;
 
-// RGBA texels of decoded values, `channels` a texel (grey, grey + alpha, RGB or RGBA), the colour
-// channels decoded from sRGB when `srgb`.
-std::vector<Texel> toTexels(const std::vector<float>& raw, int channels, bool srgb) {
-    std::vector<Texel> texels(raw.size() / size_t(channels));
-    for (size_t i = 0; i < texels.size(); ++i) {
-        const float* p = &raw[i * size_t(channels)];
-        const bool grey = channels < 3;
-        Texel t{p[0], grey ? p[0] : p[1], grey ? p[0] : p[2], channels == 2 ? p[1] : channels == 4 ? p[3] : 1.0f};
-        if (srgb)
-            for (size_t c = 0; c < 3; ++c) t[c] = srgbDecode(t[c]);
-        texels[i] = t;
+// Reads the open image's first `channels` channels (at most 4) straight into RGBA texels of type
+// T, then fills in the rest: grey replicated into green and blue, a missing alpha opaque.
+template <class T>
+TexelArray<T> readTexels(OIIO::ImageInput& input, int channels, const std::string& what, const Report& report) {
+    const OIIO::ImageSpec& spec = input.spec();
+    TexelArray<T> texels(size_t(spec.width) * size_t(spec.height));
+    if (!input.read_image(0, 0, 0, channels, OIIO::BaseTypeFromC<T>::value, texels.data(), sizeof(texels[0])))
+        report.fail(what + ": cannot decode its image: " + quoted(input.geterror()));
+    constexpr T opaque = std::numeric_limits<T>::max();
+    for (std::array<T, 4>& t : texels) {
+        if (channels < 3) t = {t[0], t[0], t[0], channels == 2 ? t[1] : opaque};
+        else if (channels == 3) t[3] = opaque;
     }
     return texels;
 }
@@ -127,12 +131,13 @@ TextureReader::TextureReader(const tinygltf::Model& model, std::filesystem::path
                              Report& report)
     : model_(model), folder_(std::move(folder)), allowOutside_(allowOutside), report_(report) {}
 
-TextureSlot TextureReader::slot(int index, int texCoord, const tinygltf::ExtensionMap& extensions, bool srgb,
+TextureSlot TextureReader::slot(int index, int texCoord, const tinygltf::ExtensionMap& extensions, ColourSpace space,
                                 const std::string& context) {
     TextureSlot s;
     const std::string what = context + "texture " + std::to_string(index);
-    s.texture = texture(index, srgb, what);
+    s.texture = texture(index, what);
     s.texCoord = texCoord;
+    s.colourSpace = space;
     const auto it = extensions.find("KHR_texture_transform");
     if (it != extensions.end() && it->second.IsObject()) {
         s.transform = transformMatrix(it->second, what, report_);
@@ -144,20 +149,20 @@ TextureSlot TextureReader::slot(int index, int texCoord, const tinygltf::Extensi
     return s;
 }
 
-std::string TextureReader::imageBytes(const tinygltf::Image& image, const std::string& what) const {
-    if (image.bufferView >= 0) {
-        if (size_t(image.bufferView) >= model_.bufferViews.size())
-            report_.fail(what + ": its bufferView does not exist");
-        const tinygltf::BufferView& view = model_.bufferViews[size_t(image.bufferView)];
-        if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
-            report_.fail(what + ": its buffer does not exist");
-        const std::vector<unsigned char>& data = model_.buffers[size_t(view.buffer)].data;
-        if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
-            report_.fail(what + ": its bufferView runs past the end of its buffer");
-        return std::string(reinterpret_cast<const char*>(data.data()) + view.byteOffset, view.byteLength);
-    }
-    if (!image.image.empty())  // a data: URI's bytes (gltf_file.cpp)
+std::string TextureReader::embeddedBytes(const tinygltf::Image& image, const std::string& what) const {
+    if (image.bufferView < 0)  // a data: URI's bytes (gltf_file.cpp)
         return std::string(image.image.begin(), image.image.end());
+    if (size_t(image.bufferView) >= model_.bufferViews.size()) report_.fail(what + ": its bufferView does not exist");
+    const tinygltf::BufferView& view = model_.bufferViews[size_t(image.bufferView)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
+        report_.fail(what + ": its buffer does not exist");
+    const std::vector<unsigned char>& data = model_.buffers[size_t(view.buffer)].data;
+    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+        report_.fail(what + ": its bufferView runs past the end of its buffer");
+    return std::string(reinterpret_cast<const char*>(data.data()) + view.byteOffset, view.byteLength);
+}
+
+std::filesystem::path TextureReader::imageFile(const tinygltf::Image& image, const std::string& what) const {
     if (image.uri.empty()) report_.fail(what + ": its image has no data");
     if (!uriScheme(image.uri).empty())
         report_.fail(what + ": uri " + quoted(image.uri) +
@@ -166,18 +171,12 @@ std::string TextureReader::imageBytes(const tinygltf::Image& image, const std::s
     if (!file.problem.empty())  // as a buffer's refusal says it (gltf_file.cpp)
         report_.fail(what + ": uri " + quoted(image.uri) + " names " +
                      quoted(file.path.string(), folder_.string().size() + kExcerptLength) + ", " + file.problem);
-    std::error_code ec;
-    const uintmax_t size = std::filesystem::file_size(file.path, ec);
-    if (ec || size > kMaxImageFileBytes) report_.fail(what + ": " + quoted(image.uri) + " is unreadable or over 1 GiB");
-    std::string bytes(size_t(size), '\0');
-    std::ifstream in(file.path, std::ios::binary);
-    if (!in || !in.read(bytes.data(), std::streamsize(bytes.size())))
-        report_.fail(what + ": cannot read " + quoted(image.uri));
-    return bytes;
+    return file.path;
 }
 
-std::vector<float> TextureReader::decode(const std::string& bytes, const std::string& name, const std::string& what,
-                                         int& width, int& height, int& channels) const {
+std::shared_ptr<const TextureImage> TextureReader::decode(const std::string& bytes, const std::string& what) const {
+    const std::string name = formatName(bytes);
+    if (name.empty()) report_.fail(what + ": its image is not a PNG or JPEG file");
     const QuietStderr quiet;
     OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
     // The texels as stored: glTF's colour and alpha are independent (its alpha is coverage for
@@ -195,27 +194,47 @@ std::vector<float> TextureReader::decode(const std::string& bytes, const std::st
         pixels > kMaxTexturePixels || spec.nchannels < 1)
         report_.fail(what + ": its image claims " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                      " texels (at most 16384 a side and 2^26 in all are read)");
-    width = spec.width;
-    height = spec.height;
-    channels = std::min(spec.nchannels, 4);
-    std::vector<float> raw(static_cast<size_t>(pixels) * static_cast<size_t>(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
-        report_.fail(what + ": cannot decode its image: " + quoted(input->geterror()));
-    return raw;
+    const int channels = std::min(spec.nchannels, 4);
+    // PNG stores 1, 2, 4, 8 or 16 bits a channel (those below 8 are read as bytes), JPEG 8.
+    if (spec.format.size() <= 1)
+        return std::make_shared<const TextureImage>(spec.width, spec.height,
+                                                    readTexels<uint8_t>(*input, channels, what, report_));
+    return std::make_shared<const TextureImage>(spec.width, spec.height,
+                                                readTexels<uint16_t>(*input, channels, what, report_));
 }
 
-std::shared_ptr<const Texture> TextureReader::texture(int index, bool srgb, const std::string& what) {
+std::shared_ptr<const TextureImage> TextureReader::image(int index, const std::string& what) {
+    if (auto it = images_.find(index); it != images_.end()) return it->second;
+    const tinygltf::Image& source = model_.images[size_t(index)];
+    std::shared_ptr<const TextureImage> decoded;
+    if (source.bufferView >= 0 || !source.image.empty()) {
+        decoded = decode(embeddedBytes(source, what), what);
+    } else {
+        const std::filesystem::path file = imageFile(source, what);
+        if (auto it = files_.find(file); it != files_.end()) {
+            decoded = it->second;
+        } else {
+            std::error_code ec;
+            const uintmax_t size = std::filesystem::file_size(file, ec);
+            if (ec || size > kMaxImageFileBytes)
+                report_.fail(what + ": " + quoted(source.uri) + " is unreadable or over 1 GiB");
+            std::string bytes(size_t(size), '\0');
+            std::ifstream in(file, std::ios::binary);
+            if (!in || !in.read(bytes.data(), std::streamsize(bytes.size())))
+                report_.fail(what + ": cannot read " + quoted(source.uri));
+            decoded = files_[file] = decode(bytes, what);
+        }
+    }
+    images_[index] = decoded;
+    return decoded;
+}
+
+std::shared_ptr<const Texture> TextureReader::texture(int index, const std::string& what) {
     if (index < 0 || size_t(index) >= model_.textures.size()) report_.fail(what + " does not exist");
-    if (auto it = cache_.find({index, srgb}); it != cache_.end()) return it->second;
+    if (auto it = textures_.find(index); it != textures_.end()) return it->second;
     const tinygltf::Texture& tex = model_.textures[size_t(index)];
     if (tex.source < 0 || size_t(tex.source) >= model_.images.size())
         report_.fail(what + " has no PNG or JPEG source image (extension images are not read)");
-    const std::string bytes = imageBytes(model_.images[size_t(tex.source)], what);
-    const std::string name = formatName(bytes);
-    if (name.empty()) report_.fail(what + ": its image is not a PNG or JPEG file");
-    int width = 0, height = 0, channels = 0;
-    const std::vector<float> raw = decode(bytes, name, what, width, height, channels);
-    std::vector<Texel> texels = toTexels(raw, channels, srgb);
     TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
     TextureFilter filter = TextureFilter::Linear;
     if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size()) {
@@ -224,8 +243,8 @@ std::shared_ptr<const Texture> TextureReader::texture(int index, bool srgb, cons
         wrapV = wrapMode(sampler.wrapT);
         filter = filterMode(sampler.magFilter);
     }
-    auto texture = std::make_shared<const Texture>(width, height, std::move(texels), wrapU, wrapV, filter);
-    cache_[{index, srgb}] = texture;
+    auto texture = std::make_shared<const Texture>(image(tex.source, what), wrapU, wrapV, filter);
+    textures_[index] = texture;
     return texture;
 }
 

@@ -1,7 +1,7 @@
 // glTF textures → Texture (geometry/texture.h): the images read with OpenImageIO from the buffer
 // views, data: URIs or files (in the scene's folder, as for buffers: external_files.h) they come
-// from, decoded to linear RGBA floats, with their samplers and KHR_texture_transform. A header of
-// the io library's own.
+// from, stored as the file stores its texels (8 or 16 bits a channel), with their samplers and
+// KHR_texture_transform. A header of the io library's own.
 #pragma once
 #include <tiny_gltf.h>
 
@@ -16,8 +16,8 @@
 
 namespace tripath::gltf {
 
-// The largest image read: a side of 16384 texels and 2^26 texels in all (1 GiB as RGBA floats).
-// A header claiming more is refused before any texel is allocated.
+// The largest image read: a side of 16384 texels and 2^26 texels in all (256 MiB as 8-bit RGBA,
+// 512 MiB as 16-bit). A header claiming more is refused before any texel is allocated.
 constexpr int kMaxTextureSide = 16384;
 constexpr long long kMaxTexturePixels = 1LL << 26;
 
@@ -25,24 +25,31 @@ class TextureReader {
 public:
     // `folder`: the scene's folder (absolute, symlinks resolved); allowOutside as GltfOptions'.
     TextureReader(const tinygltf::Model& model, std::filesystem::path folder, bool allowOutside, Report& report);
-    // The slot a material's textureInfo describes (index ≥ 0): the texture, read once for each
-    // colour space it is read in (sRGB colour, or linear data), its texCoord and transform.
-    TextureSlot slot(int index, int texCoord, const tinygltf::ExtensionMap& extensions, bool srgb,
+    // The slot a material's textureInfo describes (index ≥ 0): the texture, its colour channels
+    // read in colour space `space`, its texCoord and transform. Each texture is made once, and
+    // each image decoded once, however many textures and colour spaces use it: by image index,
+    // and by file for image files (two image entries naming one file share it).
+    TextureSlot slot(int index, int texCoord, const tinygltf::ExtensionMap& extensions, ColourSpace space,
                      const std::string& context);
 
 private:
-    std::shared_ptr<const Texture> texture(int index, bool srgb, const std::string& context);
-    std::string imageBytes(const tinygltf::Image& image, const std::string& what) const;
-    // The texels of an image file's bytes as floats, `channels` (at most 4) a texel; its header
-    // checked against the size limits before any texel is allocated.
-    std::vector<float> decode(const std::string& bytes, const std::string& name, const std::string& what, int& width,
-                              int& height, int& channels) const;
+    std::shared_ptr<const Texture> texture(int index, const std::string& what);
+    std::shared_ptr<const TextureImage> image(int index, const std::string& what);
+    // The bytes of an image held in the glTF itself (a bufferView or a data: URI).
+    std::string embeddedBytes(const tinygltf::Image& image, const std::string& what) const;
+    // The file an image's URI names, refused unless resolveExternalFile lets it through.
+    std::filesystem::path imageFile(const tinygltf::Image& image, const std::string& what) const;
+    // The texels of an image file's bytes, as many bits a channel as it stores; its header checked
+    // against the size limits before any texel is allocated.
+    std::shared_ptr<const TextureImage> decode(const std::string& bytes, const std::string& what) const;
 
     const tinygltf::Model& model_;
     std::filesystem::path folder_;
     bool allowOutside_;
     Report& report_;
-    std::map<std::pair<int, bool>, std::shared_ptr<const Texture>> cache_;
+    std::map<int, std::shared_ptr<const Texture>> textures_;         // by texture index
+    std::map<int, std::shared_ptr<const TextureImage>> images_;      // by image index
+    std::map<std::filesystem::path, std::shared_ptr<const TextureImage>> files_;  // by resolved path
 };
 
 }  // namespace tripath::gltf
