@@ -492,5 +492,70 @@ TEST_F(Cli, ACheckpointIsContinuedOnlyWithItsOwnSettings) {
     expectRefused(render(size + out()), "not a tripath checkpoint");
 }
 
+// A damaged or edited checkpoint is refused in one line, not continued: a byte flipped in its
+// totals (its checksum), a header number that is not all a number in its range (atoi would read
+// "-5", "abc", "4x" and 99999999999 somehow), a next-pass whose streams would wrap, seconds that
+// are not finite, a chain-bytes the file does not hold, another format version. The checkpoint
+// as written is continued, so each refusal is the edit's.
+TEST_F(Cli, ADamagedCheckpointIsRefused) {
+    const std::string reference = "reference --scene cornell --width 8 --height 8 --spp 4 --checkpoint 100 --out '" +
+                                  path("ref.exr") + "'";
+    ASSERT_EQ(run(reference).exitCode, 0);
+    const std::string checkpoint = path("ref.exr.checkpoint"), written = slurp(checkpoint);
+    const auto refusedWith = [&](const std::string& text, const std::string& expected) {
+        std::ofstream(checkpoint, std::ios::binary) << text;
+        expectRefused(reference, expected);
+    };
+    const auto edited = [&](const std::string& key, const std::string& value) {
+        const size_t start = written.find("\n" + key + "=") + 1, end = written.find('\n', start);
+        return written.substr(0, start) + key + "=" + value + written.substr(end);
+    };
+    std::string flipped = written;
+    flipped[flipped.size() - 3] ^= 0x10;
+    refusedWith(flipped, "the file is damaged");
+    for (const char* passes : {"-5", "abc", "4x", "99999999999", ""})
+        refusedWith(edited("passes", passes),
+                    std::string("passes is '") + passes + "', not a whole number from 0 to 2147483647");
+    refusedWith(edited("passes", "5"), "it gives 5 passes, more than its next-pass 4 leaves room for");
+    refusedWith(edited("next-pass", "18446744073709551615"), "not a whole number from 0 to 34359738368");
+    for (const char* seconds : {"nan", "inf", "-1", "1e300", "0.5s"})
+        refusedWith(edited("seconds", seconds),
+                    std::string("seconds is '") + seconds + "', not a number from 0 to 1e+09");
+    refusedWith(edited("chain-bytes", "3000000000"), "its header gives chain-bytes=3000000000, but 0 bytes follow");
+    refusedWith(written.substr(0, written.size() - 8), "cut short");
+    refusedWith("tripath-checkpoint 1" + written.substr(written.find('\n')),
+                "written in format '1', this tripath reads format 2");
+    std::ofstream(checkpoint, std::ios::binary) << written;
+    const Outcome continued = run(reference);
+    EXPECT_EQ(continued.exitCode, 0) << continued.err;
+    EXPECT_NE(continued.err.find("continuing from"), std::string::npos) << continued.err;
+}
+
+// A reference's numbers are read whole and in range when it is read, before any rendering: its
+// spp is not taken as 4 from "4x" (stoi did), its seconds not as NaN, its next-pass not wrapped,
+// its dropped-samples not taken from "-1". The file as written is continued.
+TEST_F(Cli, AReferencesNumbersAreReadWholeAndInRange) {
+    const std::string reference =
+        "reference --scene cornell --width 8 --height 8 --spp 2 --out '" + path("ref.exr") + "'";
+    ASSERT_EQ(run(reference).exitCode, 0);
+    Metadata written;
+    const Image image = readExr(path("ref.exr"), &written);
+    const auto refusedWith = [&](const std::string& key, const std::string& value, const std::string& expected) {
+        Metadata edited = written;
+        for (auto& [k, v] : edited)
+            if (k == key) v = value;
+        writeExr(path("ref.exr"), image, edited);
+        expectRefused(reference, "'" + path("ref.exr") + "': " + key + " is '" + value + "', " + expected);
+    };
+    for (const char* spp : {"4x", "-5", "abc", "99999999999"})
+        refusedWith("tripath:spp", spp, "not a whole number from 0 to 2147483647");
+    refusedWith("tripath:next-pass", "18446744073709551615", "not a whole number from 0 to 34359738368");
+    refusedWith("tripath:dropped-samples", "-1", "not a whole number from 0 to 18446744073709551615");
+    for (const char* seconds : {"nan", "-1", "2s"})
+        refusedWith("tripath:seconds", seconds, "not a finite number from 0");
+    writeExr(path("ref.exr"), image, written);
+    EXPECT_EQ(run(reference).exitCode, 0);
+}
+
 }  // namespace
 }  // namespace tripath
