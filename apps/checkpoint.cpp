@@ -74,9 +74,14 @@ void writeCheckpoint(const std::string& path, const Metadata& settings, const Re
 }
 
 std::optional<RenderResult> readCheckpoint(const std::string& path, const Metadata& settings, const Film& shape) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) return std::nullopt;
     auto bad = [&](const std::string& why) { return InputError(fmt::format("checkpoint '{}': {}", path, why)); };
+    std::error_code ec;
+    const std::filesystem::file_type type = std::filesystem::status(path, ec).type();
+    if (type == std::filesystem::file_type::not_found) return std::nullopt;
+    // A FIFO would block until a writer comes, a device never end.
+    if (type != std::filesystem::file_type::regular) throw bad("not a regular file");
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw bad("cannot open it");
     std::string line;
     const std::string format = std::string(kFormat) + " ";
     if (!std::getline(f, line) || !line.starts_with(format)) throw bad("not a tripath checkpoint");
@@ -127,7 +132,6 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
     // The chains' states are what follows the totals: their size is checked against the file's
     // before anything is allocated for them.
     const uint64_t chainBytes = number("chain-bytes", UINT64_MAX);
-    std::error_code ec;
     const uint64_t fileSize = std::filesystem::file_size(path, ec);
     if (ec) throw bad("cannot read it (" + ec.message() + ")");
     const uint64_t totalsEnd = uint64_t(std::streamoff(f.tellg())) + wordCount(shape) * sizeof(uint64_t);

@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -106,9 +107,10 @@ protected:
     // Runs `tripath <args>`. `timeout` only keeps a broken build from hanging the suite: a
     // command that starts rendering when it should refuse would run for hours and end with
     // exit code 124, which the tests reject along with every other wrong code.
-    Outcome run(const std::string& args) const {
+    Outcome run(const std::string& args, int timeoutSeconds = 300) const {
         const std::string out = path("stdout.txt"), err = path("stderr.txt");
-        const std::string cmd = "timeout 300 '" TRIPATH_BINARY "' " + args + " >'" + out + "' 2>'" + err + "'";
+        const std::string cmd = "timeout " + std::to_string(timeoutSeconds) + " '" TRIPATH_BINARY "' " + args + " >'" +
+                                out + "' 2>'" + err + "'";
         const int status = std::system(cmd.c_str());
         Outcome o;
         o.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -126,8 +128,8 @@ protected:
 
     // The contract: exit code 1 (an input error, not a crash or a timeout), exactly one line on
     // stderr that starts with "error: " and mentions `expected`, and no output image.
-    void expectRefused(const std::string& args, const std::string& expected) const {
-        const Outcome o = run(args);
+    void expectRefused(const std::string& args, const std::string& expected, int timeoutSeconds = 300) const {
+        const Outcome o = run(args, timeoutSeconds);
         EXPECT_EQ(o.exitCode, 1) << args << "\n" << o.err;
         const auto lines = o.errLines();
         ASSERT_EQ(lines.size(), 1u) << args << "\nstderr:\n" << o.err;
@@ -529,6 +531,24 @@ TEST_F(Cli, ADamagedCheckpointIsRefused) {
     const Outcome continued = run(reference);
     EXPECT_EQ(continued.exitCode, 0) << continued.err;
     EXPECT_NE(continued.err.find("continuing from"), std::string::npos) << continued.err;
+}
+
+// A device or FIFO named as the environment map, the reference or the checkpoint is refused
+// without being opened: /dev/zero never ends (the image-format probe looped on it) and a FIFO
+// blocks until a writer comes. A refusal takes a moment; 20 s is a hang.
+TEST_F(Cli, DevicesAndFifosAreRefusedUnread) {
+    const std::string fifo = path("fifo.exr");
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string& special : {std::string("/dev/zero"), fifo}) {
+        const std::string refusal = "cannot read '" + special + "': not a regular file";
+        expectRefused(render("--width 8 --height 8 --spp 1 --environment '" + special + "' " + out()), refusal, 20);
+        expectRefused("compare --scene cornell --width 8 --height 8 --time 0.1 --reference '" + special + "' --out '" +
+                          path("compared") + "'",
+                      refusal, 20);
+    }
+    ASSERT_EQ(mkfifo(path("out.exr.checkpoint").c_str(), 0600), 0);
+    expectRefused(render("--width 8 --height 8 --spp 1 " + out()),
+                  "checkpoint '" + path("out.exr.checkpoint") + "': not a regular file", 20);
 }
 
 // A reference's numbers are read whole and in range when it is read, before any rendering: its

@@ -1,6 +1,7 @@
 #include "requests/interrupt.h"
 
-#include <csignal>
+#include <signal.h>
+
 #include <cstdlib>
 
 namespace tripath {
@@ -18,8 +19,14 @@ void onInterrupt(int signal) {
 }  // namespace
 
 const std::atomic<bool>* installInterruptHandler() {
-    std::signal(SIGINT, onInterrupt);
-    std::signal(SIGTERM, onInterrupt);
+    // Without SA_RESTART, a blocking call the signal arrives in returns (EINTR) rather than
+    // waiting on, as std::signal would have it: the caller gets to see the stop request.
+    struct sigaction action = {};
+    action.sa_handler = onInterrupt;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = 0;
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
     return &gStop;
 }
 
