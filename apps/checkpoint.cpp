@@ -10,10 +10,12 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <utility>
 
 #include "geometry/embree_isa.h"
 #include "core/error.h"
 #include "core/number_text.h"
+#include "core/warnings.h"
 #include "input_words.h"
 #include "processes.h"
 
@@ -197,11 +199,19 @@ RenderResult renderResumable(const Scene& scene, const Integrator& integrator, R
         rs.resume = &*old;
     }
     const bool checkpointing = o.checkpointSeconds > 0;
+    bool checkpointFailed = false;
     if (checkpointing) {
         rs.checkpointSeconds = o.checkpointSeconds;
+        // A checkpoint that cannot be written (a full disk) costs the safety it gives, not the
+        // render: said once, and the render goes on, trying again at the next checkpoint.
         rs.onCheckpoint = [&](const RenderResult& sofar) {
-            how.writeImage(sofar);
-            writeCheckpoint(path, how.settings, sofar);
+            try {
+                how.writeImage(sofar);
+                writeCheckpoint(path, how.settings, sofar);
+            } catch (const InputError& e) {
+                if (!std::exchange(checkpointFailed, true))
+                    printWarning(std::string(e.what()) + "; rendering on without this checkpoint");
+            }
         };
     }
     RenderResult r = finished ? std::move(*old) : render(scene, integrator, rs);

@@ -40,7 +40,8 @@ Metadata checkpointSettings(const RenderOptions& o, const Scene& scene, const In
                             const FilmLayers& layers);
 
 // A render that continues from <out>.checkpoint when that exists (on any rank count), writes one
-// every --checkpoint seconds (with the image so far, through `writeImage`), and on interruption.
+// every --checkpoint seconds (with the image so far, through `writeImage`; a write that fails is
+// warned about once and the render goes on), and on interruption.
 struct Resumable {
     std::string out;
     Metadata settings;          // checkpointSettings(...)

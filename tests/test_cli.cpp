@@ -176,6 +176,40 @@ TEST_F(Cli, AnInterruptedRenderSaysSoAndFails) {
         << slurp(path("err.txt"));
 }
 
+// A second signal, while the render winds down after the first, ends the process at once, as a
+// user pressing Ctrl-C twice means, and says so rather than vanishing without a word; the exit
+// code is the first signal's. The two are sent together: the render cannot finish in between.
+TEST_F(Cli, ASecondSignalExitsAtOnceAndSaysSo) {
+    Background job({"render", "--scene", "cornell", "--width", "32", "--height", "32", "--spp", "1000000",
+                    "--checkpoint", "0.01", "--out", path("out.exr")},
+                   path("err.txt"));
+    ASSERT_TRUE(waitFor([&] { return fs::exists(path("out.exr.checkpoint")); }, 120)) << slurp(path("err.txt"));
+    job.signal(SIGTERM);
+    job.signal(SIGINT);
+    const int code = job.exitCode(120);
+    EXPECT_TRUE(code == 128 + SIGTERM || code == 128 + SIGINT) << code;
+    const std::string err = slurp(path("err.txt"));
+    EXPECT_NE(err.find("interrupted again: exiting at once, without writing what the render has\n"), std::string::npos)
+        << err;
+}
+
+// A checkpoint that cannot be written (here its temporary's name is too long for the file system,
+// where the image's is not; a full disk in practice) is warned about once, and the render goes on
+// to its end and writes its image, rather than stopping with the error.
+TEST_F(Cli, AFailedCheckpointWriteWarnsOnceAndTheRenderGoesOn) {
+    // 234 bytes: "<name>.tmp-<pid>-<n>.exr" stays within 255, "<name>.checkpoint.tmp-<pid>-<n>.part" does not.
+    const std::string image = path(std::string(230, 'x') + ".exr");
+    const Outcome o =
+        run(render("--width 16 --height 16 --spp 64 --threads 1 --checkpoint 0.000001 --out '" + image + "'"));
+    EXPECT_EQ(o.exitCode, 0) << o.err;
+    EXPECT_TRUE(fs::exists(image));
+    size_t warnings = 0;
+    for (const std::string& line : o.errLines())
+        warnings += line.starts_with("warning: cannot write '" + image + ".checkpoint'") &&
+                    line.ends_with("; rendering on without this checkpoint");
+    EXPECT_EQ(warnings, 1u) << o.err;
+}
+
 // The same for `reference` with a time budget, which keeps the passes it has: the line and the key
 // say the passes and the seconds out of the budget.
 TEST_F(Cli, AnInterruptedReferenceSaysSoAndFails) {
@@ -273,6 +307,13 @@ TEST_F(Cli, AbsurdBudgetsAreRefused) {
     expectRefused(render("--width 8 --height 8 --replay -1,2 " + out()), "--replay");
     expectRefused(render("--width 8 --height 8 --replay 1,2x " + out()), "--replay");
     expectRefused(render("--checkpoint nan " + out()), "--checkpoint");
+}
+
+// An empty --environment (an unset shell variable) is refused, not taken as no environment: a
+// scene lit only by it would otherwise be refused as having no emitter, or render unlit.
+TEST_F(Cli, AnEmptyEnvironmentIsRefused) {
+    expectRefused(render("--width 8 --height 8 --spp 1 --environment '' " + out()),
+                  "--environment is empty: give a map's path or a radiance R,G,B");
 }
 
 TEST_F(Cli, NegativeBudgetsAreRefused) {

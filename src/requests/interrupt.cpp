@@ -1,6 +1,7 @@
 #include "requests/interrupt.h"
 
 #include <signal.h>
+#include <unistd.h>
 
 #include <cstdlib>
 
@@ -14,7 +15,11 @@ static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler"
 void onInterrupt(int signal) {
     int none = 0;
     gSignal.compare_exchange_strong(none, signal);  // the first one is the one reported
-    if (gStop.exchange(true)) std::_Exit(128 + gSignal.load());  // the second one: give up at once
+    if (gStop.exchange(true)) {  // the second one: give up at once, saying so (write is async-signal-safe)
+        static constexpr char kLine[] = "interrupted again: exiting at once, without writing what the render has\n";
+        [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kLine, sizeof kLine - 1);
+        std::_Exit(128 + gSignal.load());
+    }
 }
 }  // namespace
 
