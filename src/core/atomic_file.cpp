@@ -31,16 +31,19 @@ std::string uniqueSuffix() {
 // process, another writer, or a process that reused the pid) is left alone.
 void removeLeftovers(const fs::path& path) {
     const std::string prefix = path.filename().string() + ".tmp-";
-    std::error_code ec;
-    fs::path dir = path.parent_path();
-    for (const fs::directory_entry& entry : fs::directory_iterator(dir.empty() ? "." : dir, ec)) {
-        const std::string name = entry.path().filename().string();
+    std::error_code ec;  // a folder that cannot be listed ends the search; a file that cannot be removed stays
+    const fs::path dir = path.parent_path();
+    for (fs::directory_iterator it(dir.empty() ? "." : dir, ec); !ec && it != fs::directory_iterator();
+         it.increment(ec)) {
+        const fs::path& entry = it->path();
+        const std::string name = entry.filename().string();
         if (!name.starts_with(prefix)) continue;
         long pid = 0;
         const char *begin = name.data() + prefix.size(), *end = name.data() + name.size();
         const auto [stop, parseError] = std::from_chars(begin, end, pid);
         if (parseError != std::errc{} || stop == end || *stop != '-' || pid <= 0) continue;
-        if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
+        std::error_code ignored;
+        if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove(entry, ignored);
     }
 }
 
