@@ -80,6 +80,7 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
     std::error_code ec;
     const std::filesystem::file_type type = std::filesystem::status(path, ec).type();
     if (type == std::filesystem::file_type::not_found) return std::nullopt;
+    if (ec) throw bad("cannot read it (" + ec.message() + ")");
     // A FIFO would block until a writer comes, a device never end.
     if (type != std::filesystem::file_type::regular) throw bad("not a regular file");
     std::ifstream f(path, std::ios::binary);
