@@ -6,10 +6,12 @@
 // mlt it also holds every Markov chain's state (integrators/metropolis_render.h), taken between
 // passes, so that each chain goes on where it stopped.
 //
-// Format: the line "tripath-checkpoint 1", then "key=value" lines (the settings, then passes,
-// next-pass, seconds, dropped-samples, guarded-weights, values, chain-run, chain-bytes), a blank
-// line, the totals as little-endian 64-bit words, then the chains' states (chain-bytes bytes). Written to a temporary file and renamed over the target, so a job
-// killed at any moment leaves the previous checkpoint whole.
+// Format: the line "tripath-checkpoint 2", then "key=value" lines (the settings, then passes,
+// next-pass, seconds, dropped-samples, guarded-weights, values, chain-run, chain-bytes and
+// checksum), a blank line, the totals as little-endian 64-bit words, then the chains' states
+// (chain-bytes bytes). The checksum is the 64-bit FNV-1a, in 16 hex digits, of the other header
+// lines after the first and of everything after the blank line. Written to a temporary file and
+// renamed over the target, so a job killed at any moment leaves the previous checkpoint whole.
 #pragma once
 #include <optional>
 #include <string>
@@ -25,8 +27,11 @@ std::string checkpointPath(const std::string& out);
 void writeCheckpoint(const std::string& path, const Metadata& settings, const RenderResult& r);
 
 // The render saved at `path`, into a film shaped like `shape` (its size and layers); nullopt if
-// there is no such file. Throws InputError (one line naming the file) if it is not a checkpoint,
-// is cut short, or was made with other settings (naming the first that differs).
+// there is no such file. Throws InputError (one line naming the file) if it is not a regular file
+// (a FIFO would block), not a checkpoint or of another format version, was made with other settings
+// (naming the first that differs), has a header number that is not entirely a number in its range
+// (next-pass at most kMaxFirstPass, seconds finite, from 0 to 1e9), a size other than its header
+// gives, or contents that fail its checksum.
 std::optional<RenderResult> readCheckpoint(const std::string& path, const Metadata& settings, const Film& shape);
 
 // What must match for a checkpoint to be continued: the scene, integrator, size, depths, MIS,
@@ -35,7 +40,8 @@ Metadata checkpointSettings(const RenderOptions& o, const Scene& scene, const In
                             const FilmLayers& layers);
 
 // A render that continues from <out>.checkpoint when that exists (on any rank count), writes one
-// every --checkpoint seconds (with the image so far, through `writeImage`), and on interruption.
+// every --checkpoint seconds (with the image so far, through `writeImage`; a write that fails is
+// warned about once and the render goes on), and on interruption.
 struct Resumable {
     std::string out;
     Metadata settings;          // checkpointSettings(...)

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include <array>
-#include <cstdlib>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
 
@@ -79,8 +79,7 @@ void validate(const ReferenceCommand& c) {
 // The first pass index the file's samples left unused (tripath:next-pass; files from before it
 // used passes 0 .. spp−1).
 uint64_t nextPass(const ReferenceFile& ref) {
-    const auto v = ref.value("tripath:next-pass");
-    return v ? std::strtoull(v->c_str(), nullptr, 10) : uint64_t(ref.spp());
+    return ref.wholeNumber("tripath:next-pass", kMaxFirstPass, uint64_t(ref.spp()));
 }
 
 void run(const ReferenceCommand& c) {
@@ -131,8 +130,7 @@ void run(const ReferenceCommand& c) {
         image = combine(old->image, old->spp(), image, r.passes);
         const int spp = old->spp() + r.passes;
         const double seconds = old->seconds() + r.seconds;
-        const std::string oldDropped = old->value("tripath:dropped-samples").value_or("0");
-        const uint64_t dropped = std::strtoull(oldDropped.c_str(), nullptr, 10) + r.droppedSamples;
+        const uint64_t dropped = old->wholeNumber("tripath:dropped-samples", UINT64_MAX, 0) + r.droppedSamples;
         setMetadata(meta, "tripath:spp", std::to_string(spp));
         setMetadata(meta, "tripath:seconds", fmt::format("{:.3f}", seconds));
         setMetadata(meta, "tripath:dropped-samples", std::to_string(dropped));

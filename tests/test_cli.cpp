@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -106,9 +107,10 @@ protected:
     // Runs `tripath <args>`. `timeout` only keeps a broken build from hanging the suite: a
     // command that starts rendering when it should refuse would run for hours and end with
     // exit code 124, which the tests reject along with every other wrong code.
-    Outcome run(const std::string& args) const {
+    Outcome run(const std::string& args, int timeoutSeconds = 300) const {
         const std::string out = path("stdout.txt"), err = path("stderr.txt");
-        const std::string cmd = "timeout 300 '" TRIPATH_BINARY "' " + args + " >'" + out + "' 2>'" + err + "'";
+        const std::string cmd = "timeout " + std::to_string(timeoutSeconds) + " '" TRIPATH_BINARY "' " + args + " >'" +
+                                out + "' 2>'" + err + "'";
         const int status = std::system(cmd.c_str());
         Outcome o;
         o.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -126,8 +128,8 @@ protected:
 
     // The contract: exit code 1 (an input error, not a crash or a timeout), exactly one line on
     // stderr that starts with "error: " and mentions `expected`, and no output image.
-    void expectRefused(const std::string& args, const std::string& expected) const {
-        const Outcome o = run(args);
+    void expectRefused(const std::string& args, const std::string& expected, int timeoutSeconds = 300) const {
+        const Outcome o = run(args, timeoutSeconds);
         EXPECT_EQ(o.exitCode, 1) << args << "\n" << o.err;
         const auto lines = o.errLines();
         ASSERT_EQ(lines.size(), 1u) << args << "\nstderr:\n" << o.err;
@@ -172,6 +174,40 @@ TEST_F(Cli, AnInterruptedRenderSaysSoAndFails) {
     EXPECT_EQ(metaValue(meta, "tripath:interrupted").rfind(progress, 0), 0u) << metaValue(meta, "tripath:interrupted");
     EXPECT_NE(slurp(path("err.txt")).find("bdpt cornell: interrupted " + progress), std::string::npos)
         << slurp(path("err.txt"));
+}
+
+// A second signal, while the render winds down after the first, ends the process at once, as a
+// user pressing Ctrl-C twice means, and says so rather than vanishing without a word; the exit
+// code is the first signal's. The two are sent together: the render cannot finish in between.
+TEST_F(Cli, ASecondSignalExitsAtOnceAndSaysSo) {
+    Background job({"render", "--scene", "cornell", "--width", "32", "--height", "32", "--spp", "1000000",
+                    "--checkpoint", "0.01", "--out", path("out.exr")},
+                   path("err.txt"));
+    ASSERT_TRUE(waitFor([&] { return fs::exists(path("out.exr.checkpoint")); }, 120)) << slurp(path("err.txt"));
+    job.signal(SIGTERM);
+    job.signal(SIGINT);
+    const int code = job.exitCode(120);
+    EXPECT_TRUE(code == 128 + SIGTERM || code == 128 + SIGINT) << code;
+    const std::string err = slurp(path("err.txt"));
+    EXPECT_NE(err.find("interrupted again: exiting at once, without writing what the render has\n"), std::string::npos)
+        << err;
+}
+
+// A checkpoint that cannot be written (here its temporary's name is too long for the file system,
+// where the image's is not; a full disk in practice) is warned about once, and the render goes on
+// to its end and writes its image, rather than stopping with the error.
+TEST_F(Cli, AFailedCheckpointWriteWarnsOnceAndTheRenderGoesOn) {
+    // 234 bytes: "<name>.tmp-<pid>-<n>.exr" stays within 255, "<name>.checkpoint.tmp-<pid>-<n>.part" does not.
+    const std::string image = path(std::string(230, 'x') + ".exr");
+    const Outcome o =
+        run(render("--width 16 --height 16 --spp 64 --threads 1 --checkpoint 0.000001 --out '" + image + "'"));
+    EXPECT_EQ(o.exitCode, 0) << o.err;
+    EXPECT_TRUE(fs::exists(image));
+    size_t warnings = 0;
+    for (const std::string& line : o.errLines())
+        warnings += line.starts_with("warning: cannot write '" + image + ".checkpoint'") &&
+                    line.ends_with("; rendering on without this checkpoint");
+    EXPECT_EQ(warnings, 1u) << o.err;
 }
 
 // The same for `reference` with a time budget, which keeps the passes it has: the line and the key
@@ -271,6 +307,13 @@ TEST_F(Cli, AbsurdBudgetsAreRefused) {
     expectRefused(render("--width 8 --height 8 --replay -1,2 " + out()), "--replay");
     expectRefused(render("--width 8 --height 8 --replay 1,2x " + out()), "--replay");
     expectRefused(render("--checkpoint nan " + out()), "--checkpoint");
+}
+
+// An empty --environment (an unset shell variable) is refused, not taken as no environment: a
+// scene lit only by it would otherwise be refused as having no emitter, or render unlit.
+TEST_F(Cli, AnEmptyEnvironmentIsRefused) {
+    expectRefused(render("--width 8 --height 8 --spp 1 --environment '' " + out()),
+                  "--environment is empty: give a map's path or a radiance R,G,B");
 }
 
 TEST_F(Cli, NegativeBudgetsAreRefused) {
@@ -512,6 +555,89 @@ TEST_F(Cli, ACheckpointIsContinuedOnlyWithItsOwnSettings) {
     expectRefused(render(size + out()), "streams=reference");
     std::ofstream(path("out.exr.checkpoint")) << "not a checkpoint\n";
     expectRefused(render(size + out()), "not a tripath checkpoint");
+}
+
+// A damaged or edited checkpoint is refused in one line, not continued: a byte flipped in its
+// totals (its checksum), a header number that is not all a number in its range (atoi would read
+// "-5", "abc", "4x" and 99999999999 somehow), a next-pass whose streams would wrap, seconds that
+// are not finite, a chain-bytes the file does not hold, another format version. The checkpoint
+// as written is continued, so each refusal is the edit's.
+TEST_F(Cli, ADamagedCheckpointIsRefused) {
+    const std::string reference = "reference --scene cornell --width 8 --height 8 --spp 4 --checkpoint 100 --out '" +
+                                  path("ref.exr") + "'";
+    ASSERT_EQ(run(reference).exitCode, 0);
+    const std::string checkpoint = path("ref.exr.checkpoint"), written = slurp(checkpoint);
+    const auto refusedWith = [&](const std::string& text, const std::string& expected) {
+        std::ofstream(checkpoint, std::ios::binary) << text;
+        expectRefused(reference, expected);
+    };
+    const auto edited = [&](const std::string& key, const std::string& value) {
+        const size_t start = written.find("\n" + key + "=") + 1, end = written.find('\n', start);
+        return written.substr(0, start) + key + "=" + value + written.substr(end);
+    };
+    std::string flipped = written;
+    flipped[flipped.size() - 3] ^= 0x10;
+    refusedWith(flipped, "the file is damaged");
+    for (const char* passes : {"-5", "abc", "4x", "99999999999", ""})
+        refusedWith(edited("passes", passes),
+                    std::string("passes is '") + passes + "', not a whole number from 0 to 2147483647");
+    refusedWith(edited("passes", "5"), "it gives 5 passes, more than its next-pass 4 leaves room for");
+    refusedWith(edited("next-pass", "18446744073709551615"), "not a whole number from 0 to 34359738368");
+    for (const char* seconds : {"nan", "inf", "-1", "1e300", "0.5s"})
+        refusedWith(edited("seconds", seconds),
+                    std::string("seconds is '") + seconds + "', not a number from 0 to 1e+09");
+    refusedWith(edited("chain-bytes", "3000000000"), "its header gives chain-bytes=3000000000, but 0 bytes follow");
+    refusedWith(written.substr(0, written.size() - 8), "cut short");
+    refusedWith("tripath-checkpoint 1" + written.substr(written.find('\n')),
+                "written in format '1', this tripath reads format 2");
+    std::ofstream(checkpoint, std::ios::binary) << written;
+    const Outcome continued = run(reference);
+    EXPECT_EQ(continued.exitCode, 0) << continued.err;
+    EXPECT_NE(continued.err.find("continuing from"), std::string::npos) << continued.err;
+}
+
+// A device or FIFO named as the environment map, the reference or the checkpoint is refused
+// without being opened: /dev/zero never ends (the image-format probe looped on it) and a FIFO
+// blocks until a writer comes. A refusal takes a moment; 20 s is a hang.
+TEST_F(Cli, DevicesAndFifosAreRefusedUnread) {
+    const std::string fifo = path("fifo.exr");
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string& special : {std::string("/dev/zero"), fifo}) {
+        const std::string refusal = "cannot read '" + special + "': not a regular file";
+        expectRefused(render("--width 8 --height 8 --spp 1 --environment '" + special + "' " + out()), refusal, 20);
+        expectRefused("compare --scene cornell --width 8 --height 8 --time 0.1 --reference '" + special + "' --out '" +
+                          path("compared") + "'",
+                      refusal, 20);
+    }
+    ASSERT_EQ(mkfifo(path("out.exr.checkpoint").c_str(), 0600), 0);
+    expectRefused(render("--width 8 --height 8 --spp 1 " + out()),
+                  "checkpoint '" + path("out.exr.checkpoint") + "': not a regular file", 20);
+}
+
+// A reference's numbers are read whole and in range when it is read, before any rendering: its
+// spp is not taken as 4 from "4x" (stoi did), its seconds not as NaN, its next-pass not wrapped,
+// its dropped-samples not taken from "-1". The file as written is continued.
+TEST_F(Cli, AReferencesNumbersAreReadWholeAndInRange) {
+    const std::string reference =
+        "reference --scene cornell --width 8 --height 8 --spp 2 --out '" + path("ref.exr") + "'";
+    ASSERT_EQ(run(reference).exitCode, 0);
+    Metadata written;
+    const Image image = readExr(path("ref.exr"), &written);
+    const auto refusedWith = [&](const std::string& key, const std::string& value, const std::string& expected) {
+        Metadata edited = written;
+        for (auto& [k, v] : edited)
+            if (k == key) v = value;
+        writeExr(path("ref.exr"), image, edited);
+        expectRefused(reference, "'" + path("ref.exr") + "': " + key + " is '" + value + "', " + expected);
+    };
+    for (const char* spp : {"4x", "-5", "abc", "99999999999"})
+        refusedWith("tripath:spp", spp, "not a whole number from 0 to 2147483647");
+    refusedWith("tripath:next-pass", "18446744073709551615", "not a whole number from 0 to 34359738368");
+    refusedWith("tripath:dropped-samples", "-1", "not a whole number from 0 to 18446744073709551615");
+    for (const char* seconds : {"nan", "-1", "2s"})
+        refusedWith("tripath:seconds", seconds, "not a finite number from 0");
+    writeExr(path("ref.exr"), image, written);
+    EXPECT_EQ(run(reference).exitCode, 0);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 
 #include "core/error.h"
 #include "io/gltf_checks.h"
+#include "io/gltf_document.h"
 #include "io/gltf_loader.h"
 #include "io/gltf_materials.h"
 #include "io/gltf_model.h"
@@ -810,6 +811,30 @@ TEST_F(GltfTest, BrokenJsonThrows) {
     const std::string longToken = writeText(file("token.gltf"), "{\"asset\": \"" + std::string(5000, 'x') + "\n\"}");
     expectInputError(longToken, "token.gltf: not valid JSON at line 1, column 5012 (syntax error while parsing value - "
                                 "invalid string: control character U+000A (LF) must be escaped");
+}
+
+// tinygltf converts "extras" to its Value recursively: 16000 nested arrays overflowed the stack.
+// The deepest nesting read loads; one level more is refused, naming the member.
+TEST_F(GltfTest, JsonNestedDeeperThanTheLimitIsRefused) {
+    std::string json = nlohmann::json::parse(std::ifstream(quadScene().write(file("quad.gltf")))).dump();
+    json.pop_back();  // its closing brace
+    const auto nested = [&](size_t depth) {  // "extras" is level 2, under the document
+        const std::string extras = std::string(depth - 1, '[') + std::string(depth - 1, ']');
+        return writeText(file("nested" + std::to_string(depth) + ".gltf"), json + ",\"extras\":" + extras + "}");
+    };
+    using gltf::kMaxJsonDepth;
+    EXPECT_EQ(triangles(load(nested(kMaxJsonDepth))).size(), 2u);
+    const std::string limit = std::to_string(kMaxJsonDepth);
+    for (const size_t depth : {kMaxJsonDepth + 1, size_t(16000)})
+        expectInputError(nested(depth), ".gltf: its JSON nests arrays and objects deeper than " + limit +
+                                            " levels (in \"extras\"); tripath reads at most " + limit);
+}
+
+// nlohmann parses 1e400 as valid JSON and then refuses it as out of double's range, with an
+// exception other than its parse_error.
+TEST_F(GltfTest, NumberBeyondDoublesRangeIsRefused) {
+    expectInputError(writeText(file("huge.gltf"), R"({"asset": {"version": "2.0"}, "extras": 1e400})"),
+                     "huge.gltf: cannot read its JSON (number overflow parsing '1e400')");
 }
 
 TEST_F(GltfTest, EmptyFilesAndFilesWithoutAssetSaySo) {

@@ -1,6 +1,7 @@
 // Image I/O and error metrics. Everything runs on tiny images in a private
 // temporary directory, so the suite stays fast and leaves nothing behind.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -266,6 +267,27 @@ TEST_F(ImageIoTest, WritesLeaveNoTemporaryFilesAndReplaceTargets) {
     Image r = readExr(path("a.exr"), &meta);
     EXPECT_EQ(r.at(2, 1)[0], 4.0f);
     EXPECT_EQ(meta, (Metadata{{"tripath:run", "second"}}));
+}
+
+// A temporary left by a writer killed mid-write (SIGKILL leaves a checkpoint's, hundreds of MB,
+// for good) is removed by the next write of its target once its process is gone; a running
+// process's temporary, another target's and other files stay.
+TEST_F(ImageIoTest, TheNextWriteRemovesTheTemporariesOfAKilledWriter) {
+    const pid_t child = fork();
+    if (child == 0) _exit(0);
+    ASSERT_GT(child, 0);
+    waitpid(child, nullptr, 0);  // reaped: its pid names no process
+    const std::string gone = std::to_string(child), running = std::to_string(getpid());
+    const std::vector<std::string> kept = {"a.exr.tmp-" + running + "-7.exr", "b.exr.tmp-" + gone + "-0.exr",
+                                           "a.exr.tmp-x-0.exr", "a.exr.tmp-" + gone};
+    for (const std::string& name : kept) std::ofstream(path(name)) << "x";
+    std::ofstream(path("a.exr.tmp-" + gone + "-0.exr")) << "x";
+    std::ofstream(path("a.exr.tmp-" + gone + "-3.part")) << "x";
+    writeExr(path("a.exr"), filled(2, 2, 1, 1, 1), {});
+    std::vector<std::string> expected = kept;
+    expected.push_back("a.exr");
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(listing(), expected);
 }
 
 TEST_F(ImageIoTest, WriteIntoMissingDirectoryThrowsAndLeavesNothing) {

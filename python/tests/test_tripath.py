@@ -8,6 +8,7 @@ import gc
 import json
 import math
 import os
+import pathlib
 import signal
 import struct
 import subprocess
@@ -70,6 +71,19 @@ def test_bad_input_is_a_value_error_with_the_command_lines_message(tmp_path, cor
         tripath.render(cornell, "lt", strategy_images=2)
     with pytest.raises(ValueError, match="^light_paths must be between 1 and"):
         tripath.render(cornell, "vcm", light_paths=0)
+
+
+FUZZ_FINDS = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "fuzz"
+
+
+@pytest.mark.parametrize("find", ["extras-nested-16000-deep.gltf", "extras-number-beyond-double.gltf"])
+def test_hostile_json_is_a_value_error_with_the_command_lines_message(tmp_path, find, cli_error):
+    # Arrays nested 16000 deep overflowed the stack in the loader, killing the interpreter.
+    path = str(FUZZ_FINDS / find)
+    with pytest.raises(ValueError) as e:
+        tripath.load(path)
+    assert str(e.value) == cli_error("render", "--scene", path, "--out", str(tmp_path / "x.exr"))
+    assert str(e.value).startswith(path + ": ")
 
 
 def test_every_keyword_option_the_error_names_is_taken(cornell):

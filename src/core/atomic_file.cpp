@@ -2,11 +2,13 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
 
 #include <atomic>
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 
@@ -22,6 +24,27 @@ namespace {
 std::string uniqueSuffix() {
     static std::atomic<unsigned long long> counter{0};
     return fmt::format("{}-{}", static_cast<long>(::getpid()), counter.fetch_add(1));
+}
+
+// Removes the temporaries of `path` ("<name>.tmp-<pid>-<n><ext>" beside it) whose process is gone:
+// what a writer killed mid-write (SIGKILL, a crash) left. A temporary whose pid runs (this
+// process, another writer, or a process that reused the pid) is left alone.
+void removeLeftovers(const fs::path& path) {
+    const std::string prefix = path.filename().string() + ".tmp-";
+    std::error_code ec;  // a folder that cannot be listed ends the search; a file that cannot be removed stays
+    const fs::path dir = path.parent_path();
+    for (fs::directory_iterator it(dir.empty() ? "." : dir, ec); !ec && it != fs::directory_iterator();
+         it.increment(ec)) {
+        const fs::path& entry = it->path();
+        const std::string name = entry.filename().string();
+        if (!name.starts_with(prefix)) continue;
+        long pid = 0;
+        const char *begin = name.data() + prefix.size(), *end = name.data() + name.size();
+        const auto [stop, parseError] = std::from_chars(begin, end, pid);
+        if (parseError != std::errc{} || stop == end || *stop != '-' || pid <= 0) continue;
+        std::error_code ignored;
+        if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove(entry, ignored);
+    }
 }
 
 }  // namespace
@@ -63,6 +86,7 @@ void replaceAtomically(const std::string& path, const std::string& ext, const st
         std::error_code ec;
         fs::rename(tmp, path, ec);
         if (ec) throw InputError(fmt::format("cannot write '{}': rename failed: {}", path, ec.message()));
+        removeLeftovers(path);
     } catch (...) {
         std::error_code ignored;
         fs::remove(tmp, ignored);

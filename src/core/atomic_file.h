@@ -1,6 +1,7 @@
 // Files written whole or not at all: every writer of tripath's outputs (images, glTF, reports,
 // checkpoints) writes a temporary file beside the target and renames it over the target, so an
-// interrupted or failed write never leaves a truncated file under the real name.
+// interrupted or failed write never leaves a truncated file under the real name; the temporaries
+// a killed writer left are removed by the next write of the same target.
 #pragma once
 #include <functional>
 #include <ostream>
@@ -20,7 +21,8 @@ void checkWritable(const std::string& path);
 // Replaces `path` by what `write(tmp)` writes to `tmp`, a new file in the same folder (one
 // filesystem, so the rename is atomic) whose name ends in `ext`, so that a tool finding a leftover
 // still recognises it. On any failure the temporary is removed and the exception goes on; a failed
-// rename throws InputError. No fsync: this protects against failed and concurrent writes, not
+// rename throws InputError. Once `path` is replaced, the temporaries of `path` whose writing process
+// is gone (named with its pid: "<path>.tmp-<pid>-<n><ext>") are removed too. No fsync: this protects against failed and concurrent writes, not
 // against power loss, which is not worth the cost for a renderer's output.
 void replaceAtomically(const std::string& path, const std::string& ext, const std::function<void(const std::string&)>& write);
 

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdlib>
+#include <cstdint>
 #include <filesystem>
 
 #include "evaluation/compare.h"
@@ -35,7 +35,7 @@ Reference readGivenReference(const CompareRequest& o) {
     // an image from `tripath render` (or an older reference) with one of the runs' seeds is refused.
     const auto seed = file.value("tripath:seed");
     if (seed && streamDomain(file) == r.domain) {
-        const uint64_t s = std::strtoull(seed->c_str(), nullptr, 10);
+        const uint64_t s = file.wholeNumber("tripath:seed", UINT64_MAX, 0);
         if (s >= r.seed && s < r.seed + uint64_t(o.runs))
             throw InputError(fmt::format("reference '{}' was rendered with seed {} in the render streams, which run {} "
                                          "would reuse (shared samples hide error): pass e.g. --seed {}, or make the "

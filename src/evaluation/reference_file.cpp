@@ -2,9 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <climits>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 
 #include "core/error.h"
+#include "core/number_text.h"
+#include "integrators/render.h"
+#include "io/gltf_checks.h"
 
 namespace tripath::evaluation {
 
@@ -26,22 +32,26 @@ std::optional<std::string> ReferenceFile::value(const std::string& key) const {
     return std::nullopt;
 }
 
-int ReferenceFile::spp() const {
-    const auto v = value("tripath:spp");
-    try {
-        return v ? std::stoi(*v) : 0;
-    } catch (const std::exception&) {
-        throw InputError(fmt::format("'{}': tripath:spp is not a number ('{}')", path, *v));
-    }
+uint64_t ReferenceFile::wholeNumber(const std::string& key, uint64_t max, uint64_t absent) const {
+    const auto v = value(key);
+    if (!v) return absent;
+    const auto number = parseWholeNumber(*v, max);
+    if (!number)
+        throw InputError(
+            fmt::format("'{}': {} is '{}', not a whole number from 0 to {}", path, key, gltf::excerpt(*v), max));
+    return *number;
 }
+
+int ReferenceFile::spp() const { return int(wholeNumber("tripath:spp", INT_MAX, 0)); }
 
 double ReferenceFile::seconds() const {
     const auto v = value("tripath:seconds");
-    try {
-        return v ? std::stod(*v) : 0;
-    } catch (const std::exception&) {
-        throw InputError(fmt::format("'{}': tripath:seconds is not a number ('{}')", path, *v));
-    }
+    if (!v) return 0;
+    const auto number = parseNonNegative(*v, std::numeric_limits<double>::max());
+    if (!number)
+        throw InputError(
+            fmt::format("'{}': tripath:seconds is '{}', not a finite number from 0", path, gltf::excerpt(*v)));
+    return *number;
 }
 
 std::string ReferenceFile::description() const {
@@ -61,6 +71,12 @@ ReferenceFile readReference(const std::string& path) {
     ReferenceFile ref;
     ref.path = path;
     ref.image = readExr(path, &ref.meta);
+    // The numbers it records, checked before any rendering rather than where each is used.
+    ref.spp();
+    ref.seconds();
+    ref.wholeNumber("tripath:next-pass", kMaxFirstPass, 0);
+    ref.wholeNumber("tripath:dropped-samples", UINT64_MAX, 0);
+    ref.wholeNumber("tripath:seed", UINT64_MAX, 0);
     return ref;
 }
 

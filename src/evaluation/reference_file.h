@@ -2,6 +2,7 @@
 // plus the tripath:* metadata saying how it was rendered, and the checks that a reference fits
 // the render it is used with.
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -18,9 +19,14 @@ struct ReferenceFile {
     Metadata meta;
 
     std::optional<std::string> value(const std::string& key) const;
-    // tripath:spp and tripath:seconds; 0 when absent (an EXR from another renderer).
+    // tripath:spp and tripath:seconds; 0 when absent (an EXR from another renderer). Throw
+    // InputError for anything but a whole number of passes up to INT_MAX and a finite, non-negative
+    // number of seconds.
     int spp() const;
     double seconds() const;
+    // The value of `key` as a whole number from 0 to `max`, or `absent` when the file lacks the key;
+    // throws InputError, naming the file and the key, for any other text ("-5", "12x", "abc").
+    uint64_t wholeNumber(const std::string& key, uint64_t max, uint64_t absent) const;
     // "bdpt, 4096 spp, 300 s" or "external reference" when there is no metadata to tell.
     std::string description() const;
 };
@@ -30,7 +36,9 @@ struct ReferenceFile {
 // written before the key existed, other renderers' EXRs). Throws InputError for any other value.
 StreamDomain streamDomain(const ReferenceFile& ref);
 
-// Throws InputError (one line naming the file) if it is missing or not an EXR.
+// Throws InputError (one line naming the file) if it is missing or not an EXR, or if a number its
+// metadata records (tripath:spp, seconds, next-pass, dropped-samples, seed) is not entirely a
+// number in its range (wholeNumber; next-pass at most kMaxFirstPass, integrators/render.h).
 ReferenceFile readReference(const std::string& path);
 
 // Throws InputError unless the reference is width x height.

@@ -118,6 +118,8 @@ Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::siz
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(fmt::format("cannot read '{}': file does not exist", path));
     if (fs::is_directory(path, ec)) throw InputError(fmt::format("cannot read '{}': it is a directory", path));
+    // A device or FIFO would never end (/dev/zero) or block until a writer comes.
+    if (!fs::is_regular_file(path, ec)) throw InputError(fmt::format("cannot read '{}': not a regular file", path));
 
     // By default OIIO premultiplies colour by alpha on read; we want the
     // stored colour values untouched.

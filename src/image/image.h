@@ -51,6 +51,9 @@ void writePng(const std::string& path, const Image& img, float exposureStops = 0
 // embeds the image shows, so that it matches the image's PNG byte for byte.
 std::vector<unsigned char> previewBytes(const Image& img);
 
+// The readers take regular files only (symlinks to them too): a directory, device, FIFO or socket
+// is refused, unopened, with InputError.
+
 // Reads the first three channels of an OpenEXR file (a one- or two-channel
 // file is read as grey). If `meta` is given it receives the string attributes
 // whose names start with "tripath:", sorted by name (OpenEXR keeps header

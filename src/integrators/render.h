@@ -37,6 +37,12 @@ struct DroppedSample {
 };
 constexpr size_t kDroppedLogSize = 16;
 
+// The largest first pass a render may be given or a saved render may claim to have reached (a
+// checkpoint's next-pass, a reference's tripath:next-pass): a pass's random streams are numbered
+// pass × pixels + pixel and pass × light paths + path, which stay below 2^64 for every pass up to
+// 2^35 even at 16384² pixels (2^28) and the most light paths (2^26), so no stream is used twice.
+constexpr uint64_t kMaxFirstPass = uint64_t(1) << 35;
+
 struct RenderSettings {
     int spp = 16;                 // passes this run renders; with `seconds` > 0, an upper bound (0: none)
     double seconds = 0;           // > 0: stop at the first pass boundary after this much time

@@ -1,4 +1,4 @@
-// The container, JSON and version checks that run before tinygltf reads a glTF file
+// The container, JSON, nesting and version checks that run before tinygltf reads a glTF file
 // (gltf_document.h).
 #include "io/gltf_document.h"
 
@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace tripath::gltf {
 
@@ -45,6 +47,15 @@ std::string jsonProblem(const std::string& what) {
     return excerpt(problem, kProblemLength);
 }
 
+// What nlohmann says of valid JSON it cannot hold, without its prefix
+// ("[json.exception.out_of_range.406] "): e.g. "number overflow parsing '1e400'", whose quote of
+// the number is cut to an excerpt.
+std::string libraryProblem(const std::string& what) {
+    const size_t prefixEnd = what.find("] ");
+    const bool prefixed = what.starts_with("[json.exception.") && prefixEnd != std::string::npos;
+    return excerpt(prefixed ? what.substr(prefixEnd + 2) : what, kProblemLength);
+}
+
 }  // namespace
 
 std::string_view jsonText(const std::vector<char>& bytes, bool binary, const Report& report) {
@@ -79,6 +90,26 @@ nlohmann::json parseJson(std::string_view text, const Report& report) {
         const std::string problem = jsonProblem(e.what());
         report.fail("not valid JSON at line " + std::to_string(line) + ", column " +
                     std::to_string(at - lineStart + 1) + (problem.empty() ? "" : " (" + problem + ")"));
+    } catch (const nlohmann::json::exception& e) {
+        report.fail("cannot read its JSON (" + libraryProblem(e.what()) + ")");
+    }
+}
+
+void checkNesting(const nlohmann::json& doc, const Report& report) {
+    if (!doc.is_object()) return;  // checkAsset refuses it
+    for (const auto& member : doc.items()) {
+        // The member's values still to visit, each with its level.
+        std::vector<std::pair<const nlohmann::json*, size_t>> pending{{&member.value(), 2}};
+        while (!pending.empty()) {
+            const auto [value, depth] = pending.back();
+            pending.pop_back();
+            if (!value->is_structured()) continue;
+            if (depth > kMaxJsonDepth)
+                report.fail("its JSON nests arrays and objects deeper than " + std::to_string(kMaxJsonDepth) +
+                            " levels (in " + quoted(member.key()) + "); tripath reads at most " +
+                            std::to_string(kMaxJsonDepth));
+            for (const auto& child : *value) pending.emplace_back(&child, depth + 1);
+        }
     }
 }
 

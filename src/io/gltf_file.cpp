@@ -181,6 +181,7 @@ tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
                         std::filesystem::path(path).extension() == ".glb";
     const nlohmann::json doc = parseJson(jsonText(bytes, binary, report), report);
     checkAsset(doc, report);
+    checkNesting(doc, report);
     ApprovedFiles approved;
     approved.allowOutside = allowExternalFiles;
     approved.folder = sceneFolder(report);

@@ -1,10 +1,10 @@
-// Reading a glTF file into tinygltf's model, within the rules for the files it may open: the
-// scene file is .glb or .gltf by its magic bytes (or the .glb extension); its container, JSON and
-// version are checked first (gltf_document.h); every buffer URI is checked before tinygltf opens
-// any file, so that a refusal names the buffer (a data: URI's size, a URI scheme, the file it
-// names: external_files.h), and tinygltf's file-system callbacks then open only the approved
-// buffer files; image files are left to gltf_textures.h, which reads them under the same rules. A
-// header of the io library's own (the loader's interface is gltf_loader.h).
+// Reading a glTF file into tinygltf's model, within the rules for the files it may open: the scene
+// file is .glb or .gltf by its magic bytes (or the .glb extension); its container, JSON, nesting
+// and version are checked first (gltf_document.h); every buffer URI is checked before tinygltf
+// opens any file, so that a refusal names the buffer (a data: URI's size, a URI scheme, the file it
+// names: external_files.h), and tinygltf's file-system callbacks then open only the approved buffer
+// files; image files are left to gltf_textures.h, which reads them under the same rules. A header
+// of the io library's own (the loader's interface is gltf_loader.h).
 #pragma once
 #include <tiny_gltf.h>
 
