@@ -14,6 +14,7 @@
 #include <fstream>
 #include <functional>
 #include <sstream>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -104,6 +105,18 @@ protected:
 
     std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
+    // `tripath render` of cornell for a million passes, checkpointing every 10 ms into
+    // out.exr.checkpoint, its stderr in err.txt: returned once its first checkpoint is written
+    // (its signal handler long installed by then), to be sent signals.
+    std::unique_ptr<Background> longRenderUnderWay() const {
+        auto job = std::make_unique<Background>(
+            std::vector<std::string>{"render", "--scene", "cornell", "--width", "32", "--height", "32", "--spp",
+                                     "1000000", "--checkpoint", "0.01", "--out", path("out.exr")},
+            path("err.txt"));
+        EXPECT_TRUE(waitFor([&] { return fs::exists(path("out.exr.checkpoint")); }, 120)) << slurp(path("err.txt"));
+        return job;
+    }
+
     // Runs `tripath <args>`. `timeout` only keeps a broken build from hanging the suite: a
     // command that starts rendering when it should refuse would run for hours and end with
     // exit code 124, which the tests reject along with every other wrong code.
@@ -162,12 +175,9 @@ TEST_F(Cli, ARenderThatIsFineSucceeds) {
 // interrupted render that exits 0 and says nothing, and a line or key whose pass
 // count is not the file's.
 TEST_F(Cli, AnInterruptedRenderSaysSoAndFails) {
-    Background job({"render", "--scene", "cornell", "--width", "32", "--height", "32", "--spp", "1000000",
-                    "--checkpoint", "0.01", "--out", path("out.exr")},
-                   path("err.txt"));
-    ASSERT_TRUE(waitFor([&] { return fs::exists(path("out.exr.checkpoint")); }, 120)) << slurp(path("err.txt"));
-    job.signal(SIGTERM);
-    EXPECT_EQ(job.exitCode(120), 128 + SIGTERM) << slurp(path("err.txt"));
+    const auto job = longRenderUnderWay();
+    job->signal(SIGTERM);
+    EXPECT_EQ(job->exitCode(120), 128 + SIGTERM) << slurp(path("err.txt"));
     Metadata meta;
     readExr(path("out.exr"), &meta);
     const std::string spp = metaValue(meta, "tripath:spp"), progress = "after " + spp + " of 1000000 passes, ";
@@ -180,13 +190,10 @@ TEST_F(Cli, AnInterruptedRenderSaysSoAndFails) {
 // user pressing Ctrl-C twice means, and says so rather than vanishing without a word; the exit
 // code is the first signal's. The two are sent together: the render cannot finish in between.
 TEST_F(Cli, ASecondSignalExitsAtOnceAndSaysSo) {
-    Background job({"render", "--scene", "cornell", "--width", "32", "--height", "32", "--spp", "1000000",
-                    "--checkpoint", "0.01", "--out", path("out.exr")},
-                   path("err.txt"));
-    ASSERT_TRUE(waitFor([&] { return fs::exists(path("out.exr.checkpoint")); }, 120)) << slurp(path("err.txt"));
-    job.signal(SIGTERM);
-    job.signal(SIGINT);
-    const int code = job.exitCode(120);
+    const auto job = longRenderUnderWay();
+    job->signal(SIGTERM);
+    job->signal(SIGINT);
+    const int code = job->exitCode(120);
     EXPECT_TRUE(code == 128 + SIGTERM || code == 128 + SIGINT) << code;
     const std::string err = slurp(path("err.txt"));
     EXPECT_NE(err.find("interrupted again: exiting at once, without writing what the render has\n"), std::string::npos)

@@ -9,9 +9,11 @@
 // (for a Lambertian one, its albedo times L).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,9 +62,6 @@ Spectrum decodedTexel(const std::vector<uint8_t>& bytes, int x, int y) {
     const size_t i = 4 * size_t(y * kTexels + x);
     return {srgbByteToLinear(bytes[i]), srgbByteToLinear(bytes[i + 1]), srgbByteToLinear(bytes[i + 2])};
 }
-
-// The pixels (2 × 2) of texel (x, y) in an 8 × 8 image of the quad.
-Block texelBlock(int x, int y) { return {2 * x, 2 * y, 2, 2}; }
 
 nlohmann::json blackMaterial() {
     return {{"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, 1}}, {"metallicFactor", 0}, {"roughnessFactor", 1}}}};
@@ -285,6 +284,50 @@ TEST_F(Textures, SmoothMetalThroughATiltedNormalMapKeepsItsReflection) {
         EXPECT_GT(e.mean, 0.9 - 5 * e.stderr_) << integrator;
         EXPECT_LT(e.mean, 1.0 + 5 * e.stderr_) << integrator;
         EXPECT_LT(e.stderr_, 0.01) << integrator;
+    }
+}
+
+// A normal texel (128, 218, 218) leans the normal 45° toward its image's +Y (up the image: glTF
+// reads the green channel so), in the world along the bitangent glTF defines as
+// cross(normal, tangent.xyz) · tangent.w. The shading normal at the quad's point under the camera
+// must lean: up the image (+y) with tangents derived from the uv mapping, with a TANGENT attribute
+// (1, 0, 0, +1), and with u mirrored (the derived bitangent keeps pointing up the image); down
+// (−y) with TANGENT w = −1; and along −x when the node turns the mesh a quarter about z (the
+// tangent turns with it). Catches a green channel read upside down, a tangent's w ignored, a
+// mirrored mapping's handedness lost, or a TANGENT left in the mesh's own space.
+TEST_F(Textures, NormalMapLeansAsTheTangentFrameAndGreenChannelSay) {
+    writePng(file("lean.png"), 1, 1, 3, std::vector<uint8_t>{128, 218, 218});
+    const float c = 0.7098f;  // 2 · 218/255 − 1
+    struct Case {
+        const char* what;
+        std::optional<std::array<float, 4>> tangent, rotation;
+        bool mirroredU;
+        Vec3 lean;  // the world direction the normal leans toward
+    };
+    const float q = std::sqrt(0.5f);
+    const Case cases[] = {
+        {"tangents from the uv mapping", {}, {}, false, {0, 1, 0}},
+        {"TANGENT (1, 0, 0, +1)", std::array<float, 4>{1, 0, 0, 1}, {}, false, {0, 1, 0}},
+        {"TANGENT (1, 0, 0, -1)", std::array<float, 4>{1, 0, 0, -1}, {}, false, {0, -1, 0}},
+        {"u mirrored, tangents from the mapping", {}, {}, true, {0, 1, 0}},
+        {"TANGENT (1, 0, 0, +1), node turned 90 degrees about z", std::array<float, 4>{1, 0, 0, 1},
+         std::array<float, 4>{0, 0, q, q}, false, {-1, 0, 0}},
+    };
+    for (const Case& k : cases) {
+        TexturedScene s;
+        nlohmann::json m = whiteMaterial();
+        m["normalTexture"] = {{"index", s.addTexture("lean.png")}};
+        s.addQuad({.material = s.addMaterial(m), .mirroredU = k.mirroredU});
+        s.addQuad({.z = 1, .material = s.addMaterial(emitterMaterial(1)), .facingDown = true});
+        if (k.tangent) s.setTangent(*k.tangent);
+        if (k.rotation) s.setMeshRotation(*k.rotation);
+        s.setCamera(2);
+        const Scene scene(loadGltf(s.write(file("scene.gltf")), [](const std::string&) {}), kSize, kSize);
+        const auto hit = scene.intersect({0.3f, 0.2f, 0.5f}, {0, 0, -1});
+        ASSERT_TRUE(hit.has_value()) << k.what;
+        const Vec3 expected = normalize(k.lean * c + Vec3(0, 0, c));
+        EXPECT_GT(dot(hit->ns, expected), 0.999f) << k.what << ": the normal is (" << hit->ns.x << ", " << hit->ns.y
+                                                   << ", " << hit->ns.z << ")";
     }
 }
 

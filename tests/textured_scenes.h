@@ -5,11 +5,13 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,7 @@ struct Quad {
     int material = 0;
     bool facingDown = false;  // front face toward −z instead (the same uv seen from +z)
     float x = 0, y = 0;       // centre's x and y
+    bool mirroredU = false;   // u runs toward −x instead (the image mirrored left to right)
 };
 
 class TexturedScene {
@@ -67,6 +70,10 @@ public:
                                    {"doubleSided", true}});
         boxes_.push_back({h, m});
     }
+    // Every vertex's TANGENT attribute (xyz and the bitangent's sign w), written when set.
+    void setTangent(std::array<float, 4> tangent) { tangent_ = tangent; }
+    // The rotation (a unit quaternion x, y, z, w) of the node that places the quads and boxes.
+    void setMeshRotation(std::array<float, 4> rotation) { meshRotation_ = rotation; }
     // A perspective camera at (0, 0, z) looking down −z whose view spans [−h, h]² at the plane 0.
     void setCamera(float z, float h = 1) {
         cameraZ_ = z;
@@ -80,19 +87,21 @@ public:
     }
     // Writes the .gltf and its .bin beside it; returns the .gltf's path.
     std::string write(const std::filesystem::path& file) {
-        std::vector<float> positions, uvs;
+        std::vector<float> positions, uvs, tangents;
         std::vector<uint32_t> indices;
         auto corner = [&](Vec3 p, Vec2 uv) {
             positions.insert(positions.end(), {p.x, p.y, p.z});
             uvs.insert(uvs.end(), {uv.x, uv.y});
+            if (tangent_) tangents.insert(tangents.end(), tangent_->begin(), tangent_->end());
         };
         nlohmann::json primitives = nlohmann::json::array();
         for (const Quad& q : quads_) {
             const auto base = uint32_t(positions.size() / 3);
-            corner({q.x - q.h, q.y - q.h, q.z}, {0, 1});
-            corner({q.x + q.h, q.y - q.h, q.z}, {1, 1});
-            corner({q.x + q.h, q.y + q.h, q.z}, {1, 0});
-            corner({q.x - q.h, q.y + q.h, q.z}, {0, 0});
+            const float u0 = q.mirroredU ? 1.0f : 0.0f, u1 = 1.0f - u0;
+            corner({q.x - q.h, q.y - q.h, q.z}, {u0, 1});
+            corner({q.x + q.h, q.y - q.h, q.z}, {u1, 1});
+            corner({q.x + q.h, q.y + q.h, q.z}, {u1, 0});
+            corner({q.x - q.h, q.y + q.h, q.z}, {u0, 0});
             const size_t first = indices.size();
             if (q.facingDown) indices.insert(indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
             else indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
@@ -120,6 +129,7 @@ public:
         const size_t pOffset = append(positions.data(), positions.size() * 4);
         const size_t uvOffset = append(uvs.data(), uvs.size() * 4);
         const size_t iOffset = append(indices.data(), indices.size() * 4);
+        const size_t tOffset = append(tangents.data(), tangents.size() * 4);
         std::vector<std::pair<size_t, size_t>> imageViews;  // offset and length of each embedded image
         for (const auto& [image, png] : embedded_) imageViews.push_back({append(png.data(), png.size()), png.size()});
         std::ofstream(file.string() + ".bin", std::ios::binary) << bytes;
@@ -139,9 +149,16 @@ public:
             doc_["accessors"].push_back({{"bufferView", 2}, {"byteOffset", first * 4}, {"componentType", 5125},
                                          {"count", count}, {"type", "SCALAR"}});
         for (size_t k = 0; k < primitives.size(); ++k) primitives[k]["indices"] = 2 + k;
+        if (tangent_) {
+            doc_["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", tOffset}, {"byteLength", tangents.size() * 4}});
+            doc_["accessors"].push_back({{"bufferView", doc_["bufferViews"].size() - 1},
+                                         {"componentType", 5126}, {"count", vertices}, {"type", "VEC4"}});
+            for (auto& p : primitives) p["attributes"]["TANGENT"] = doc_["accessors"].size() - 1;
+        }
         doc_["meshes"] = {{{"primitives", primitives}}};
         doc_["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", yfov_}, {"znear", 0.01}}}}};
         doc_["nodes"] = {{{"mesh", 0}}, {{"camera", 0}, {"translation", {0, 0, cameraZ_}}}};
+        if (meshRotation_) doc_["nodes"][0]["rotation"] = *meshRotation_;
         if (lookingUp_) doc_["nodes"][1]["rotation"] = {1, 0, 0, 0};  // half a turn about x
         doc_["scenes"] = {{{"nodes", {0, 1}}}};
         doc_["scene"] = 0;
@@ -186,6 +203,7 @@ private:
     std::vector<std::pair<int, std::string>> embedded_;  // image index, PNG bytes
     float cameraZ_ = 2, yfov_ = 1;
     bool lookingUp_ = false;
+    std::optional<std::array<float, 4>> tangent_, meshRotation_;
 };
 
 }  // namespace tripath::test
