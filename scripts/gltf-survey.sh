@@ -6,19 +6,27 @@
 #
 #   scripts/gltf-survey.sh MODELS_DIR OUT_DIR [TRIPATH]        TRIPATH defaults to build/tripath
 #
-# MODELS_DIR holds one folder per model laid out as Khronos' glTF-Sample-Models/2.0 does:
-# <Model>/glTF/*.gltf, else <Model>/glTF-Binary/*.glb is rendered. The light is
+# MODELS_DIR holds one folder per model laid out as Khronos' collections do (the `2.0` folder of
+# glTF-Sample-Models, the `Models` folder of glTF-Sample-Assets, or a folder of some of their
+# models): <Model>/glTF/*.gltf, else <Model>/glTF-Binary/*.glb is rendered. The light is
 # OUT_DIR/sky.exr, made by scripts/sky-exr.py (OpenImageIO's Python binding at /usr/bin/python3).
 # Each model is rendered with
-#   tripath render --scene F --environment OUT_DIR/sky.exr --integrator vcm --width 256 --height 256 --time T
-# (T = $SECONDS_PER_MODEL, default 4) under `nice -n 5` and a timeout of $TIMEOUT seconds (default
-# 120; a render still running then is reported as a hang). Written to OUT_DIR:
+#   tripath render --scene F --environment OUT_DIR/sky.exr --integrator vcm --width S --height S --time T
+# (S = $SIZE, default 256; T = $SECONDS_PER_MODEL, default 4) under `nice -n 5` and a timeout of
+# $TIMEOUT seconds (default 120; a render still running then is reported as a hang). Written to
+# OUT_DIR:
 #   <Model>.exr, <Model>.png    the render and its preview
 #   <Model>.log                 everything tripath printed
 #   survey.md                   the table: model, file, loads, renders, samples, what is ignored
-# Then the contact sheet of the models in $SHEET (default below: eight whose licences allow showing
-# renders, see docs/gltf-samples.md) is written to $SHEET_OUT (default docs/images/khronos-sheet.png)
-# by `tripath montage`, four to a row in the order given.
+# Then two contact sheets, each made by `tripath montage`, four to a row in the order given:
+#   $SHEET (default below: eight models whose licences allow showing renders, see
+#   docs/gltf-samples.md) to $SHEET_OUT (default docs/images/khronos-sheet.png), and
+#   $MARKER_SHEET (default below: the test models with built-in markers, whose look says what
+#   passes, see docs/gltf-samples.md) to $MARKER_SHEET_OUT (default docs/images/khronos-markers.png),
+#   each image shrunk by $MARKER_SHRINK (default 3: the sheet in docs/gltf-samples.md is of
+#   512 x 512 renders, SIZE=512).
+# A sheet one of whose models has no render (not in MODELS_DIR, or not loaded) is not written, with
+# a note; SHEET= or MARKER_SHEET= (empty) skips a sheet.
 # Runtime: about (T + 1) seconds per model.
 set -euo pipefail
 if [ $# -lt 2 ] || [ $# -gt 3 ]; then echo "usage: $0 MODELS_DIR OUT_DIR [TRIPATH]" >&2; exit 2; fi
@@ -28,8 +36,12 @@ here="$(cd "$(dirname "$0")" && pwd)"
 tripath="${3:-$here/../build/tripath}"
 seconds="${SECONDS_PER_MODEL:-4}"
 timeout="${TIMEOUT:-120}"
+size="${SIZE:-256}"
 sheet_out="${SHEET_OUT:-$here/../docs/images/khronos-sheet.png}"
-read -r -a sheet <<< "${SHEET:-Avocado BoomBoxWithAxes WaterBottle Suzanne NormalTangentTest TextureSettingsTest Cube AnimatedMorphSphere}"
+sheet="${SHEET-Avocado BoomBoxWithAxes WaterBottle Suzanne NormalTangentTest TextureSettingsTest Cube AnimatedMorphSphere}"
+marker_sheet_out="${MARKER_SHEET_OUT:-$here/../docs/images/khronos-markers.png}"
+marker_sheet="${MARKER_SHEET-TextureTransformTest AlphaBlendModeTest TextureCoordinateTest TextureSettingsTest NormalTangentTest NormalTangentMirrorTest MetalRoughSpheresNoTextures EmissiveStrengthTest}"
+marker_shrink="${MARKER_SHRINK:-3}"
 
 [ -d "$models_dir" ] || { echo "error: $models_dir is not a folder" >&2; exit 1; }
 [ -x "$tripath" ] || { echo "error: $tripath not found: build it (scripts/build.sh) or pass TRIPATH" >&2; exit 1; }
@@ -84,16 +96,27 @@ for dir in "$models_dir"/*/; do
     rm -f "$out/$model.exr" "$out/$model.png"
     rc=0
     nice -n 5 timeout "$timeout" "$tripath" render --scene "$file" --environment "$out/sky.exr" --integrator vcm \
-        --width 256 --height 256 --time "$seconds" --out "$out/$model.exr" --png "$out/$model.png" \
+        --width "$size" --height "$size" --time "$seconds" --out "$out/$model.exr" --png "$out/$model.png" \
         > "$out/$model.log" 2>&1 || rc=$?
     row "$model" "$file" "$rc" "$out/$model.log" >> "$table"
 done
 echo "wrote $table" >&2
 
-images=()
-for model in "${sheet[@]}"; do
-    [ -f "$out/$model.exr" ] || { echo "error: $model has no render for the contact sheet" >&2; exit 1; }
-    images+=("$out/$model.exr")
-done
-mkdir -p "$(dirname "$sheet_out")"
-"$tripath" montage --columns 4 --out "$sheet_out" "${images[@]}"
+# The contact sheet of models $1 (space-separated) to $2, shrunk by $3; not written, with a note,
+# when a model has no render.
+contact_sheet() {
+    local names images=() model
+    read -r -a names <<< "$1"
+    [ ${#names[@]} -gt 0 ] || return 0
+    for model in "${names[@]}"; do
+        if [ ! -f "$out/$model.exr" ]; then
+            echo "note: $2 not written: $model has no render" >&2
+            return 0
+        fi
+        images+=("$out/$model.exr")
+    done
+    mkdir -p "$(dirname "$2")"
+    "$tripath" montage --columns 4 --shrink "$3" --out "$2" "${images[@]}"
+}
+contact_sheet "$sheet" "$sheet_out" 1
+contact_sheet "$marker_sheet" "$marker_sheet_out" "$marker_shrink"
