@@ -228,6 +228,21 @@ nlohmann::json emitterMaterial(float radiance) {
     return m;
 }
 
+// A quad whose normal texture is lean.png (beside `gltf`, which is written), under an emitter, its
+// TANGENT attribute, its node's rotation and its u mirrored as given, at kSize × kSize.
+Scene leaningQuad(const fs::path& gltf, std::optional<std::array<float, 4>> tangent,
+                  std::optional<std::array<float, 4>> rotation, bool mirroredU) {
+    TexturedScene s;
+    nlohmann::json m = whiteMaterial();
+    m["normalTexture"] = {{"index", s.addTexture("lean.png")}};
+    s.addQuad({.material = s.addMaterial(m), .mirroredU = mirroredU});
+    s.addQuad({.z = 1, .material = s.addMaterial(emitterMaterial(1)), .facingDown = true});
+    if (tangent) s.setTangent(*tangent);
+    if (rotation) s.setMeshRotation(*rotation);
+    s.setCamera(2);
+    return Scene(loadGltf(s.write(gltf), [](const std::string&) {}), kSize, kSize);
+}
+
 // Under a uniform field a surface reads ρ(ωo) L, and glTF's BRDF is linear in metallic: metallic
 // 0.5 reads the mean of metallic 0 and 1, pixel block by pixel block (each scene's 32 runs).
 TEST_F(Textures, HalfMetallicLiesHalfwayUnderUniformRadiance) {
@@ -314,21 +329,25 @@ TEST_F(Textures, NormalMapLeansAsTheTangentFrameAndGreenChannelSay) {
          std::array<float, 4>{0, 0, q, q}, false, {-1, 0, 0}},
     };
     for (const Case& k : cases) {
-        TexturedScene s;
-        nlohmann::json m = whiteMaterial();
-        m["normalTexture"] = {{"index", s.addTexture("lean.png")}};
-        s.addQuad({.material = s.addMaterial(m), .mirroredU = k.mirroredU});
-        s.addQuad({.z = 1, .material = s.addMaterial(emitterMaterial(1)), .facingDown = true});
-        if (k.tangent) s.setTangent(*k.tangent);
-        if (k.rotation) s.setMeshRotation(*k.rotation);
-        s.setCamera(2);
-        const Scene scene(loadGltf(s.write(file("scene.gltf")), [](const std::string&) {}), kSize, kSize);
+        const Scene scene = leaningQuad(file("scene.gltf"), k.tangent, k.rotation, k.mirroredU);
         const auto hit = scene.intersect({0.3f, 0.2f, 0.5f}, {0, 0, -1});
         ASSERT_TRUE(hit.has_value()) << k.what;
         const Vec3 expected = normalize(k.lean * c + Vec3(0, 0, c));
         EXPECT_GT(dot(hit->ns, expected), 0.999f) << k.what << ": the normal is (" << hit->ns.x << ", " << hit->ns.y
                                                    << ", " << hit->ns.z << ")";
     }
+}
+
+// A normal texel (255, 128, 64) tilts the mapped normal 27° past the surface's plane, toward +x
+// (the tangent). The shading normal keeps that lean, raised to just above the plane, rather than
+// being flipped to lean toward −x (the bump turned the other way), and stays above the surface.
+TEST_F(Textures, ANormalMappedPastThePlaneKeepsItsLean) {
+    writePng(file("lean.png"), 1, 1, 3, std::vector<uint8_t>{255, 128, 64});
+    const Scene scene = leaningQuad(file("scene.gltf"), {}, {}, false);
+    const auto hit = scene.intersect({0.3f, 0.2f, 0.5f}, {0, 0, -1});
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_GT(hit->ns.x, 0.99f);
+    EXPECT_GT(hit->ns.z, 0.0f);
 }
 
 // A metallic-roughness texture is linear data (B metallic, G roughness) times the factors: a

@@ -392,6 +392,19 @@ namespace {
 // n, or −n: the one on the side of ng.
 Vec3 orient(Vec3 n, Vec3 ng) { return dot(n, ng) < 0 ? -n : n; }
 
+// A mapped normal n kept above the geometric surface: n itself, or, where the normal texture
+// tilts it to or past the plane of ng, the direction in that plane it leans toward raised to
+// kMinMappedCosine above it. (Flipping it instead, as for interpolated normals, would turn the
+// bump the other way.)
+constexpr float kMinMappedCosine = 0.01f;
+Vec3 keepAbove(Vec3 n, Vec3 ng) {
+    const float c = dot(n, ng);
+    if (c >= kMinMappedCosine) return n;
+    const Vec3 along = n - ng * c;
+    if (!(lengthSquared(along) > 0)) return ng;
+    return normalize(normalize(along) * std::sqrt(1.0f - kMinMappedCosine * kMinMappedCosine) + ng * kMinMappedCosine);
+}
+
 // The corners' normals n0, n1, n2 blended at barycentrics (u, v), unit, on the side of ng.
 Vec3 blendNormals(Vec3 n0, Vec3 n1, Vec3 n2, float u, float v, Vec3 ng) {
     const Vec3 n = n0 * (1.0f - u - v) + n1 * u + n2 * v;
@@ -416,7 +429,7 @@ Vec3 Scene::shadingNormal(uint32_t triangle, float u, float v) const {
     const TriangleTexCoords& r = *surfaceTextures_->find(triangle);
     const Vec3 tangent = r.tangent[0] * (1.0f - u - v) + r.tangent[1] * u + r.tangent[2] * v;
     const MaterialTextures& textures = *materials_[size_t(t.material)].textures;
-    return orient(perturbNormal(n, tangent, r.bitangentSign, textures.tangentNormalAt(r.at({u, v}))), ng);
+    return keepAbove(perturbNormal(n, tangent, r.bitangentSign, textures.tangentNormalAt(r.at({u, v}))), ng);
 }
 
 std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) const {
