@@ -168,7 +168,7 @@ void registerPathKernels() {
     reg("kernel/segment_g", [](benchmark::State& st, const Scene&, const VertexPools& p) {
         cycle(st, kPool, [&](size_t i) {
             const Segment s(p.surfacePairs[i].first, p.surfacePairs[i].second);
-            float v = g(s);
+            Spectrum v = g(s);
             benchmark::DoNotOptimize(v);
         });
     });

@@ -20,9 +20,9 @@ float inverseSquaredDistance(const Vertex& a, const Vertex& b) {
     return d2 > 0 ? 1.0f / d2 : std::numeric_limits<float>::infinity();
 }
 
-float geometricFactor(const Vertex& a, const Vertex& b) {
+Spectrum geometricFactor(const Vertex& a, const Vertex& b) {
     const Segment s(a, b);
-    return s.cosines() * g(s);
+    return g(s) * s.cosines();
 }
 
 Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera) {

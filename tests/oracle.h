@@ -19,7 +19,7 @@ float cosineToward(const Vertex& x, Vec3 w);
 // Squared distance, guarded: coincident vertices give +inf for 1/r², never NaN.
 float inverseSquaredDistance(const Vertex& a, const Vertex& b);
 // G(a,b) = |cos θa| |cos θb| / |a − b|², without visibility: the cosines ρ or ε carry, times g.
-float geometricFactor(const Vertex& a, const Vertex& b);
+Spectrum geometricFactor(const Vertex& a, const Vertex& b);
 
 // What v contributes besides cosines (f_r × shading correction, Le, or W), from the neighbours'
 // positions: LocalScattering(v, directions to the two).value(). An endpoint lacks one neighbour.

@@ -26,7 +26,7 @@ inline SceneDesc cornellEmissive(MaterialType type) {
 }
 
 // Every material type and every emitter kind in one box, for the oracles (brute-force MIS, f/p):
-// Lambertian walls; the ceiling light an emissive mirror; an emissive glass box; a two-sided
+// Lambertian walls; the ceiling light an emissive mirror; an emissive, absorbing glass box; a two-sided
 // emissive rough-metal panel; a coarse smooth-shaded plastic sphere (shading normals far from the
 // geometric ones at its silhouette); a one-sided Lambertian emitter on the back wall; a point light.
 inline SceneDesc everyEmitterKind() {
@@ -34,6 +34,7 @@ inline SceneDesc everyEmitterKind() {
     SceneDesc s = cornellEmissive(MaterialType::Mirror);
     Material glassLight = glass("emissive glass");
     glassLight.emission = Spectrum(2.0f, 3.0f, 4.0f);
+    glassLight.absorption = Spectrum(0.5f, 1.0f, 2.0f);  // light inside it fades (KHR_materials_volume)
     addBox(s, "glass box", addMaterial(s, glassLight), {0.2f, 0.0f, 0.1f}, {0.6f, 0.5f, 0.5f}, 0.4f, {0.4f, 0, 0.3f});
     Material metal;
     metal.name = "emissive metal";

@@ -48,6 +48,7 @@ inline Vec3 min(Vec3 a, Vec3 b) { return {std::min(a.x, b.x), std::min(a.y, b.y)
 inline Vec3 max(Vec3 a, Vec3 b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
 inline float maxComponent(Vec3 a) { return std::max(a.x, std::max(a.y, a.z)); }
 inline bool isBlack(Spectrum s) { return s.x == 0 && s.y == 0 && s.z == 0; }
+inline Vec3 exp(Vec3 v) { return {std::exp(v.x), std::exp(v.y), std::exp(v.z)}; }
 inline bool isFinite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 // Rec. 709 luminance: used to weigh emitters by power (Russian roulette bounds a material by its
 // albedo's largest component instead: roulette.h).

@@ -334,6 +334,8 @@ std::string validateMaterial(const Material& m) {
     if (!(m.roughness >= 0.0f && m.roughness <= 1.0f)) return "roughness must be a number in [0, 1]";
     if (!(m.metallic >= 0.0f && m.metallic <= 1.0f)) return "metallic must be a number in [0, 1]";
     if (!std::isfinite(m.ior)) return "ior is not finite";
+    for (int c = 0; c < 3; ++c)
+        if (!(m.absorption[c] >= 0)) return "absorption must be at least 0";
     const bool usesIor = m.type == MaterialType::Dielectric || m.type == MaterialType::Plastic ||
                          m.type == MaterialType::MetallicRoughness;
     if (usesIor && m.ior < 1.0f) return "ior must be at least 1";

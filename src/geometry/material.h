@@ -48,6 +48,10 @@ struct Material : BsdfParams {
     std::string name;
     Spectrum emission{0.0f};  // emitted radiance Le (W / m² sr); zero for non-emitters
     bool twoSidedEmission = false;  // glTF doubleSided: emits from both faces
+    // Absorption coefficient σ_a (1/m) of the volume a Dielectric closes (KHR_materials_volume):
+    // light running inside it is attenuated by exp(−σ_a d) over a length d (kernels.h:
+    // Segment::transmittance). Zero for none.
+    Spectrum absorption{0.0f};
     // Null for a material uniform over its surfaces, whose BsdfParams are the ones evaluated.
     std::shared_ptr<const MaterialTextures> textures;
 };

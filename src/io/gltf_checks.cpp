@@ -11,7 +11,7 @@ namespace {
 // Extensions whose content the loader reads.
 const std::set<std::string> kHandledExtensions = {
     "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing", "KHR_texture_transform"};
+    "KHR_materials_emissive_strength", "KHR_materials_volume", "EXT_mesh_gpu_instancing", "KHR_texture_transform"};
 
 }  // namespace
 

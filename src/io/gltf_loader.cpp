@@ -52,7 +52,7 @@ constexpr double kDegenerateSine = 1e-6;
 // Extensions that only refine appearance: accepted even when required, with a warning.
 const std::set<std::string> kIgnorableExtensions = {
     "KHR_materials_specular",   "KHR_materials_clearcoat", "KHR_materials_sheen",
-    "KHR_materials_volume",     "KHR_materials_iridescence", "KHR_materials_anisotropy",
+    "KHR_materials_iridescence", "KHR_materials_anisotropy",
     "KHR_materials_dispersion", "KHR_materials_variants",
     "KHR_texture_basisu",       "EXT_texture_webp",        "EXT_texture_avif"};
 

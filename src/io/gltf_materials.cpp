@@ -18,6 +18,8 @@
 //   otherwise                                           → MetallicRoughness: metallic × Conductor +
 //                                                          (1 − metallic) × Plastic
 //   emission         = emissiveFactor × KHR_materials_emissive_strength.emissiveStrength (default 1)
+//   absorption       = −ln(attenuationColor) / attenuationDistance of KHR_materials_volume, for a
+//                      transmissive material (Beer–Lambert inside its closed mesh)
 //   twoSidedEmission = doubleSided
 //   no material      → Lambertian, albedo 0.8
 // Textures (gltf_textures.h) multiply the factors where they are read: baseColorTexture (sRGB) the
@@ -31,6 +33,7 @@
 #include "io/gltf_materials.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -68,6 +71,8 @@ private:
                                      float roughness);
     std::shared_ptr<const MaterialTextures> readTextures(const tinygltf::Material& g, const std::string& context);
     Spectrum emission(const tinygltf::Material& g, const std::string& context) const;
+    Spectrum volumeAbsorption(const tinygltf::Material& g, bool transmissive, const std::string& name,
+                              const std::string& context);
     double extensionNumber(const tinygltf::ExtensionMap& extensions, const std::string& extension,
                            const std::string& key, double fallback, const std::string& context) const;
     float unitFactor(double value, const std::string& what) const;
@@ -94,6 +99,7 @@ Material MaterialConverter::convertMaterial(const tinygltf::Material& g, int ind
     m.roughness = isDelta(m) ? 0.0f : roughness;
     m.metallic = m.type == MaterialType::MetallicRoughness ? metallic : 0.0f;
     m.emission = emission(g, context);
+    m.absorption = volumeAbsorption(g, m.type == MaterialType::Dielectric, m.name, context);
     m.twoSidedEmission = g.doubleSided;
     m.textures = readTextures(g, context);
     noteIgnoredMaterialFeatures(g, m.name, transmission, roughness);
@@ -157,6 +163,37 @@ Spectrum MaterialConverter::emission(const tinygltf::Material& g, const std::str
     if (!isFinite(e)) report_.fail(context + "emission is not finite");
     if (e.x < 0 || e.y < 0 || e.z < 0) report_.fail(context + "emission is negative");
     return e;
+}
+
+// σ_a = −ln(attenuationColor) / attenuationDistance per channel, from KHR_materials_volume (0
+// without it, or at its default infinite distance). Only a transmissive material closes a volume
+// (the extension requires KHR_materials_transmission); on any other it is ignored with a warning.
+// thicknessFactor serves rasterisers, which see no back faces: a path tracer measures the path
+// through the mesh itself.
+Spectrum MaterialConverter::volumeAbsorption(const tinygltf::Material& g, bool transmissive, const std::string& name,
+                                             const std::string& context) {
+    const auto it = g.extensions.find("KHR_materials_volume");
+    if (it == g.extensions.end() || !it->second.IsObject()) return Spectrum(0.0f);
+    if (!transmissive) {
+        ignored_["KHR_materials_volume without transmission is ignored"].push_back(name);
+        return Spectrum(0.0f);
+    }
+    const double distance = extensionNumber(g.extensions, "KHR_materials_volume", "attenuationDistance",
+                                            std::numeric_limits<double>::infinity(), context);
+    if (!(distance > 0)) report_.fail(context + "KHR_materials_volume.attenuationDistance must be above 0");
+    Spectrum colour(1.0f);
+    if (it->second.Has("attenuationColor")) {
+        const tinygltf::Value& c = it->second.Get("attenuationColor");
+        const std::string what = context + "KHR_materials_volume.attenuationColor";
+        if (!c.IsArray() || c.ArrayLen() != 3) report_.fail(what + " is not three numbers");
+        for (int i = 0; i < 3; ++i) {
+            if (!c.Get(i).IsNumber()) report_.fail(what + " is not three numbers");
+            colour[i] = unitFactor(c.Get(i).GetNumberAsDouble(), what);
+        }
+    }
+    Spectrum sigma;
+    for (int i = 0; i < 3; ++i) sigma[i] = float(-std::log(double(colour[i])) / distance);
+    return sigma;
 }
 
 double MaterialConverter::extensionNumber(const tinygltf::ExtensionMap& extensions,

@@ -35,6 +35,15 @@ double number(float x) {
 
 std::vector<double> numbers(Vec3 v) { return {number(v.x), number(v.y), number(v.z)}; }
 
+// KHR_materials_volume of absorption σ: attenuationColor exp(−σ) at attenuationDistance 1 (the
+// loader's −ln(colour) gives σ back to float rounding).
+void setVolume(tinygltf::ExtensionMap& extensions, Spectrum sigma) {
+    tinygltf::Value::Array colour;
+    for (double c : numbers(exp(sigma * -1.0f))) colour.emplace_back(c);
+    extensions["KHR_materials_volume"] = tinygltf::Value(tinygltf::Value::Object{
+        {"attenuationColor", tinygltf::Value(std::move(colour))}, {"attenuationDistance", tinygltf::Value(1.0)}});
+}
+
 // A node matrix, column-major: the affine map's columns, then its translation.
 std::vector<double> matrix(const Affine& a) {
     std::vector<double> m;
@@ -163,6 +172,7 @@ tinygltf::Material ModelBuilder::material(const Material& m) {
         case MaterialType::Dielectric:
             roughness = 0;
             setExtension(g.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(1.0));
+            if (!isBlack(m.absorption)) setVolume(g.extensions, m.absorption);
             break;
         case MaterialType::MetallicRoughness: metallic = m.metallic, roughness = m.roughness; break;
     }

@@ -60,7 +60,9 @@ float LocalScattering::pdfTowardLight(double lightPaths) const {
     return apart_ ? pdfBsdf(bsdf(), apart_->cameraLocal, apart_->lightLocal) : pdfBsdf(bsdf(), cameraLocal_, lightLocal_);
 }
 
-float g(const Scene& scene, const Vertex& x, const Vertex& xp) { return visible(scene, x, xp) ? g(Segment(x, xp)) : 0.0f; }
+Spectrum g(const Scene& scene, const Vertex& x, const Vertex& xp) {
+    return visible(scene, x, xp) ? g(Segment(x, xp)) : Spectrum(0.0f);
+}
 
 Spectrum emittance(const Scene& scene, const Vertex& x0, const Vertex& x1) {
     const Segment out(x0, x1);

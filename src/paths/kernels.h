@@ -77,8 +77,20 @@ public:
     // g(a, b) / p_A(b) for b generated from a with solid-angle pdf p_ω: the r² cancels, leaving
     // 1 / (p_ω |cos θ_b|) (a walk's step: one division where the two factors would take two).
     float gOverArea(float pdfOmega, const Vertex& b) const { return d2_ > 0 ? 1.0f / (pdfOmega * cosine(b, w_)) : 0.0f; }
+    // The Beer–Lambert transmittance exp(−σ_a |a − b|) of a segment that runs inside an absorbing
+    // volume (it leaves the back of a surface whose material absorbs, or reaches one from behind:
+    // Material::absorption); 1 elsewhere, and for a segment to or from infinity. It is part of g:
+    // every strategy's contribution carries it and no sampler draws it, so no pdf changes.
+    Spectrum transmittance() const {
+        const Vertex* inside = absorbsBehind(a_, w_) ? &a_ : b_ && absorbsBehind(*b_, -w_) ? b_ : nullptr;
+        if (!inside) [[likely]] return Spectrum(1.0f);
+        if (a_.atInfinity || b_->atInfinity || !(d2_ > 0)) return Spectrum(1.0f);
+        return exp(inside->material->absorption * -std::sqrt(d2_));
+    }
 
 private:
+    // Whether the unit direction `away` leaves v into the volume behind its surface.
+    static bool absorbsBehind(const Vertex& v, Vec3 away) { return v.absorbs && dot(away, v.ng) < 0; }
     const Vertex& a_;
     const Vertex* b_;
     float d2_ = 0;
@@ -196,12 +208,12 @@ inline Spectrum emittance(const LocalScattering& at, const Segment& out) { retur
 // W(x_{k−1} → x_k) at the sensor's LocalScattering (its light side toward x_{k−1}).
 inline float W(const LocalScattering& atSensor) { return atSensor.value().x; }
 // g(x, x') of a segment whose visibility is known: its shadow ray came back unoccluded, or a walk
-// traced it.
-inline float g(const Segment& s) { return s.inverseSquaredLength(); }
+// traced it; times its transmittance where it runs inside an absorbing volume.
+inline Spectrum g(const Segment& s) { return s.transmittance() * s.inverseSquaredLength(); }
 
 // The point forms, the definitions.
-// g(x, x') = V / r², with its shadow ray.
-float g(const Scene& scene, const Vertex& x, const Vertex& xp);
+// g(x, x') = V T / r², with its shadow ray (T: the transmittance of an absorbing volume, else 1).
+Spectrum g(const Scene& scene, const Vertex& x, const Vertex& xp);
 // ε(x0 → x1) = Le(x0 → x1) |cos θ0| |cos θ1|.
 Spectrum emittance(const Scene& scene, const Vertex& x0, const Vertex& x1);
 // ρ(x″ → x′ → x) = f_r · |cos θ′| |cos θ| (outgoing segment x′–x), with the shading correction.

@@ -36,6 +36,9 @@ struct Vertex {
     // A direction rather than a point (the environment, a directional light): measured in solid
     // angle, its segments have the fixed direction `ns` and no length (kernels.h: Segment).
     bool atInfinity = false;
+    // Its material absorbs inside (Material::absorption): segments leaving its back side, or
+    // reaching it from behind, run through that volume.
+    bool absorbs = false;
     // Point, spot and directional lights: deltas in position or direction, so no path can hit
     // them (strategy s = 0 is impossible).
     bool isDeltaLight() const { return kind == Kind::Emitter && delta; }

@@ -32,6 +32,7 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     v.emitter = scene.emitters().emitterOfTriangle(hit.triangle);
     v.delta = isDelta(*v.material);
     v.continuation = continuationProbability(*v.material);
+    v.absorbs = !isBlack(v.material->absorption);
     return v;
 }
 
@@ -105,7 +106,7 @@ Spectrum stepFactor(const Subpath& path, const Vertex& v, Spectrum scatter, floa
         kernel = from.kind == Vertex::Kind::Emitter ? emittance(scatter, step) : rho(scatter, step);
     else
         kernel = from.kind == Vertex::Kind::Sensor ? scatter : rho(scatter, traced(from, path[path.size() - 2]));
-    return kernel * step.gOverArea(pdf, v);
+    return kernel * step.transmittance() * step.gOverArea(pdf, v);
 }
 
 // The step of a walk: appends v, which the path's last vertex reached along `dir` (having scattered
@@ -213,6 +214,10 @@ Vertex sampleEmitterVertex(const Scene& scene, S& rng) {
     y0.bary = es.bary;
     y0.pdfFwd = es.pdfA;
     y0.beta = Spectrum(1.0f / es.pdfA);
+    if (e.kind == Emitter::Kind::Triangle) {  // a surface that may close an absorbing volume
+        y0.material = &scene.materialOf(e.triangle);
+        y0.absorbs = !isBlack(y0.material->absorption);
+    }
     return y0;
 }
 
