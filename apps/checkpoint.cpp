@@ -14,6 +14,7 @@
 
 #include "geometry/embree_isa.h"
 #include "core/error.h"
+#include "core/fnv1a.h"
 #include "core/number_text.h"
 #include "core/warnings.h"
 #include "input_words.h"
@@ -37,21 +38,6 @@ size_t wordCount(const Film& film) {
     return n;
 }
 
-// 64-bit FNV-1a over bytes added piece by piece: the checksum of a checkpoint's header lines and
-// body, against damage to a file of many words that all look plausible.
-class Checksum {
-public:
-    void add(const void* data, size_t size) {
-        const auto* bytes = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < size; ++i) hash_ = (hash_ ^ bytes[i]) * 0x100000001b3u;
-    }
-    void add(const std::string& text) { add(text.data(), text.size()); }
-    std::string hex() const { return fmt::format("{:016x}", hash_); }
-
-private:
-    uint64_t hash_ = 0xcbf29ce484222325u;
-};
-
 }  // namespace
 
 std::string checkpointPath(const std::string& out) { return out + ".checkpoint"; }
@@ -63,12 +49,12 @@ void writeCheckpoint(const std::string& path, const Metadata& settings, const Re
                           "values={}\nchain-run={}\nchain-bytes={}\n",
                           r.passes, r.nextPass, r.seconds, r.droppedSamples, r.guardedWeights, wordCount(r.film),
                           r.metropolis.run, r.metropolis.chainStates.size());
-    Checksum sum;
+    Fnv1a sum;
     sum.add(header);
     for (const ExactSums* t : r.film.totals()) sum.add(t->words().data(), t->words().size_bytes());
     sum.add(r.metropolis.chainStates.data(), r.metropolis.chainStates.size());
     writeFileAtomically(path, [&](std::ostream& f) {
-        f << kFormat << " " << kVersion << "\n" << header << "checksum=" << sum.hex() << "\n\n";
+        f << kFormat << " " << kVersion << "\n" << header << "checksum=" << hashText(sum.value()) << "\n\n";
         for (const ExactSums* t : r.film.totals())
             f.write(reinterpret_cast<const char*>(t->words().data()), std::streamsize(t->words().size_bytes()));
         f.write(r.metropolis.chainStates.data(), std::streamsize(r.metropolis.chainStates.size()));
@@ -93,7 +79,7 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
                               clipped(line.substr(format.size())), kVersion));
     // The header's lines, and the checksum of all but the checksum's own.
     std::map<std::string, std::string> header;
-    Checksum sum;
+    Fnv1a sum;
     while (std::getline(f, line) && !line.empty()) {
         const size_t eq = line.find('=');
         if (eq == std::string::npos) throw bad("malformed header line '" + clipped(line) + "'");
@@ -150,7 +136,7 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
     r.metropolis.chainStates.resize(chainBytes);
     if (!f.read(r.metropolis.chainStates.data(), std::streamsize(chainBytes))) throw bad("cut short");
     sum.add(r.metropolis.chainStates.data(), chainBytes);
-    if (text("checksum") != sum.hex())
+    if (text("checksum") != hashText(sum.value()))
         throw bad("its contents do not match its checksum: the file is damaged (remove it to start afresh)");
     return r;
 }
