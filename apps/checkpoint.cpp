@@ -19,6 +19,7 @@
 #include "core/warnings.h"
 #include "input_words.h"
 #include "processes.h"
+#include "requests/scene_identity.h"
 
 namespace tripath::app {
 
@@ -89,6 +90,12 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
     if (!f) throw bad("cut short");
     for (const auto& [key, value] : settings) {
         const auto it = header.find(key);
+        if (key == kSceneFilesKey && it != header.end()) {
+            const std::string difference = sceneFilesDifference(it->second, value);
+            if (!difference.empty())
+                throw bad("it was made from other scene files: " + difference + " (remove it to start afresh)");
+            continue;
+        }
         if (it == header.end() || it->second != value)
             throw bad(fmt::format("it was made with {}={}, this run has {} (remove it to start afresh)", key,
                                   it == header.end() ? "(nothing)" : clipped(it->second), value));
@@ -143,7 +150,7 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
 
 Metadata checkpointSettings(const RenderOptions& o, const Scene& scene, const Integrator& integrator,
                             const FilmLayers& layers) {
-    Metadata m = convergenceSettings(o, integrator.name());
+    Metadata m = convergenceSettings(o, scene, integrator.name());
     const Metadata more{{"tripath:width", std::to_string(o.width)},
                         {"tripath:height", std::to_string(o.height)},
                         {"tripath:seed", std::to_string(o.seed)},
