@@ -73,6 +73,10 @@ void validateValues(const RenderRequest& r, Spelling spelling) {
     check(true, "max-depth", r.maxDepth, kMaxDepthRange);
     if (r.environmentScaleGiven && !(std::isfinite(r.environmentScale) && r.environmentScale >= 0))
         fail(fmt::format("{} must be a finite number of at least 0 (got {})", name("environment-scale"), r.environmentScale));
+    // Leaving the environment out means none; an empty one is a mistake (an unset shell variable),
+    // not a way to say none.
+    if (r.environmentGiven && r.environment.empty())
+        fail(fmt::format("{} is empty: give a map's path or a radiance R,G,B", name("environment")));
     if (r.environmentScaleGiven && r.environment.empty())
         fail(fmt::format("{} scales an environment: give one with {}", name("environment-scale"), name("environment")));
     check(true, "rr-depth", r.rrDepth, kRrDepthRange);

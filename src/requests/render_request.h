@@ -24,6 +24,7 @@ struct RenderRequest {
     std::string scene;                    // a built-in's name or a .gltf/.glb file
     GltfOptions gltf;
     std::string environment;              // a map file or "R,G,B" (environment_spec.h); empty for none
+    bool environmentGiven = false;        // given at all: then it may not be empty
     float environmentScale = 1;           // multiplies the environment's radiance
     bool environmentScaleGiven = false;
     std::string integrator = "bdpt";
