@@ -14,10 +14,12 @@
 
 #include "geometry/embree_isa.h"
 #include "core/error.h"
+#include "core/fnv1a.h"
 #include "core/number_text.h"
 #include "core/warnings.h"
 #include "input_words.h"
 #include "processes.h"
+#include "requests/scene_identity.h"
 
 namespace tripath::app {
 
@@ -37,21 +39,6 @@ size_t wordCount(const Film& film) {
     return n;
 }
 
-// 64-bit FNV-1a over bytes added piece by piece: the checksum of a checkpoint's header lines and
-// body, against damage to a file of many words that all look plausible.
-class Checksum {
-public:
-    void add(const void* data, size_t size) {
-        const auto* bytes = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < size; ++i) hash_ = (hash_ ^ bytes[i]) * 0x100000001b3u;
-    }
-    void add(const std::string& text) { add(text.data(), text.size()); }
-    std::string hex() const { return fmt::format("{:016x}", hash_); }
-
-private:
-    uint64_t hash_ = 0xcbf29ce484222325u;
-};
-
 }  // namespace
 
 std::string checkpointPath(const std::string& out) { return out + ".checkpoint"; }
@@ -63,12 +50,12 @@ void writeCheckpoint(const std::string& path, const Metadata& settings, const Re
                           "values={}\nchain-run={}\nchain-bytes={}\n",
                           r.passes, r.nextPass, r.seconds, r.droppedSamples, r.guardedWeights, wordCount(r.film),
                           r.metropolis.run, r.metropolis.chainStates.size());
-    Checksum sum;
+    Fnv1a sum;
     sum.add(header);
     for (const ExactSums* t : r.film.totals()) sum.add(t->words().data(), t->words().size_bytes());
     sum.add(r.metropolis.chainStates.data(), r.metropolis.chainStates.size());
     writeFileAtomically(path, [&](std::ostream& f) {
-        f << kFormat << " " << kVersion << "\n" << header << "checksum=" << sum.hex() << "\n\n";
+        f << kFormat << " " << kVersion << "\n" << header << "checksum=" << hashText(sum.value()) << "\n\n";
         for (const ExactSums* t : r.film.totals())
             f.write(reinterpret_cast<const char*>(t->words().data()), std::streamsize(t->words().size_bytes()));
         f.write(r.metropolis.chainStates.data(), std::streamsize(r.metropolis.chainStates.size()));
@@ -93,7 +80,7 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
                               clipped(line.substr(format.size())), kVersion));
     // The header's lines, and the checksum of all but the checksum's own.
     std::map<std::string, std::string> header;
-    Checksum sum;
+    Fnv1a sum;
     while (std::getline(f, line) && !line.empty()) {
         const size_t eq = line.find('=');
         if (eq == std::string::npos) throw bad("malformed header line '" + clipped(line) + "'");
@@ -103,6 +90,12 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
     if (!f) throw bad("cut short");
     for (const auto& [key, value] : settings) {
         const auto it = header.find(key);
+        if (key == kSceneFilesKey && it != header.end()) {
+            const std::string difference = sceneFilesDifference(it->second, value);
+            if (!difference.empty())
+                throw bad("it was made from other scene files: " + difference + " (remove it to start afresh)");
+            continue;
+        }
         if (it == header.end() || it->second != value)
             throw bad(fmt::format("it was made with {}={}, this run has {} (remove it to start afresh)", key,
                                   it == header.end() ? "(nothing)" : clipped(it->second), value));
@@ -150,14 +143,14 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
     r.metropolis.chainStates.resize(chainBytes);
     if (!f.read(r.metropolis.chainStates.data(), std::streamsize(chainBytes))) throw bad("cut short");
     sum.add(r.metropolis.chainStates.data(), chainBytes);
-    if (text("checksum") != sum.hex())
+    if (text("checksum") != hashText(sum.value()))
         throw bad("its contents do not match its checksum: the file is damaged (remove it to start afresh)");
     return r;
 }
 
 Metadata checkpointSettings(const RenderOptions& o, const Scene& scene, const Integrator& integrator,
                             const FilmLayers& layers) {
-    Metadata m = convergenceSettings(o, integrator.name());
+    Metadata m = convergenceSettings(o, scene, integrator.name());
     const Metadata more{{"tripath:width", std::to_string(o.width)},
                         {"tripath:height", std::to_string(o.height)},
                         {"tripath:seed", std::to_string(o.seed)},

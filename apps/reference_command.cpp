@@ -38,21 +38,26 @@ struct ReferenceCommand {
 // The settings that must match for new samples to estimate the same image as the old ones
 // (the seed too: the new passes continue the old sample indices, so only the same seed keeps
 // them fresh).
-Metadata settingsToMatch(const RenderOptions& o, const std::string& integrator) {
-    Metadata m = convergenceSettings(o, integrator);
+Metadata settingsToMatch(const RenderOptions& o, const Scene& scene, const std::string& integrator) {
+    Metadata m = convergenceSettings(o, scene, integrator);
     m.push_back({"tripath:seed", std::to_string(o.seed)});
     return m;
 }
 
-// The reference already at --out, checked against this run's settings; nullopt if there is none.
-std::optional<ReferenceFile> previous(const ReferenceCommand& c, const std::string& integrator) {
+// The reference already at --out, checked against this run's settings and scene; nullopt if there
+// is none.
+std::optional<ReferenceFile> previous(const ReferenceCommand& c, const Scene& scene, const Integrator& integrator) {
     if (!std::filesystem::exists(c.out)) return std::nullopt;
     ReferenceFile ref = readReference(c.out);
-    requireSettings(ref, settingsToMatch(c.options, integrator), false);
+    requireSettings(ref, settingsToMatch(c.options, scene, integrator.name()), false);
     // Samples from another Embree version or ISA may hit differently (embree_isa.h): never mixed.
     requireSettings(ref, {{"tripath:embree", embreeDescription()}}, true);
     requireSize(ref, c.options.width, c.options.height);
     if (ref.spp() < 1) throw InputError(fmt::format("'{}' records {} spp: nothing to add to", c.out, ref.spp()));
+    // A merging reference continues its radius schedule from the passes in the file (the pass
+    // index runs on): the schedule must be the same one. (Files from before the light phase
+    // lack these keys; they are bdpt or lt references, whose added passes need no schedule.)
+    requireSettings(ref, lightPhaseMetadata(c.options, scene, integrator), true);
     return ref;
 }
 
@@ -92,7 +97,8 @@ void run(const ReferenceCommand& c) {
     std::unique_ptr<Scene> scene;
     together([&] {
         validate(c);
-        if (isRankZero()) old = previous(c, integrator->name());
+        scene = loadScene(o);
+        if (isRankZero()) old = previous(c, *scene, *integrator);
         exact = old && std::filesystem::exists(checkpointPath(c.out));
     });
     // The others learn the streams and the pass to start from.
@@ -102,13 +108,6 @@ void run(const ReferenceCommand& c) {
     // New files use the reference streams; added samples continue in the streams of the file
     // (a reference written before tripath:streams existed drew from the render streams).
     o.domain = continuing ? static_cast<StreamDomain>(shared[1]) : StreamDomain::Reference;
-    together([&] {
-        scene = loadScene(o);
-        // A merging reference continues its radius schedule from the passes in the file (the pass
-        // index runs on): the schedule must be the same one. (Files from before the light phase
-        // lack these keys; they are bdpt or lt references, whose added passes need no schedule.)
-        if (old) requireSettings(*old, lightPhaseMetadata(o, *scene, *integrator), true);
-    });
 
     RenderSettings rs = renderSettings(o);
     rs.team = &team();

@@ -63,17 +63,13 @@ std::vector<std::string> splitCommas(const std::string& text) {
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     addSceneOptions(cmd, o.scene, o.gltf);
-    cmd.add_option("--environment", o.environment,
-                   "Light the scene from infinitely far away: an equirectangular map OpenImageIO reads (.exr, .hdr, "
-                   "...; linear radiance in the output's units) or a constant radiance R,G,B. A direction "
-                   "d = (x,y,z) toward the sky (glTF world space, +Y up) reads column u = 0.5 + atan2(x,-z)/(2 pi) "
-                   "and row v = acos(y)/pi, row 0 at the top; u = 0.5 is -Z, where an unrotated glTF camera looks. "
-                   "Rays that leave the scene see it; every integrator samples it")
-        ->each([](const std::string& value) {
-            // Leaving the flag out means no environment; an empty value is a mistake (an unset
-            // shell variable), not a way to say none.
-            if (value.empty()) throw InputError("--environment is empty: give a map's path or a radiance R,G,B");
-        });
+    cmd.add_option_function<std::string>(
+        "--environment", [&o](const std::string& v) { o.environment = v, o.environmentGiven = true; },
+        "Light the scene from infinitely far away: an equirectangular map OpenImageIO reads (.exr, .hdr, ...; linear "
+        "radiance in the output's units) or a constant radiance R,G,B. A direction d = (x,y,z) toward the sky (glTF "
+        "world space, +Y up) reads column u = 0.5 + atan2(x,-z)/(2 pi) and row v = acos(y)/pi, row 0 at the top; "
+        "u = 0.5 is -Z, where an unrotated glTF camera looks. Rays that leave the scene see it; every integrator "
+        "samples it");
     cmd.add_option_function<float>(
         "--environment-scale", [&o](float v) { o.environmentScale = v, o.environmentScaleGiven = true; },
         "Multiplies the environment's radiance (default 1)");

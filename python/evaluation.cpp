@@ -172,7 +172,7 @@ py::list benchmarkScenes(const std::vector<std::string>& scenes, double seconds,
                          const py::kwargs& options) {
     evaluation::BenchmarkRequest b;
     RenderRequest where;
-    if (environment) where.environment = *environment;
+    if (environment) where.environment = *environment, where.environmentGiven = true;
     if (environmentScale) where.environmentScale = *environmentScale, where.environmentScaleGiven = true;
     b.render = requestOf(where, integrators.empty() ? "bdpt" : integrators.front(), width, height, seed, maxDepth, mis,
                          threads, options);

@@ -49,7 +49,7 @@ std::unique_ptr<PyScene> loadPyScene(const std::string& nameOrPath, bool allowEx
     RenderRequest where;
     where.scene = nameOrPath;
     where.gltf.allowExternalFiles = allowExternalFiles;
-    if (environment) where.environment = *environment;
+    if (environment) where.environment = *environment, where.environmentGiven = true;
     if (environmentScale) where.environmentScale = *environmentScale, where.environmentScaleGiven = true;
     validateValues(where, Spelling::Python);
     auto scene = std::make_unique<PyScene>(where, warnings);
@@ -126,6 +126,7 @@ RenderRequest requestOf(const RenderRequest& where, const std::string& integrato
     request.scene = where.scene;
     request.gltf = where.gltf;
     request.environment = where.environment;
+    request.environmentGiven = where.environmentGiven;
     request.environmentScale = where.environmentScale;
     request.environmentScaleGiven = where.environmentScaleGiven;
     request.integrator = integrator;

@@ -93,7 +93,7 @@ TEST(Roulette, TheDepthUsedIsTheDepthRecorded) {
         EXPECT_EQ(method->settings().walk.rrDepth, used) << integrator << " given " << given;
         const RenderResult result = render(scene, *method, renderSettings(r));
         EXPECT_EQ(valueOf(renderMetadata(r, scene, *method, result), "tripath:rr-depth"), std::to_string(used)) << integrator;
-        EXPECT_EQ(valueOf(convergenceSettings(r, integrator), "tripath:rr-depth"), std::to_string(used)) << integrator;
+        EXPECT_EQ(valueOf(convergenceSettings(r, scene, integrator), "tripath:rr-depth"), std::to_string(used)) << integrator;
     }
     // mlt's walks play no roulette: both say so rather than a depth it never used.
     RenderRequest r = test::smallRequest();
@@ -102,7 +102,7 @@ TEST(Roulette, TheDepthUsedIsTheDepthRecorded) {
     const auto mlt = makeIntegrator(r.integrator, integratorSettings(r));
     const RenderResult result = render(scene, *mlt, renderSettings(r));
     EXPECT_EQ(valueOf(renderMetadata(r, scene, *mlt, result), "tripath:rr-depth"), "none");
-    EXPECT_EQ(valueOf(convergenceSettings(r, "mlt"), "tripath:rr-depth"), "none");
+    EXPECT_EQ(valueOf(convergenceSettings(r, scene, "mlt"), "tripath:rr-depth"), "none");
 }
 
 TEST(Furnace, AlbedoHalf) { expectFurnace(0.5f); }

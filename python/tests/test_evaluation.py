@@ -168,3 +168,5 @@ def test_benchmark_returns_the_rows_of_results_csv_and_reuses_its_reference(tmp_
         tripath.benchmark(["cornell"], 0.1, str(out), **{**settings, "runs": 1})
     with pytest.raises(ValueError, match="^baseline 'vcm' is not one of integrators"):
         tripath.benchmark(["cornell"], 0.1, str(out), baseline="vcm", **settings)
+    with pytest.raises(ValueError, match="^environment is empty: give a map's path or a radiance R,G,B$"):
+        tripath.benchmark(["cornell"], 0.1, str(out), environment="", **settings)

@@ -177,6 +177,9 @@ def test_an_environment_gives_the_command_lines_bits_and_is_recorded(tmp_path):
     assert "tripath:environment" not in plain["metadata"]
     with pytest.raises(ValueError, match="environment_scale"):
         tripath.load("cornell", environment_scale=2)
+    # An empty environment is a mistake, as on the command line, not a way to say none.
+    with pytest.raises(ValueError, match="^environment is empty: give a map's path or a radiance R,G,B$"):
+        tripath.load("cornell", environment="")
 
 
 def test_light_paths_give_the_command_lines_bits_and_are_recorded(tmp_path):

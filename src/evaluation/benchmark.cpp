@@ -126,23 +126,23 @@ void resolveScenes(const BenchmarkRequest& r, Spelling spelling) {
     for (const std::string& scene : r.scenes) {
         RenderRequest request = r.render;
         request.scene = scene;
-        loadScene(request, [](const std::string&) {});  // its warnings are told when its turn comes
+        const auto loaded = loadScene(request, [](const std::string&) {});  // its warnings are told when its turn comes
         if (r.referenceDir.empty() || r.team->rank() != 0) continue;
         const CompareRequest co = sceneRequest(r, scene);
         if (!fs::is_regular_file(co.referencePath))
             throw InputError(fmt::format("{} '{}' has no reference for the scene '{}': {} is missing",
                                          parameterName("reference", spelling), r.referenceDir, scene, co.referencePath));
-        readGivenReference(co);
+        readGivenReference(co, *loaded);
     }
 }
 
 // A cached reference is reused if it was rendered for these settings (else it is rendered again).
-bool cachedReferenceFits(const CompareRequest& co) {
+bool cachedReferenceFits(const CompareRequest& co, const Scene& scene) {
     if (!fs::exists(co.referenceOut)) return false;
     try {
         const ReferenceFile ref = readReference(co.referenceOut);
         requireSize(ref, co.render.width, co.render.height);
-        Metadata settings = convergenceSettings(co.render, co.referenceIntegrator);
+        Metadata settings = convergenceSettings(co.render, scene, co.referenceIntegrator);
         settings.push_back({"tripath:streams", "reference"});
         requireSettings(ref, settings, false);
         return true;
@@ -159,7 +159,7 @@ std::vector<Cell> benchmarkScene(const BenchmarkRequest& b, const std::string& s
     bool reuse = false;
     together(*b.team, [&] {
         loaded = loadScene(co.render);
-        if (rank0 && co.referencePath.empty()) reuse = cachedReferenceFits(co);
+        if (rank0 && co.referencePath.empty()) reuse = cachedReferenceFits(co, *loaded);
     });
     std::array<uint64_t, 1> shared{reuse};
     b.team->max(shared);

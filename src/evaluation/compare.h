@@ -160,9 +160,10 @@ Comparison compare(const CompareRequest& r, const Scene& scene, bool everyImage 
 
 // compare_run.cpp
 Reference obtainReference(const CompareRequest& o, const Scene& scene);
-// The reference at o.referencePath, checked against the request: its size, scene and depth limit
-// (when it records them), and that it shares no samples with a run. InputError otherwise.
-Reference readGivenReference(const CompareRequest& o);
+// The reference at o.referencePath, checked against the request and its loaded `scene`: its size,
+// scene files and depth limit (when it records them), and that it shares no samples with a run.
+// InputError otherwise.
+Reference readGivenReference(const CompareRequest& o, const Scene& scene);
 struct RunOutput {
     Run run;
     Image image;    // the finished render

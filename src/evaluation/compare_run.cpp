@@ -9,6 +9,7 @@
 #include "evaluation/compare.h"
 #include "core/error.h"
 #include "evaluation/flip.h"
+#include "requests/scene_identity.h"
 
 namespace tripath::evaluation {
 
@@ -23,13 +24,15 @@ int targetReached(double seconds, double budget) {
 
 }  // namespace
 
-Reference readGivenReference(const CompareRequest& o) {
+Reference readGivenReference(const CompareRequest& o, const Scene& scene) {
     const RenderRequest& r = o.render;
     ReferenceFile file = readReference(o.referencePath);
     requireSize(file, r.width, r.height);
-    // A reference of another scene or depth limit converges to another image; an external file
-    // without metadata is taken on trust.
-    requireSettings(file, {{"tripath:scene", r.scene}, {"tripath:max-depth", std::to_string(r.maxDepth)}}, true);
+    // A reference of other scene files or another depth limit converges to another image; an
+    // external file without metadata is taken on trust.
+    requireSettings(file,
+                    {{kSceneFilesKey, sceneFilesText(scene.sources())}, {"tripath:max-depth", std::to_string(r.maxDepth)}},
+                    true);
     // A run shares samples with the reference only if both drew from the same streams: the same
     // domain and the same seed. References from `tripath reference` use their own domain, so only
     // an image from `tripath render` (or an older reference) with one of the runs' seeds is refused.
@@ -87,7 +90,7 @@ Reference renderReference(const CompareRequest& o, const Scene& scene) {
 }  // namespace
 
 Reference obtainReference(const CompareRequest& o, const Scene& scene) {
-    if (!o.referencePath.empty()) return readGivenReference(o);
+    if (!o.referencePath.empty()) return readGivenReference(o, scene);
     if (!o.referenceImage.rgb.empty()) return {o.referenceImage, "given image", ""};
     return renderReference(o, scene);
 }

@@ -4,27 +4,15 @@
 
 #include <climits>
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 
 #include "core/error.h"
 #include "core/number_text.h"
 #include "integrators/render.h"
 #include "io/gltf_checks.h"
+#include "requests/scene_identity.h"
 
 namespace tripath::evaluation {
-
-namespace {
-
-// Two spellings of one glTF file (relative and absolute) are the same scene; built-in names
-// compare as text.
-bool sameScene(const std::string& a, const std::string& b) {
-    if (a == b) return true;
-    std::error_code ec;
-    return std::filesystem::equivalent(a, b, ec) && !ec;
-}
-
-}  // namespace
 
 std::optional<std::string> ReferenceFile::value(const std::string& key) const {
     for (const auto& [k, v] : meta)
@@ -94,8 +82,14 @@ void requireSettings(const ReferenceFile& ref, const std::vector<std::pair<std::
         if (!got)
             throw InputError(fmt::format("'{}' has no {} metadata: not a tripath reference (choose another file)",
                                          ref.path, key));
-        const bool same = key == "tripath:scene" ? sameScene(*got, want) : *got == want;
-        if (!same)
+        if (key == kSceneFilesKey) {
+            const std::string difference = sceneFilesDifference(*got, want);
+            if (!difference.empty())
+                throw InputError(
+                    fmt::format("reference '{}' was made from other scene files: {}", ref.path, difference));
+            continue;
+        }
+        if (*got != want)
             throw InputError(fmt::format("reference '{}' has {} {}, but this render has {} {}", ref.path,
                                          key.substr(8), *got, key.substr(8), want));
     }

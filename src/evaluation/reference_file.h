@@ -44,7 +44,8 @@ ReferenceFile readReference(const std::string& path);
 // Throws InputError unless the reference is width x height.
 void requireSize(const ReferenceFile& ref, int width, int height);
 // Throws InputError naming the first key whose value in the reference differs from the expected
-// one. Keys the reference lacks are skipped when `allowMissing`, an error otherwise.
+// one (tripath:scene-files by content: the first file that differs, scene_identity.h). Keys the
+// reference lacks are skipped when `allowMissing`, an error otherwise.
 void requireSettings(const ReferenceFile& ref, const std::vector<std::pair<std::string, std::string>>& expected,
                      bool allowMissing);
 

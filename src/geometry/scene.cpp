@@ -143,7 +143,7 @@ MeshDesc placed(const MeshDesc& m, const Affine& toWorld) {
 }  // namespace
 
 Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
-    : name_(desc.name), materials_(desc.materials), camera_(CameraDesc{}, width, height) {
+    : name_(desc.name), sources_(desc.sources), materials_(desc.materials), camera_(CameraDesc{}, width, height) {
     for (const Material& m : materials_) {
         const std::string problem = validateMaterial(m);
         if (!problem.empty()) throw InputError(fmt::format("{}: material '{}': {}", name_, m.name, problem));
@@ -173,7 +173,7 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
 }
 
 Scene::Scene(const Scene& base, int width, int height)
-    : name_(base.name_), materials_(base.materials_), triangles_(base.triangles_),
+    : name_(base.name_), sources_(base.sources_), materials_(base.materials_), triangles_(base.triangles_),
       worldTriangles_(base.worldTriangles_), instances_(base.instances_), lo_(base.lo_), hi_(base.hi_),
       cameraDesc_(base.cameraDesc_), camera_(base.cameraDesc_, width, height), emitters_(base.emitters_),
       surfaceTextures_(base.surfaceTextures_), anyNormalTexture_(base.anyNormalTexture_), alphaMasks_(base.alphaMasks_),

@@ -54,6 +54,8 @@ public:
     Scene& operator=(const Scene&) = delete;
 
     const std::string& name() const { return name_; }
+    // The files it was built from (SceneDesc::sources): what identifies it.
+    const std::vector<SourceFile>& sources() const { return sources_; }
     const Camera& camera() const { return camera_; }
     const Emitters& emitters() const { return emitters_; }
     // Each mesh used once and each copy of an emissive mesh in world space, then each other
@@ -126,6 +128,7 @@ private:
     void buildBvh();
 
     std::string name_;
+    std::vector<SourceFile> sources_;
     std::vector<Material> materials_;
     std::vector<Triangle> triangles_;
     uint32_t worldTriangles_ = 0;     // triangles_[0, worldTriangles_) are in world space

@@ -3,6 +3,7 @@
 // but for the meshes that instances place: each is kept once, in its own space, with the transforms
 // that place its copies, so that a model of many copies costs the memory of one.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -37,12 +38,21 @@ struct LightDesc {
     float outerConeAngle = kPi / 4;
 };
 
+// A file a scene was built from, known by the FNV-1a hash (core/fnv1a.h) of the bytes read from
+// it: what checkpoints and references record of their scene (requests/scene_identity.h), so that
+// the same content is the same scene whatever path named it, and an edited file is not.
+struct SourceFile {
+    std::string name;  // for messages: the file's name as the scene or the command line gave it
+    uint64_t hash = 0;
+};
+
 // Radiance from infinitely far away, as an equirectangular map (geometry/environment.h gives the
 // convention): width × height linear RGB radiances, rows from the top. None when empty.
 struct EnvironmentDesc {
     int width = 0, height = 0;
     std::vector<Spectrum> texels;
     std::string source;           // the file, or the constant as given, for messages and metadata
+    uint64_t hash = 0;            // of the texels as read, before any scale: the content of `source`
     bool present() const { return !texels.empty(); }
 };
 
@@ -76,6 +86,7 @@ struct CameraDesc {
 
 struct SceneDesc {
     std::string name;              // file path or built-in name, for messages and metadata
+    std::vector<SourceFile> sources;  // what it was built from, in the order read (a built-in: its name)
     std::vector<Material> materials;
     std::vector<MeshDesc> meshes;
     std::vector<InstancesDesc> instances;

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "core/fnv1a.h"
 #include "io/external_files.h"
 #include "io/gltf_document.h"
 
@@ -45,11 +46,12 @@ std::string libraryText(const std::string& text) {
 // The files tinygltf may open: the resolved paths of the buffer files approveBufferFiles let
 // through. The callbacks get each URI decoded (the model is loaded with an empty base folder)
 // and resolve it against the scene's folder again; everything else, image files included, is
-// reported missing.
+// reported missing. Each file read is added to `read`.
 struct ApprovedFiles {
     std::filesystem::path folder;
     bool allowOutside = false;
     std::set<std::filesystem::path> files;
+    std::vector<SourceFile>* read = nullptr;
 
     // The file `decodedUri` names, or an empty path when it was not approved.
     std::filesystem::path find(const std::string& decodedUri) const {
@@ -65,15 +67,21 @@ bool approvedFileExists(const std::string& decodedUri, void* approved) {
 std::string keepPath(const std::string& path, void*) { return path; }
 
 bool readApprovedFile(std::vector<unsigned char>* out, std::string* err, const std::string& decodedUri,
-                      void* approved) {
-    const std::filesystem::path path = static_cast<const ApprovedFiles*>(approved)->find(decodedUri);
+                      void* approvedFiles) {
+    const auto* approved = static_cast<const ApprovedFiles*>(approvedFiles);
+    const std::filesystem::path path = approved->find(decodedUri);
     if (!path.empty()) {
         std::error_code ec;
         const uintmax_t size = std::filesystem::file_size(path, ec);
         std::ifstream in(path, std::ios::binary);
         if (!ec && in) {
             out->resize(size_t(size));
-            if (in.read(reinterpret_cast<char*>(out->data()), std::streamsize(out->size()))) return true;
+            if (in.read(reinterpret_cast<char*>(out->data()), std::streamsize(out->size()))) {
+                Fnv1a hash;
+                hash.add(out->data(), out->size());
+                approved->read->push_back({decodedUri, hash.value()});
+                return true;
+            }
         }
     }
     *err += "cannot read " + quoted(decodedUri);
@@ -174,9 +182,10 @@ void forwardLibraryWarnings(const std::string& text, Report& report) {
 
 }  // namespace
 
-tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
+tinygltf::Model readModel(bool allowExternalFiles, Report& report, std::vector<SourceFile>& sources) {
     const std::string& path = report.path();
     const std::vector<char> bytes = readSceneFile(report);
+    sources.push_back({std::filesystem::path(path).filename().string(), fnv1a({bytes.data(), bytes.size()})});
     const bool binary = (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0) ||
                         std::filesystem::path(path).extension() == ".glb";
     const nlohmann::json doc = parseJson(jsonText(bytes, binary, report), report);
@@ -185,6 +194,7 @@ tinygltf::Model readModel(bool allowExternalFiles, Report& report) {
     ApprovedFiles approved;
     approved.allowOutside = allowExternalFiles;
     approved.folder = sceneFolder(report);
+    approved.read = &sources;
     approveBufferFiles(doc, approved, report);
 
     tinygltf::TinyGLTF parser;

@@ -9,7 +9,9 @@
 #include <tiny_gltf.h>
 
 #include <filesystem>
+#include <vector>
 
+#include "geometry/scene_desc.h"
 #include "io/gltf_checks.h"
 
 namespace tripath::gltf {
@@ -17,8 +19,10 @@ namespace tripath::gltf {
 // The model in the file report.path() names; fails with one line saying what is wrong, quoting at
 // most excerpts of the file (tinygltf's own message, shortened, for what only tinygltf checks).
 // Passes tinygltf's warnings on, shortened, minus those about images (gltf_textures.h reads them).
-// allowExternalFiles: GltfOptions::allowExternalFiles.
-tinygltf::Model readModel(bool allowExternalFiles, Report& report);
+// allowExternalFiles: GltfOptions::allowExternalFiles. Appends the files it reads to `sources`, each
+// hashed from the bytes the model was made from: the scene file by its name, then the buffer files
+// by their decoded URIs.
+tinygltf::Model readModel(bool allowExternalFiles, Report& report, std::vector<SourceFile>& sources);
 
 // The folder of the scene file report.path() names, absolute with symlinks resolved: what the
 // files a scene names are resolved against (external_files.h).

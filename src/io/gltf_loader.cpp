@@ -146,10 +146,10 @@ private:
 
 SceneDesc Loader::load() {
     scene_.name = report_.path();
-    model_ = readModel(allowExternalFiles_, report_);
+    model_ = readModel(allowExternalFiles_, report_, scene_.sources);
     checkExtensions();
     warnIgnoredModelFeatures();
-    TextureReader textures(model_, sceneFolder(report_), allowExternalFiles_, report_);
+    TextureReader textures(model_, sceneFolder(report_), allowExternalFiles_, report_, scene_.sources);
     scene_.materials = convertMaterials(model_, textures, report_);
     traverseScene();
     addMeshes();

@@ -25,6 +25,7 @@
 #include <fstream>
 #include <limits>
 
+#include "core/fnv1a.h"
 #include "io/external_files.h"
 
 namespace tripath::gltf {
@@ -128,8 +129,8 @@ std::array<float, 6> transformMatrix(const tinygltf::Value& t, const std::string
 }  // namespace
 
 TextureReader::TextureReader(const tinygltf::Model& model, std::filesystem::path folder, bool allowOutside,
-                             Report& report)
-    : model_(model), folder_(std::move(folder)), allowOutside_(allowOutside), report_(report) {}
+                             Report& report, std::vector<SourceFile>& sources)
+    : model_(model), folder_(std::move(folder)), allowOutside_(allowOutside), report_(report), sources_(sources) {}
 
 TextureSlot TextureReader::slot(int index, int texCoord, const tinygltf::ExtensionMap& extensions, ColourSpace space,
                                 const std::string& context) {
@@ -222,6 +223,7 @@ std::shared_ptr<const TextureImage> TextureReader::image(int index, const std::s
             std::ifstream in(file, std::ios::binary);
             if (!in || !in.read(bytes.data(), std::streamsize(bytes.size())))
                 report_.fail(what + ": cannot read " + quoted(source.uri));
+            sources_.push_back({decodeUriPath(source.uri), fnv1a(bytes)});
             decoded = files_[file] = decode(bytes, what);
         }
     }

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/scene_desc.h"
 #include "geometry/texture.h"
 #include "io/gltf_checks.h"
 
@@ -23,8 +24,10 @@ constexpr long long kMaxTexturePixels = 1LL << 26;
 
 class TextureReader {
 public:
-    // `folder`: the scene's folder (absolute, symlinks resolved); allowOutside as GltfOptions'.
-    TextureReader(const tinygltf::Model& model, std::filesystem::path folder, bool allowOutside, Report& report);
+    // `folder`: the scene's folder (absolute, symlinks resolved); allowOutside as GltfOptions'. Each
+    // image file read is added to `sources`, by its decoded URI, hashed from the bytes decoded.
+    TextureReader(const tinygltf::Model& model, std::filesystem::path folder, bool allowOutside, Report& report,
+                  std::vector<SourceFile>& sources);
     // The slot a material's textureInfo describes (index ≥ 0): the texture, its colour channels
     // read in colour space `space`, its texCoord and transform. Each texture is made once, and
     // each image decoded once, however many textures and colour spaces use it: by image index,
@@ -47,6 +50,7 @@ private:
     std::filesystem::path folder_;
     bool allowOutside_;
     Report& report_;
+    std::vector<SourceFile>& sources_;
     std::map<int, std::shared_ptr<const Texture>> textures_;         // by texture index
     std::map<int, std::shared_ptr<const TextureImage>> images_;      // by image index
     std::map<std::filesystem::path, std::shared_ptr<const TextureImage>> files_;  // by resolved path

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/fnv1a.h"
 #include "image/image.h"
 #include "io/gltf_checks.h"
 
@@ -44,6 +45,8 @@ EnvironmentDesc loadEnvironment(const std::string& spec, float scale, const Warn
         if (!validRadiance(*c))
             throw InputError(fmt::format("the environment radiance {} is negative or not finite", gltf::excerpt(spec)));
         d.width = d.height = 1;
+        const float values[3] = {c->x, c->y, c->z};
+        d.hash = fnv1a({reinterpret_cast<const char*>(values), sizeof(values)});
         d.texels = {*c * scale};
         return d;
     }
@@ -53,6 +56,7 @@ EnvironmentDesc loadEnvironment(const std::string& spec, float scale, const Warn
                          gltf::excerpt(spec), map.width, map.height));
     d.width = map.width;
     d.height = map.height;
+    d.hash = fnv1a({reinterpret_cast<const char*>(map.rgb.data()), map.rgb.size() * sizeof(float)});
     d.texels.reserve(map.pixelCount());
     for (int y = 0; y < map.height; ++y)
         for (int x = 0; x < map.width; ++x) {

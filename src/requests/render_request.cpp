@@ -4,11 +4,13 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "geometry/embree_isa.h"
 #include "core/error.h"
 #include "requests/environment_spec.h"
 #include "requests/integrator_parameters.h"
+#include "requests/scene_identity.h"
 #include "scenes/scene_source.h"
 #include "paths/kernels.h"
 
@@ -16,10 +18,10 @@ namespace tripath {
 
 namespace {
 
-// tripath:environment and tripath:environment-scale, when the request has an environment.
-Metadata environmentMetadata(const RenderRequest& r) {
+// tripath:environment-scale, when the request has an environment.
+Metadata environmentScale(const RenderRequest& r) {
     if (r.environment.empty()) return {};
-    return {{"tripath:environment", r.environment}, {"tripath:environment-scale", fmt::format("{:.9g}", r.environmentScale)}};
+    return {{"tripath:environment-scale", fmt::format("{:.9g}", r.environmentScale)}};
 }
 
 // tripath:rr-depth: the roulette start depth an integrator renders with, or "none" for mlt, whose
@@ -71,6 +73,10 @@ void validateValues(const RenderRequest& r, Spelling spelling) {
     check(true, "max-depth", r.maxDepth, kMaxDepthRange);
     if (r.environmentScaleGiven && !(std::isfinite(r.environmentScale) && r.environmentScale >= 0))
         fail(fmt::format("{} must be a finite number of at least 0 (got {})", name("environment-scale"), r.environmentScale));
+    // Leaving the environment out means none; an empty one is a mistake (an unset shell variable),
+    // not a way to say none.
+    if (r.environmentGiven && r.environment.empty())
+        fail(fmt::format("{} is empty: give a map's path or a radiance R,G,B", name("environment")));
     if (r.environmentScaleGiven && r.environment.empty())
         fail(fmt::format("{} scales an environment: give one with {}", name("environment-scale"), name("environment")));
     check(true, "rr-depth", r.rrDepth, kRrDepthRange);
@@ -140,26 +146,30 @@ RenderSettings renderSettings(const RenderRequest& r) {
 
 std::unique_ptr<Scene> loadScene(const RenderRequest& r, const WarningSink& warn) {
     SceneDesc desc = loadSceneDesc(r.scene, r.gltf, warn);
-    if (!r.environment.empty()) desc.environment = loadEnvironment(r.environment, r.environmentScale, warn);
+    if (!r.environment.empty()) {
+        desc.environment = loadEnvironment(r.environment, r.environmentScale, warn);
+        desc.sources.push_back({std::filesystem::path(r.environment).filename().string(), desc.environment.hash});
+    }
     return std::make_unique<Scene>(std::move(desc), r.width, r.height, warn);
 }
 
 const char* streamsName(StreamDomain d) { return d == StreamDomain::Reference ? "reference" : "render"; }
 
-Metadata convergenceSettings(const RenderRequest& r, const std::string& integrator) {
-    Metadata m{{"tripath:scene", r.scene},
+Metadata convergenceSettings(const RenderRequest& r, const Scene& scene, const std::string& integrator) {
+    Metadata m{{kSceneFilesKey, sceneFilesText(scene.sources())},
                {"tripath:integrator", integrator},
                {"tripath:max-depth", std::to_string(r.maxDepth)},
                {"tripath:rr-depth", rouletteText(*makeIntegrator(integrator, {}), rouletteDepth(r, integrator))},
                {"tripath:mis", r.mis}};
-    const Metadata environment = environmentMetadata(r);
-    m.insert(m.end(), environment.begin(), environment.end());
+    const Metadata scale = environmentScale(r);
+    m.insert(m.end(), scale.begin(), scale.end());
     return m;
 }
 
 Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator, const RenderResult& result,
                         int ranks) {
     Metadata m{{"tripath:scene", r.scene},
+               {kSceneFilesKey, sceneFilesText(scene.sources())},
                {"tripath:integrator", integrator.name()},
                {"tripath:spp", std::to_string(result.passes)},
                {"tripath:next-pass", std::to_string(result.nextPass)},
@@ -174,7 +184,8 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:version", TRIPATH_VERSION},
                {"tripath:embree", embreeDescription()},
                {"tripath:ranks", std::to_string(ranks)}};
-    for (const Metadata& more : {environmentMetadata(r), lightPhaseMetadata(r, scene, integrator)}) m.insert(m.end(), more.begin(), more.end());
+    if (!r.environment.empty()) m.push_back({"tripath:environment", r.environment});
+    for (const Metadata& more : {environmentScale(r), lightPhaseMetadata(r, scene, integrator)}) m.insert(m.end(), more.begin(), more.end());
     if (integrator.runsChains()) {
         // Per path length k = 1, 2, …: b_k, the length's chains and their acceptance rate.
         std::vector<std::string> b, chains, acceptance;

@@ -24,6 +24,7 @@ struct RenderRequest {
     std::string scene;                    // a built-in's name or a .gltf/.glb file
     GltfOptions gltf;
     std::string environment;              // a map file or "R,G,B" (environment_spec.h); empty for none
+    bool environmentGiven = false;        // given at all: then it may not be empty
     float environmentScale = 1;           // multiplies the environment's radiance
     bool environmentScaleGiven = false;
     std::string integrator = "bdpt";
@@ -91,16 +92,20 @@ IntegratorSettings integratorSettings(const RenderRequest& r);
 // Budget, seed, threads, timing, streams and layers as the render loop takes them (16 passes
 // when neither spp nor seconds is given); one process: a team is the caller's to add.
 RenderSettings renderSettings(const RenderRequest& r);
-// The scene at the request's image size; InputError for an unknown name or a bad file.
+// The scene at the request's image size, its sources (Scene::sources) the scene's then the
+// environment's, by its file name; InputError for an unknown name or a bad file.
 std::unique_ptr<Scene> loadScene(const RenderRequest& r, const WarningSink& warn = printWarning);
 
 // "render" or "reference", as tripath:streams records a domain.
 const char* streamsName(StreamDomain d);
-// What decides the image a render converges to, as EXR metadata: tripath:scene, integrator,
-// max-depth, rr-depth ("none" for mlt) and mis, and tripath:environment and environment-scale when one is given. Every check that a file may be added to or measured against
-// (references, checkpoints, the benchmark's reference cache) starts from these.
-Metadata convergenceSettings(const RenderRequest& r, const std::string& integrator);
-// The EXR metadata describing a finished render by `ranks` processes; tripath:interrupted too
+// What decides the image a render converges to, as EXR metadata: tripath:scene-files (the content
+// of what `scene` was built from: scene_identity.h), integrator, max-depth, rr-depth ("none" for
+// mlt) and mis, and tripath:environment-scale when an environment is given. Every check that a
+// file may be added to or measured against (references, checkpoints, the benchmark's reference
+// cache) starts from these.
+Metadata convergenceSettings(const RenderRequest& r, const Scene& scene, const std::string& integrator);
+// The EXR metadata describing a finished render by `ranks` processes: the settings, tripath:scene
+// and tripath:environment as the request names them, the counts; tripath:interrupted too
 // (interruptionText, render.h) when a stop request ended it.
 Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator, const RenderResult& result,
                         int ranks = 1);
