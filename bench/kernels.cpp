@@ -175,8 +175,8 @@ void registerPathKernels() {
     reg("kernel/g_with_shadow_ray", [](benchmark::State& st, const Scene& scene, const VertexPools& p) {
         uint64_t visible = 0;
         cycle(st, kPool, [&](size_t i) {
-            float v = g(scene, p.surfacePairs[i].first, p.surfacePairs[i].second);
-            visible += v > 0;
+            Spectrum v = g(scene, p.surfacePairs[i].first, p.surfacePairs[i].second);
+            visible += !isBlack(v);
             benchmark::DoNotOptimize(v);
         });
         st.counters["visible_fraction"] = double(visible) / double(st.iterations());

@@ -7,8 +7,10 @@
 #                                       (libFuzzer otherwise stops at the first one)
 #
 # Needs clang with libFuzzer (Debian: clang and libclang-rt-<version>-dev). Builds into
-# build-fuzz/ (-DTRIPATH_FUZZ=ON). The seed corpus is scenes/*.gltf plus fuzz/seeds/ (a .glb and
-# small hand-made files); the growing corpus lives in build-fuzz/corpus/. Crashes, hangs
+# build-fuzz/ (-DTRIPATH_FUZZ=ON). The seed corpus is scenes/*.gltf plus fuzz/seeds/ (small
+# hand-made files: textures in data URIs and in a .glb's binary chunk, every punctual light,
+# instancing, an absorbing glass volume over a tangent-framed normal map, JSON nested to the
+# loader's limit); the growing corpus lives in build-fuzz/corpus/. Crashes, hangs
 # (-timeout) and out-of-memory inputs are written to build-fuzz/artifacts/: copy each into
 # tests/data/fuzz/ once the bug is fixed, where Fuzz.EntryPointSurvivesEverySavedFind
 # (tests/test_fuzz_inputs.cpp) feeds it to the same entry point, as it feeds the seeds, in the

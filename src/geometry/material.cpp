@@ -1,7 +1,7 @@
-// BSDFs of the scene model (docs/design.md §3): Lambertian, ideal mirror, smooth dielectric, rough GGX
-// conductor and its smooth limit, a rough plastic (GGX coat over a diffuse base) and glTF's metallic-roughness mix of
-// the last two, and the dispatch over the
-// material types behind evalBsdf, pdfBsdf and sampleBsdf. What the rough lobes share lives
+// BSDFs of the scene model (docs/design.md §3): Lambertian, ideal mirror, smooth dielectric, rough
+// GGX conductor and its smooth limit, a rough plastic (GGX coat over a diffuse base) and glTF's
+// metallic-roughness mix of the conductor and the plastic, and the dispatch over the material
+// types behind evalBsdf, pdfBsdf and sampleBsdf. What the rough lobes share lives
 // beside it: the GGX distribution in microfacet.cpp, the plastic coat's albedo table in
 // coat_albedo.cpp; this file holds each lobe's own formula and the switch over the types.
 //

@@ -109,9 +109,9 @@ inline float shadingCorrection(const Vertex& v, Vec3 n, Vec3 towardLight) {
 }
 
 // Leak mask: whether unit w lies on the same side of a surface vertex under the shading normal n
-// it scatters about (shading_normal.h) as under its geometric one. Near the silhouettes of coarse smooth meshes the two disagree, and a
-// BSDF evaluated in the shading frame alone would let light through the surface (or reflect it
-// off the back). A surface vertex scatters only between directions that both pass this test, in
+// it scatters about (shading_normal.h) as under its geometric one. Near the silhouettes of coarse
+// smooth meshes the two disagree, and a BSDF evaluated in the shading frame alone would let light
+// through the surface (or reflect it off the back). A surface vertex scatters only between directions that both pass this test, in
 // either transport mode: the mask is symmetric in the two directions, so the adjoint BSDF of
 // light subpaths stays exactly the radiance BSDF's adjoint (Veach §5.3) and pt, lt and bdpt keep
 // agreeing on smooth meshes.
@@ -121,10 +121,10 @@ inline bool sidesAgree(const Vertex& v, Vec3 n, Vec3 w) { return dot(v.ng, w) * 
 // regrouped product, and the pdfs with which it generates either neighbour. The directions to
 // the neighbours and, on a surface, the shading frames and local directions are computed once for
 // all of them (a pdf about the normal bent for the direction it is generated from, f_r about the
-// pair's: shading_normal.h); `connect` evaluates every one at both ends of the connecting segment. Walks and
-// connections both take their pdfs from here, with directions from the points alone (never the
-// sampled direction, which an offset ray origin bends on short segments), so that every
-// strategy's pdf of a path is computed the same way: the MIS weights depend on it.
+// pair's: shading_normal.h); `connect` evaluates every one at both ends of the connecting
+// segment. Walks and connections both take their pdfs from here, with directions from the points
+// alone (never the sampled direction, which an offset ray origin bends on short segments), so
+// that every strategy's pdf of a path is computed the same way: the MIS weights depend on it.
 //
 // The neighbours are given as unit directions from v, null where there is none. An endpoint
 // lacks one: the sensor its camera side, an emitter point its light side -- as does a surface a

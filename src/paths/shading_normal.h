@@ -11,9 +11,9 @@
 //   - a walk samples about bentNormal(w) of the direction it arrived from, and a pdf toward
 //     either neighbour is the pdf about the normal bent for the neighbour it is generated from,
 //     so the pdfs MIS compares are those of the samplers that drew them;
-//   - f_r, whichever walk or connection evaluates it, is taken about bentNormal(a, b), the one
-//     of the two directions' bent normals nearer ng: a function of the unordered pair, so f_r
-//     stays reciprocal and light subpaths keep using exactly the adjoint of the camera's BSDF.
+//   - f_r, whichever walk or connection evaluates it, is taken about the pair's normal: of the
+//     two directions' bent normals, the one nearer ng. A function of the unordered pair, it
+//     keeps f_r reciprocal, and light subpaths use exactly the adjoint of the camera's BSDF.
 // For a mirror reflection the two coincide (the reflected direction's own bend is never
 // stronger), so a delta lobe's sampled weight is f_r about the pair's normal; for a glossy lobe
 // they differ only for the few directions whose own reflection would leave the surface.
@@ -41,13 +41,6 @@ inline Vec3 bentNormal(Vec3 ns, Vec3 ng, Vec3 w) {
     const float reflected = 2 * dot(ns, w) * nz - wz;  // the reflection's cosine with ng
     if (wz >= 0 ? reflected >= kMinReflectionCosine : reflected <= -kMinReflectionCosine) return ns;
     return detail::bendTowardGeometric(ns, ng, w);
-}
-
-// The normal f_r is evaluated about between the directions a and b: of bentNormal(a) and
-// bentNormal(b), the one nearer ng.
-inline Vec3 bentNormal(Vec3 ns, Vec3 ng, Vec3 a, Vec3 b) {
-    const Vec3 na = bentNormal(ns, ng, a), nb = bentNormal(ns, ng, b);
-    return dot(na, ng) >= dot(nb, ng) ? na : nb;
 }
 
 }  // namespace tripath
