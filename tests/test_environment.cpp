@@ -143,6 +143,22 @@ TEST(Environment, AConvexLambertianObjectUnderAConstantSkyReadsAlbedoTimesL) {
     }
 }
 
+// A scene whose only light would be an environment that is black everywhere is refused with a
+// line that says so, rather than being told to add the environment it has.
+TEST(Environment, AnAllBlackEnvironmentAsTheOnlyLightIsRefusedAsBlack) {
+    SceneDesc box;
+    build::addBox(box, "box", build::addMaterial(box, build::lambertian("grey", Spectrum(0.5f))), {-0.5f, -0.5f, -0.5f},
+                  {0.5f, 0.5f, 0.5f});
+    box.environment.width = box.environment.height = 1;
+    box.environment.texels = {Spectrum(0.0f)};
+    try {
+        const Scene scene(box, 8, 8);
+        ADD_FAILURE() << "a scene lit by a black environment alone was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("environment, which is black everywhere"), std::string::npos) << e.what();
+    }
+}
+
 // A wide camera that sees nothing but the sky (the scene's one box lies behind it) reads L in every
 // pixel, in every integrator: light tracing too, through strategy (1, 1), a direction drawn from the
 // map joined to the pinhole, which lands in the pixel that looks that way. Catches the sensor's

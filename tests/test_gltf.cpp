@@ -680,6 +680,17 @@ TEST_F(GltfTest, MissingBufferFileIsNamed) {
                         folder / "missing.bin", "which does not exist");
 }
 
+// A buffer file over 4 GiB (here a sparse one, which costs no disk) is refused before it is read,
+// rather than allocated and read whole.
+TEST_F(GltfTest, BufferFileOverFourGibIsRefusedUnread) {
+    const GltfBuilder b = quadScene();
+    const fs::path folder = sceneFolder(testDir());
+    const std::string scene = b.writeWithUri(folder / "quad.gltf", "big.bin", testDir() / "quad.bin");
+    { std::ofstream(folder / "big.bin", std::ios::binary); }
+    fs::resize_file(folder / "big.bin", (uintmax_t(5) << 30));
+    expectBufferRefused(scene, "buffer 0", folder / "big.bin", "which is larger than 4 GiB (not supported)");
+}
+
 // The system cuts a path at a NUL character ("%00"), so what it would open is not what was checked.
 TEST_F(GltfTest, BufferUriWithANulCharacterIsRefused) {
     const GltfBuilder b = quadScene();

@@ -159,6 +159,9 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
         if (auto e = punctualEmitter(l, name_)) lights.push_back(*e);
     emitters_ = Emitters(triangles_, materials_, lights, environment(desc.environment, name_), sphere,
                          surfaceTextures_.get());
+    if (emitters_.empty() && desc.environment.present())
+        throw InputError(fmt::format("{}: the scene has no emitter but its environment, which is black everywhere: "
+                                     "give one that emits, or add an emissive material or a light", name_));
     if (emitters_.empty())
         throw InputError(fmt::format("{}: the scene has no emitter: add an emissive material, a KHR_lights_punctual light, "
                                      "or an environment (--environment; environment= in Python)", name_));

@@ -157,11 +157,16 @@ void approveBufferFiles(const nlohmann::json& doc, ApprovedFiles& approved, cons
             report.fail(name + ": uri " + quoted(uri) + ": URI scheme " + quoted(scheme + ":") +
                         " is not supported (only data: URIs and file paths relative to the scene)");
         const ExternalFile file = resolveExternalFile(approved.folder, decodeUriPath(uri), approved.allowOutside);
-        if (!file.problem.empty()) {
+        // A buffer file is read whole, so it has the scene file's size limit, checked before it is read.
+        std::string problem = file.problem;
+        std::error_code ec;
+        if (problem.empty() && std::filesystem::file_size(file.path, ec) > UINT_MAX && !ec)
+            problem = "which is larger than 4 GiB (not supported)";
+        if (!problem.empty()) {
             // The path is the scene's folder, which the user gave, and at most an excerpt of the uri.
             const size_t pathLength = approved.folder.string().size() + kExcerptLength;
             report.fail(name + ": uri " + quoted(uri) + " names " + quoted(file.path.string(), pathLength) + ", " +
-                        file.problem);
+                        problem);
         }
         approved.files.insert(file.path);
     }
