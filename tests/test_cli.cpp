@@ -621,6 +621,22 @@ TEST_F(Cli, DevicesAndFifosAreRefusedUnread) {
                   "checkpoint '" + path("out.exr.checkpoint") + "': not a regular file", 20);
 }
 
+// An output path that names a symbolic link, a device or a FIFO is refused before any rendering,
+// and the link and what it names are left as they were: renaming the image over it would have
+// replaced the link (or the special file) silently.
+TEST_F(Cli, AnOutputThatIsALinkOrASpecialFileIsRefused) {
+    { std::ofstream(path("kept.exr")) << "not an image"; }
+    fs::create_symlink(path("kept.exr"), path("link.exr"));
+    ASSERT_EQ(mkfifo(path("fifo.exr").c_str(), 0600), 0);
+    expectRefused("render --scene cornell --width 8 --height 8 --spp 1 --out '" + path("link.exr") + "'",
+                  "cannot write '" + path("link.exr") + "': it is a symbolic link, which tripath does not replace");
+    expectRefused("render --scene cornell --width 8 --height 8 --spp 1 --out '" + path("fifo.exr") + "'",
+                  "cannot write '" + path("fifo.exr") + "': it is a device, FIFO or socket, which tripath does not replace",
+                  20);
+    EXPECT_TRUE(fs::is_symlink(path("link.exr")));
+    EXPECT_EQ(slurp(path("kept.exr")), "not an image");
+}
+
 // A reference's numbers are read whole and in range when it is read, before any rendering: its
 // spp is not taken as 4 from "4x" (stoi did), its seconds not as NaN, its next-pass not wrapped,
 // its dropped-samples not taken from "-1". The file as written is continued.

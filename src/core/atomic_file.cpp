@@ -59,6 +59,12 @@ void checkTarget(const std::string& path) {
     if (!fs::is_directory(dir, ec))
         throw InputError(fmt::format("cannot write '{}': '{}' is not a directory", path, dir.string()));
     if (fs::is_directory(path, ec)) throw InputError(fmt::format("cannot write '{}': it is a directory", path));
+    // Renaming over a symlink would replace the link, not what it names, and over a device or a
+    // FIFO the special file itself: both are refused, as the readers refuse them.
+    const fs::file_status status = fs::symlink_status(path, ec);
+    if (!ec && fs::exists(status) && !fs::is_regular_file(status))
+        throw InputError(fmt::format("cannot write '{}': it is {}, which tripath does not replace", path,
+                                     fs::is_symlink(status) ? "a symbolic link" : "a device, FIFO or socket"));
 }
 
 void checkWritable(const std::string& path) {

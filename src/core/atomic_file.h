@@ -10,8 +10,8 @@
 namespace tripath {
 
 // Throws InputError ("cannot write '<path>': …") if `path` cannot be a file: empty, in a folder
-// that does not exist or is not a folder, or itself a folder. Cheap: meant to be called before long
-// work, so a typo costs nothing.
+// that does not exist or is not a folder, itself a folder, or an existing symbolic link, device,
+// FIFO or socket. Cheap: meant to be called before long work, so a typo costs nothing.
 void checkTarget(const std::string& path);
 
 // checkTarget, and a file can really be created in the folder (permissions, ACLs, read-only mounts):
