@@ -176,7 +176,7 @@ RenderRequest texelRequest(const char* integrator) {
 }
 
 // A Lambertian quad with a base colour texture, inside a glowing box: each texel's pixels read
-// decoded base colour × L, for pt and bdpt.
+// decoded base colour × L, for pt, bdpt and mlt.
 TEST_F(Textures, BaseColourTextureUnderUniformRadiance) {
     const std::vector<uint8_t> texels = distinctTexels();
     writePng(file("base.png"), kTexels, kTexels, 4, texels);
@@ -189,7 +189,7 @@ TEST_F(Textures, BaseColourTextureUnderUniformRadiance) {
     s.addQuad({.material = s.addMaterial(m)});
     s.setCamera(2);
     const auto scene = load(s);
-    for (const char* integrator : {"pt", "bdpt"})
+    for (const char* integrator : {"pt", "bdpt", "mlt"})
         expectTexelMeans(*scene, texelRequest(integrator),
                          [&](int x, int y, int c) { return decodedTexel(texels, x, y)[c] * L; });
 }
@@ -405,8 +405,9 @@ TEST_F(Textures, MaskedQuadIsAHoleWhereAlphaIsBelowTheCutoff) {
 TEST_F(Textures, ShadowRaysPassThroughMaskedHoles) {
     writePng(file("clear.png"), 1, 1, 4, std::vector<uint8_t>{255, 255, 255, 0});
     std::vector<Image> images;
+    const std::vector<const char*> integrators = {"pt", "bdpt", "mlt"};
     for (bool occluder : {true, false})
-        for (const char* integrator : {"pt", "bdpt"}) {
+        for (const char* integrator : integrators) {
             TexturedScene s;
             s.addQuad({.material = s.addMaterial(whiteMaterial())});
             s.addQuad({.z = 2, .h = 0.5f, .material = s.addMaterial(emitterMaterial(5)), .facingDown = true});
@@ -419,13 +420,14 @@ TEST_F(Textures, ShadowRaysPassThroughMaskedHoles) {
             s.setCamera(0.9f, 1);
             images.push_back(renderScene(*load(s), texelRequest(integrator)).image());
         }
-    for (size_t i = 0; i < 2; ++i) {
-        EXPECT_GT(blockMean(images[i + 2], 0, 0, kSize, kSize), 0.05);
+    const size_t n = integrators.size();
+    for (size_t i = 0; i < n; ++i) {
+        EXPECT_GT(blockMean(images[i + n], 0, 0, kSize, kSize), 0.05);
         for (int y = 0; y < kSize; ++y)
             for (int x = 0; x < kSize; ++x)
                 for (int c = 0; c < 3; ++c)
-                    EXPECT_NEAR(images[i].at(x, y)[c], images[i + 2].at(x, y)[c], 1e-5f * images[i + 2].at(x, y)[c] + 1e-7f)
-                        << (i == 0 ? "pt " : "bdpt ") << x << "," << y;
+                    EXPECT_NEAR(images[i].at(x, y)[c], images[i + n].at(x, y)[c], 1e-5f * images[i + n].at(x, y)[c] + 1e-7f)
+                        << integrators[i] << " " << x << "," << y;
     }
 }
 
