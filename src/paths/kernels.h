@@ -84,7 +84,7 @@ public:
     Spectrum transmittance() const {
         const Vertex* inside = absorbsBehind(a_, w_) ? &a_ : b_ && absorbsBehind(*b_, -w_) ? b_ : nullptr;
         if (!inside) [[likely]] return Spectrum(1.0f);
-        if (a_.atInfinity || b_->atInfinity || !(d2_ > 0)) return Spectrum(1.0f);
+        if (!b_ || a_.atInfinity || b_->atInfinity || !(d2_ > 0)) return Spectrum(1.0f);
         return exp(inside->material->absorption * -std::sqrt(d2_));
     }
 
