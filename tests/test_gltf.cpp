@@ -397,8 +397,12 @@ TEST_F(GltfTest, MirroringTransformKeepsWindingConsistentWithNormals) {
 TEST_F(GltfTest, MaterialsMapToTypesAndParameters) {
     GltfBuilder b;
     b.model.extensionsUsed = {"KHR_materials_transmission", "KHR_materials_ior"};
-    tinygltf::Material glass = pbrMaterial("glass", {0.9, 0.95, 1, 1}, 1, 0);  // metallicFactor left at 1
-    setExtension(glass.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(1));
+    auto transmitting = [](const char* name, double metallic, double roughness, double transmission) {
+        tinygltf::Material m = pbrMaterial(name, {0.9, 0.95, 1, 1}, metallic, roughness);
+        setExtension(m.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(transmission));
+        return m;
+    };
+    tinygltf::Material glass = transmitting("glass", 0, 0, 1);
     setExtension(glass.extensions, "KHR_materials_ior", "ior", tinygltf::Value(1.33));
     tinygltf::Material thinGlass = pbrMaterial("thin glass", {1, 1, 1, 1}, 0, 0);
     setExtension(thinGlass.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(1));
@@ -410,16 +414,20 @@ TEST_F(GltfTest, MaterialsMapToTypesAndParameters) {
                          pbrMaterial("diffuse", {0.2, 0.4, 0.6, 1}, 0, 1),
                          pbrMaterial("plastic", {0.5, 0.1, 0.1, 1}, 0, 0.4),
                          thinGlass,
-                         mirror};
+                         mirror,
+                         transmitting("transmitting metal", 1, 0, 1),  // metallicFactor 1 leaves no dielectric half
+                         transmitting("frosted glass", 0, 0.4, 1),
+                         transmitting("partly transmissive", 0.2, 0.3, 0.5)};
+    const int kFileMaterials = 10;
     const int positions = b.addVec3(kTriangle);
-    for (int m = 0; m < 7; ++m) b.addTriangleMesh(positions, -1, m);
+    for (int m = 0; m < kFileMaterials; ++m) b.addTriangleMesh(positions, -1, m);
     b.addTriangleMesh(positions);  // no material
-    for (int m = 0; m < 8; ++m) b.addRoot({.mesh = m});
+    for (int m = 0; m <= kFileMaterials; ++m) b.addRoot({.mesh = m});
     const SceneDesc scene = load(b.write(file("materials.gltf")));
 
-    ASSERT_EQ(scene.meshes.size(), 8u);
-    ASSERT_EQ(scene.materials.size(), 8u);
-    for (int m = 0; m < 7; ++m) EXPECT_EQ(scene.meshes[m].material, m);
+    ASSERT_EQ(scene.meshes.size(), size_t(kFileMaterials + 1));
+    ASSERT_EQ(scene.materials.size(), size_t(kFileMaterials + 1));
+    for (int m = 0; m < kFileMaterials; ++m) EXPECT_EQ(scene.meshes[m].material, m);
     const auto& mats = scene.materials;
     EXPECT_EQ(mats[0].type, MaterialType::Dielectric);
     EXPECT_FLOAT_EQ(mats[0].ior, 1.33f);
@@ -439,9 +447,17 @@ TEST_F(GltfTest, MaterialsMapToTypesAndParameters) {
     expectNear(mats[4].albedo, {0.5f, 0.1f, 0.1f});
     EXPECT_EQ(mats[5].type, MaterialType::Dielectric);
     EXPECT_FLOAT_EQ(mats[5].ior, 1.5f);
-    EXPECT_EQ(mats[7].type, MaterialType::Lambertian);  // the default for no material
-    expectNear(mats[7].albedo, Vec3(0.8f));
-    EXPECT_EQ(scene.meshes[7].material, 7);
+    EXPECT_EQ(mats[7].type, MaterialType::SmoothConductor);
+    EXPECT_EQ(mats[8].type, MaterialType::RoughDielectric);
+    EXPECT_FLOAT_EQ(mats[8].roughness, 0.4f);
+    expectNear(mats[8].albedo, {0.9f, 0.95f, 1});
+    EXPECT_EQ(mats[9].type, MaterialType::MetallicRoughness);
+    EXPECT_FLOAT_EQ(mats[9].metallic, 0.2f);
+    EXPECT_FLOAT_EQ(mats[9].transmission, 0.5f);
+    EXPECT_FLOAT_EQ(mats[9].roughness, 0.3f);
+    EXPECT_EQ(mats[10].type, MaterialType::Lambertian);  // the default for no material
+    expectNear(mats[10].albedo, Vec3(0.8f));
+    EXPECT_EQ(scene.meshes[10].material, 10);
     for (const Material& m : mats) EXPECT_TRUE(isBlack(m.emission)) << m.name;
 }
 

@@ -190,6 +190,12 @@ TEST(Agreement, EmissiveGlassLight) {
     expectAgreement(test::cornellEmissive(MaterialType::Dielectric), "emissive glass", 8);
 }
 
+// Rough glass (Walter et al.'s BTDF, the transmission mix, absorption inside): the camera's walk
+// carries the radiance BTDF and the light's its adjoint, whose η² sits on the other side; pt, lt
+// and bdpt agree only if the two are each other's adjoint and the connections through rough glass
+// evaluate the same f as the walks. Catches either factor left out or swapped.
+TEST(Agreement, RoughGlass) { expectAgreement(test::roughGlass(), "rough glass", 16); }
+
 // Leak mask: with the only emitter behind a wall whose shading normals lean far from its geometric
 // normal, the front of the wall is exactly black under every integrator.
 TEST(ShadingNormals, NoLightLeaksThroughASmoothShadedWall) {

@@ -191,8 +191,8 @@ std::vector<SampledPath> samplePaths(const Scene& scene, int samples, const MisC
     return out;
 }
 
-// The oracles run on every material and emitter kind the loader accepts: delta, glossy and diffuse
-// surfaces, emitters of each material (an emissive mirror or pane is a scatterer to the walk that
+// The oracles run on every material and emitter kind the loader accepts: delta, glossy, diffuse
+// and rough transmitting surfaces, emitters of each material (an emissive mirror or pane is a scatterer to the walk that
 // hits it and x0 of the path that ends there), two-sided emitters, point lights, smooth normals;
 // and on the failure scenes, where pdfs span the float range: surfaces in contact, grazing
 // angles, needle and zero-area triangles, a millimetre in ten kilometres, coordinates near 1e6.
@@ -219,6 +219,7 @@ std::vector<OracleScene> oracleScenes(Pdfs pdfs = Pdfs::FromPoints) {
         v.push_back({test::cornellEmissive(type)});
     v.push_back({test::everyEmitterKind()});
     v.push_back({test::everyEmitterKindUnderTheSky()});
+    v.push_back({test::roughGlass()});
     for (const char* name : {"caustic", "caustic-point", "sds", "sds-point", "door-ajar", "contact", "grazing", "degenerate",
                              "degenerate-tiny", "degenerate-far"})
         if (pdfs == Pdfs::Recorded || std::string(name) != "degenerate-tiny") v.push_back({builtinScene(name), true});

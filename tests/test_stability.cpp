@@ -573,13 +573,16 @@ void expectSameMaterial(const Material& a, const Material& b, const std::string&
     EXPECT_TRUE(a.emission == b.emission) << what;
     EXPECT_EQ(a.twoSidedEmission, b.twoSidedEmission) << what;
     const bool metallicRoughness = a.type == MaterialType::MetallicRoughness;
-    if (a.type == MaterialType::Conductor || a.type == MaterialType::Plastic || metallicRoughness) {
+    const bool roughGlass = a.type == MaterialType::RoughDielectric;
+    if (a.type == MaterialType::Conductor || a.type == MaterialType::Plastic || metallicRoughness || roughGlass) {
         EXPECT_EQ(a.roughness, b.roughness) << what;
     }
-    if (a.type == MaterialType::Dielectric || a.type == MaterialType::Plastic || metallicRoughness) {
+    if (a.type == MaterialType::Dielectric || a.type == MaterialType::Plastic || metallicRoughness || roughGlass) {
         EXPECT_EQ(a.ior, b.ior) << what;
     }
     EXPECT_EQ(a.metallic, b.metallic) << what;
+    EXPECT_EQ(a.transmission, b.transmission) << what;
+    EXPECT_TRUE(a.absorption == b.absorption) << what;
 }
 
 // Compares what rendering sees: the Scene's triangles (after both sides dropped degenerate ones),
@@ -738,9 +741,10 @@ TEST(GltfExport, MaterialsMapBackThroughTheLoadersTable) {
     SceneDesc d;
     d.name = "materials";
     auto add = [&](MaterialType type, float roughness, float ior, Spectrum emission, bool twoSided,
-                   float metallic = 0) {
+                   float metallic = 0, float transmission = 0) {
         Material m;
         m.metallic = metallic;
+        m.transmission = transmission;
         m.name = "m" + std::to_string(d.materials.size());
         m.type = type;
         m.albedo = Spectrum(0.25f, 0.5f, 0.75f);
@@ -757,6 +761,8 @@ TEST(GltfExport, MaterialsMapBackThroughTheLoadersTable) {
     add(MaterialType::Dielectric, 0.0f, 1.33f, Spectrum(0.0f), false);
     add(MaterialType::MetallicRoughness, 0.6f, 1.5f, Spectrum(0.0f), false, 0.3f);
     add(MaterialType::MetallicRoughness, 0.2f, 1.45f, Spectrum(0.0f), false, 0.75f);
+    add(MaterialType::RoughDielectric, 0.35f, 1.6f, Spectrum(0.0f), false);
+    add(MaterialType::MetallicRoughness, 0.5f, 1.5f, Spectrum(0.0f), false, 0.25f, 0.5f);
     add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(17.0f, 12.0f, 4.0f), true);  // strength 32
     add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(0.3f, 0.2f, 0.1f), false);   // no strength needed
     add(MaterialType::Lambertian, 1.0f, 1.5f, Spectrum(1e6f, 3.3f, 0.0f), false);

@@ -1,13 +1,16 @@
 // BSDFs of the scene model (docs/design.md §3): Lambertian, ideal mirror, smooth dielectric, rough
 // GGX conductor and its smooth limit, a rough plastic (GGX coat over a diffuse base) and glTF's
-// metallic-roughness mix of the conductor and the plastic, and the dispatch over the material
-// types behind evalBsdf, pdfBsdf and sampleBsdf. What the rough lobes share lives
+// metallic-roughness mix of the conductor, the plastic and rough glass, and the dispatch over the
+// material types behind evalBsdf, pdfBsdf and sampleBsdf. What the rough lobes share lives
 // beside it: the GGX distribution in microfacet.cpp, the plastic coat's albedo table in
-// coat_albedo.cpp; this file holds each lobe's own formula and the switch over the types.
+// coat_albedo.cpp, Fresnel and the rough dielectric in dielectric.cpp; this file holds the other
+// lobes' own formulas and the switch over the types.
 //
 // Everything works in the local shading frame (z = shading normal), directions point away from
-// the surface. Non-delta BSDFs are two-sided: when wo is below the shading plane the frame is
+// the surface. The reflection lobes are two-sided: when wo is below the shading plane the frame is
 // mirrored (z -> -z), which keeps f(wo,wi) = f(wi,wo) since both directions are flipped together.
+// The rough dielectric tells its two sides apart (the index differs) and is the only non-delta
+// lobe that joins them.
 #include "geometry/material.h"
 
 #include <algorithm>
@@ -15,6 +18,7 @@
 #include <limits>
 
 #include "geometry/coat_albedo.h"
+#include "geometry/dielectric.h"
 #include "geometry/microfacet.h"
 #include "core/sampling.h"
 #include "core/stats.h"
@@ -40,21 +44,7 @@ Vec3 toSideOf(Vec3 wo, Vec3 w) { return wo.z < 0 ? Vec3(w.x, w.y, -w.z) : w; }
 bool finitePositive(float x) { return std::isfinite(x) && x > 0; }
 
 // ---------------------------------------------------------------------------------------------
-// Fresnel
-
-// Exact unpolarised Fresnel reflectance of a smooth dielectric interface (Born & Wolf; pbrt 3e
-// eq. 8.2). cosI ≥ 0 is the cosine on the incident side, eta = η_transmitted / η_incident.
-// Returns 1 under total internal reflection; cosT receives the transmitted cosine (≥ 0).
-float fresnelDielectric(float cosI, float eta, float& cosT) {
-    cosT = 0;
-    if (cosI <= 0) return 1.0f;
-    const float sin2T = (1.0f - cosI * cosI) / (eta * eta);
-    if (sin2T >= 1.0f) return 1.0f;
-    cosT = std::sqrt(1.0f - sin2T);
-    const float rPar = (eta * cosI - cosT) / (eta * cosI + cosT);
-    const float rPerp = (cosI - eta * cosT) / (cosI + eta * cosT);
-    return 0.5f * (rPar * rPar + rPerp * rPerp);
-}
+// Fresnel (the dielectric's exact form is in dielectric.cpp)
 
 Spectrum fresnelSchlick(Spectrum f0, float cosTheta) {
     return f0 + (Spectrum(1.0f) - f0) * schlickWeight(cosTheta);
@@ -194,18 +184,33 @@ std::optional<Vec3> samplePlastic(const BsdfParams& m, Vec3 wo, Vec2 u, float uc
 // glTF metallic-roughness (glTF 2.0 spec, Appendix B's mix of a metal and a dielectric): f = m ·
 // conductor + (1 − m) · plastic, the conductor's F0 and the plastic's diffuse albedo both the base
 // colour, one GGX roughness. The dielectric is the coupled plastic above rather than Appendix B's
-// fresnel_mix (1 − F(v·h)) ρ/π + F(v·h) D V, whose albedo exceeds 1 at grazing angles. Each
-// lobe reflects at most 1, so the mix does. Sampling picks the conductor's sampler with
-// probability m and the plastic's otherwise, so the pdf is the mixture of theirs; both draw the
-// same GGX reflection, so it reads as one GGX lobe of probability m + (1 − m) p_coat and the
-// cosine lobe with the rest.
+// fresnel_mix (1 − F(v·h)) ρ/π + F(v·h) D V, whose albedo exceeds 1 at grazing angles. With
+// KHR_materials_transmission's factor T the dielectric half is (1 − T) · plastic + T · rough
+// dielectric (the extension's mix of the diffuse base and the BTDF under one Fresnel layer:
+// linear in the base, so a mix of the two layered lobes). Each lobe scatters at most 1, so the
+// mix does. Sampling picks the rough dielectric's sampler with its weight (1 − m) T
+// (dielectricWeight), else the conductor's with probability m and the plastic's otherwise, in
+// proportion; so the pdf is the mixture of theirs. The conductor and the plastic draw the same
+// GGX reflection, so they read as one GGX lobe of probability (m + (1 − m)(1 − T) p_coat) / (1 −
+// (1 − m) T) and the cosine lobe with the rest.
+
+// The rough dielectric's weight in a material: all of a RoughDielectric, (1 − metallic) ×
+// transmission of the metallic-roughness mix, none elsewhere.
+float dielectricWeight(const BsdfParams& m) {
+    if (m.type == MaterialType::RoughDielectric) return 1.0f;
+    if (m.type == MaterialType::MetallicRoughness) return (1.0f - m.metallic) * m.transmission;
+    return 0.0f;
+}
 
 Spectrum evalMetallicRoughness(const BsdfParams& m, Vec3 wo, Vec3 wi) {
-    return evalConductor(m, wo, wi) * m.metallic + evalPlastic(m, wo, wi) * (1.0f - m.metallic);
+    return evalConductor(m, wo, wi) * m.metallic +
+           evalPlastic(m, wo, wi) * ((1.0f - m.metallic) * (1.0f - m.transmission));
 }
 
 float metallicSpecularProbability(const BsdfParams& m, Vec3 wo) {
-    return m.metallic + (1.0f - m.metallic) * plasticSpecularProbability(m, wo);
+    const float opaque = 1.0f - dielectricWeight(m);
+    if (!(opaque > 0)) return 1.0f;  // never asked: the dielectric takes every sample
+    return (m.metallic + (1.0f - m.metallic) * (1.0f - m.transmission) * plasticSpecularProbability(m, wo)) / opaque;
 }
 
 float pdfMetallicRoughness(const BsdfParams& m, Vec3 wo, Vec3 wi) {
@@ -252,11 +257,22 @@ std::optional<Vec3> sampleUpper(const BsdfParams& m, Vec3 wo, Vec2 u, float uc) 
 Spectrum finiteOrZero(Spectrum s) { return isFinite(s) ? max(s, Spectrum(0.0f)) : Spectrum(0.0f); }
 float finiteOrZero(float x) { return std::isfinite(x) ? std::max(x, 0.0f) : 0.0f; }
 
-std::optional<BsdfSample> sampleNonDelta(const BsdfParams& m, Vec3 wo, Vec2 u, float uc, TransportMode mode) {
-    if (wo.z == 0) return std::nullopt;
+// The reflection lobes' sampler in the frame mirrored to wo's side, with uc left for their choice.
+std::optional<Vec3> sampleReflection(const BsdfParams& m, Vec3 wo, Vec2 u, float uc) {
     const std::optional<Vec3> wiUp = sampleUpper(m, toSideOf(wo, wo), u, uc);
     if (!wiUp) return std::nullopt;
-    const Vec3 wi = toSideOf(wo, *wiUp);
+    return toSideOf(wo, *wiUp);
+}
+
+// uc picks the rough dielectric with its weight w, and is rescaled to [0, 1) for the choice
+// within the lobe picked.
+std::optional<BsdfSample> sampleNonDelta(const BsdfParams& m, Vec3 wo, Vec2 u, float uc, TransportMode mode) {
+    if (wo.z == 0) return std::nullopt;
+    const float w = dielectricWeight(m);
+    const std::optional<Vec3> sampled = uc < w ? sampleRoughDielectric(m, wo, u, uc / w)
+                                               : sampleReflection(m, wo, u, w > 0 ? (uc - w) / (1.0f - w) : uc);
+    if (!sampled) return std::nullopt;
+    const Vec3 wi = *sampled;
     // Report exactly what evalBsdf / pdfBsdf say, so the estimator and MIS agree bit for bit.
     BsdfSample s{wi, evalBsdf(m, wo, wi, mode), pdfBsdf(m, wo, wi), false};
     if (!finitePositive(s.pdf)) return std::nullopt;
@@ -273,6 +289,7 @@ const char* materialTypeName(MaterialType t) {
     case MaterialType::Lambertian: return "lambertian";
     case MaterialType::Mirror: return "mirror";
     case MaterialType::Dielectric: return "dielectric";
+    case MaterialType::RoughDielectric: return "rough-dielectric";
     case MaterialType::Conductor: return "conductor";
     case MaterialType::SmoothConductor: return "smooth-conductor";
     case MaterialType::Plastic: return "plastic";
@@ -286,18 +303,27 @@ bool isDelta(const BsdfParams& m) {
            m.type == MaterialType::Dielectric;
 }
 
-// Non-delta lobes are reflection only: both directions strictly on the same side of the shading
-// plane (so grazing z = 0 gives 0); TransportMode only matters for refraction.
-Spectrum evalBsdf(const BsdfParams& m, Vec3 wo, Vec3 wi, TransportMode /*mode*/) {
+bool transmits(const BsdfParams& m) { return dielectricWeight(m) > 0; }
+
+// The reflection lobes join directions strictly on the same side of the shading plane (so grazing
+// z = 0 gives 0); the rough dielectric, weighted by dielectricWeight, adds its own, refraction
+// included. TransportMode matters for refraction alone.
+Spectrum evalBsdf(const BsdfParams& m, Vec3 wo, Vec3 wi, TransportMode mode) {
     kBsdfEvaluations.add();
-    if (isDelta(m) || !(wo.z * wi.z > 0)) return Spectrum(0.0f);
-    return finiteOrZero(evalUpper(m, toSideOf(wo, wo), toSideOf(wo, wi)));
+    if (isDelta(m)) return Spectrum(0.0f);
+    Spectrum f(0.0f);
+    if (wo.z * wi.z > 0) f = evalUpper(m, toSideOf(wo, wo), toSideOf(wo, wi));
+    if (const float w = dielectricWeight(m); w > 0) f += evalRoughDielectric(m, wo, wi, mode) * w;
+    return finiteOrZero(f);
 }
 
 float pdfBsdf(const BsdfParams& m, Vec3 wo, Vec3 wi) {
     kBsdfPdfs.add();
-    if (isDelta(m) || !(wo.z * wi.z > 0)) return 0.0f;
-    return finiteOrZero(pdfUpper(m, toSideOf(wo, wo), toSideOf(wo, wi)));
+    if (isDelta(m)) return 0.0f;
+    float p = 0.0f;
+    if (wo.z * wi.z > 0) p = pdfUpper(m, toSideOf(wo, wo), toSideOf(wo, wi));
+    if (const float w = dielectricWeight(m); w > 0) p = p * (1.0f - w) + pdfRoughDielectric(m, wo, wi) * w;
+    return finiteOrZero(p);
 }
 
 std::optional<BsdfSample> sampleBsdf(const BsdfParams& m, Vec3 wo, Vec2 u, float uc, TransportMode mode) {
@@ -333,11 +359,12 @@ std::string validateMaterial(const Material& m) {
         return e;
     if (!(m.roughness >= 0.0f && m.roughness <= 1.0f)) return "roughness must be a number in [0, 1]";
     if (!(m.metallic >= 0.0f && m.metallic <= 1.0f)) return "metallic must be a number in [0, 1]";
+    if (!(m.transmission >= 0.0f && m.transmission <= 1.0f)) return "transmission must be a number in [0, 1]";
     if (!std::isfinite(m.ior)) return "ior is not finite";
     for (int c = 0; c < 3; ++c)
         if (!(m.absorption[c] >= 0)) return "absorption must be at least 0";
-    const bool usesIor = m.type == MaterialType::Dielectric || m.type == MaterialType::Plastic ||
-                         m.type == MaterialType::MetallicRoughness;
+    const bool usesIor = m.type == MaterialType::Dielectric || m.type == MaterialType::RoughDielectric ||
+                         m.type == MaterialType::Plastic || m.type == MaterialType::MetallicRoughness;
     if (usesIor && m.ior < 1.0f) return "ior must be at least 1";
     return {};
 }

@@ -18,6 +18,9 @@ enum class MaterialType {
     Lambertian,  // f = albedo / π
     Mirror,      // ideal specular reflection, reflectance = albedo at every angle (no Fresnel)
     Dielectric,  // ideal smooth glass: Fresnel-weighted reflection and refraction, ior
+    // rough glass: GGX microfacet reflection and refraction (Walter et al. 2007), ior above 1,
+    // albedo tinting transmission
+    RoughDielectric,
     Conductor,   // rough GGX microfacet metal (Cook-Torrance), F0 = albedo (Schlick Fresnel)
     // the Conductor's limit at roughness 0 (glTF's metallic 1, roughness 0): ideal specular
     // reflection of reflectance F_Schlick(albedo, cos θ)
@@ -26,7 +29,9 @@ enum class MaterialType {
     // glTF 2.0's metallic-roughness mix (spec Appendix B): metallic × Conductor + (1 − metallic)
     // × Plastic, both with the base colour as albedo, one roughness, the coat of index ior. The
     // dielectric half is the energy-conserving Plastic, not Appendix B's fresnel_mix, which
-    // reflects more than 1 at grazing angles (docs/gltf.md gives the difference)
+    // reflects more than 1 at grazing angles (docs/gltf.md gives the difference). With
+    // KHR_materials_transmission the dielectric half is (1 − transmission) × Plastic +
+    // transmission × RoughDielectric
     MetallicRoughness,
 };
 
@@ -40,6 +45,7 @@ struct BsdfParams {
     float roughness = 0.5f;   // perceptual roughness in [0,1]; GGX alpha = roughness²
     float metallic = 0.0f;    // MetallicRoughness: the conductor's weight in [0,1]
     float ior = 1.5f;         // dielectric / plastic coat index of refraction
+    float transmission = 0.0f;  // MetallicRoughness: the RoughDielectric's share of its dielectric half
 };
 
 struct MaterialTextures;  // geometry/texture.h: what varies over a textured material's surfaces
@@ -67,6 +73,9 @@ struct BsdfSample {
 
 // True when the material has only delta lobes (mirror, glass): connections to it are impossible.
 bool isDelta(const BsdfParams& m);
+
+// Whether a non-delta material's lobes reach the other side of the surface (rough glass).
+bool transmits(const BsdfParams& m);
 
 // f(wo, wi) for the non-delta part; zero for delta materials.
 Spectrum evalBsdf(const BsdfParams& m, Vec3 wo, Vec3 wi, TransportMode mode);

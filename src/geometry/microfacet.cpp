@@ -25,24 +25,6 @@ float ggxRoot(Vec3 w, float alpha) { return std::sqrt(w.z * w.z + alpha * alpha 
 // G1(w) / cos θ = 2 / (z + ggxRoot): the visible-normal normalisation (Heitz 2014, eq. 43).
 float ggxG1OverCos(Vec3 w, float alpha) { return 2.0f / (w.z + ggxRoot(w, alpha)); }
 
-// Sample a microfacet normal from the distribution of normals visible from wo,
-// D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θo (Heitz 2018, "Sampling the GGX Distribution of
-// Visible Normals", listing 1): stretch to the α = 1 configuration, sample the projected
-// hemisphere, unstretch.
-Vec3 sampleGgxVisibleNormal(Vec3 wo, float alpha, Vec2 u) {
-    const Vec3 vh = normalize(Vec3(alpha * wo.x, alpha * wo.y, wo.z));
-    const float lensq = vh.x * vh.x + vh.y * vh.y;
-    const Vec3 t1 = lensq > 0 ? Vec3(-vh.y, vh.x, 0) / std::sqrt(lensq) : Vec3(1, 0, 0);
-    const Vec3 t2 = cross(vh, t1);
-    const float r = std::sqrt(u.x);
-    const float phi = 2.0f * kPi * u.y;
-    const float p1 = r * std::cos(phi);
-    const float s = 0.5f * (1.0f + vh.z);
-    const float p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
-    const Vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
-    return normalize(Vec3(alpha * nh.x, alpha * nh.y, std::max(0.0f, nh.z)));
-}
-
 }  // namespace
 
 float schlickWeight(float cosTheta) {
@@ -74,6 +56,35 @@ float ggxMaskingRatio(Vec3 wo, Vec3 wi, float alpha) {
 
 float ggxReflectionPdf(Vec3 wo, Vec3 wi, float alpha) {
     return ggxD(wo + wi, alpha) * ggxG1OverCos(wo, alpha) * 0.25f;
+}
+
+float ggxG2(Vec3 wo, Vec3 wi, float alpha) {
+    const float denom = wi.z * ggxRoot(wo, alpha) + wo.z * ggxRoot(wi, alpha);
+    return denom > 0 ? 2.0f * wo.z * wi.z / denom : 0.0f;
+}
+
+float ggxVisibleNormalPdf(Vec3 wo, Vec3 h, float alpha) {
+    const float cosOh = dot(wo, h);
+    if (!(cosOh > 0) || !(wo.z > 0)) return 0.0f;
+    return ggxG1OverCos(wo, alpha) * cosOh * ggxD(h, alpha);
+}
+
+// Sample a microfacet normal from the distribution of normals visible from wo,
+// D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θo (Heitz 2018, "Sampling the GGX Distribution of
+// Visible Normals", listing 1): stretch to the α = 1 configuration, sample the projected
+// hemisphere, unstretch.
+Vec3 sampleGgxVisibleNormal(Vec3 wo, float alpha, Vec2 u) {
+    const Vec3 vh = normalize(Vec3(alpha * wo.x, alpha * wo.y, wo.z));
+    const float lensq = vh.x * vh.x + vh.y * vh.y;
+    const Vec3 t1 = lensq > 0 ? Vec3(-vh.y, vh.x, 0) / std::sqrt(lensq) : Vec3(1, 0, 0);
+    const Vec3 t2 = cross(vh, t1);
+    const float r = std::sqrt(u.x);
+    const float phi = 2.0f * kPi * u.y;
+    const float p1 = r * std::cos(phi);
+    const float s = 0.5f * (1.0f + vh.z);
+    const float p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
+    const Vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+    return normalize(Vec3(alpha * nh.x, alpha * nh.y, std::max(0.0f, nh.z)));
 }
 
 float halfVectorCos(Vec3 wo, Vec3 wi) { return std::clamp(0.5f * length(wo + wi), 0.0f, 1.0f); }

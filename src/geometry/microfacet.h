@@ -6,7 +6,7 @@
 // A header of the geometry library's own, not part of its interface.
 //
 // Local shading frame (z = shading normal), directions pointing away from the surface; all
-// directions here are in the upper hemisphere.
+// directions here are in the upper hemisphere (a transmitted one is mirrored up by its caller).
 #pragma once
 #include <optional>
 
@@ -28,6 +28,10 @@ float ggxD(Vec3 h, float alpha);
 // geometric part of the Cook-Torrance BRDF, symmetric in wo and wi.
 float ggxVisibility(Vec3 wo, Vec3 wi, float alpha);
 
+// Height-correlated G2(wo, wi) = 1 / (1 + Λ(wo) + Λ(wi)) itself, for two directions given on the
+// upper side (a transmitted one mirrored up): the rough dielectric's refraction lobe reads it.
+float ggxG2(Vec3 wo, Vec3 wi, float alpha);
+
 // G2(wo,wi) / G1(wo): the weight f·cos θi / pdf of a VNDF-sampled reflection with F = 1.
 float ggxMaskingRatio(Vec3 wo, Vec3 wi, float alpha);
 
@@ -39,6 +43,13 @@ float ggxReflectionPdf(Vec3 wo, Vec3 wi, float alpha);
 // cos θh = |wo + wi| / 2. Unlike dot(wo, ĥ) this is symmetric in wo, wi bit for bit (reciprocity)
 // and free of the cancellation in 1 + wo·wi when wo ≈ −wi.
 float halfVectorCos(Vec3 wo, Vec3 wi);
+
+// Density of the microfacet normals visible from wo at the unit normal h,
+// D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θo (Heitz 2018, eq. 3), per solid angle of h.
+float ggxVisibleNormalPdf(Vec3 wo, Vec3 h, float alpha);
+
+// Draw a microfacet normal from D_wo (Heitz 2018, listing 1).
+Vec3 sampleGgxVisibleNormal(Vec3 wo, float alpha, Vec2 u);
 
 // Draw wi by reflecting wo about a visible normal; empty when it lands below the horizon.
 std::optional<Vec3> sampleGgxReflection(Vec3 wo, float alpha, Vec2 u);

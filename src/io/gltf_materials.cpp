@@ -1,8 +1,13 @@
 // glTF 2.0 materials → Material (gltf_materials.h; the user-facing table is in docs/gltf.md).
 //
 // Material mapping, from pbrMetallicRoughness, tested in this order:
-//   KHR_materials_transmission.transmissionFactor > 0   → Dielectric (smooth glass), albedo = baseColor,
-//                                                          ior = KHR_materials_ior.ior (default 1.5)
+//   KHR_materials_transmission.transmissionFactor 1,     → Dielectric (smooth glass) at roughness 0 or
+//   metallic 0, no metallicRoughnessTexture               ior 1, else RoughDielectric (Walter et al.);
+//                                                          albedo = baseColor, ior = KHR_materials_ior.ior
+//                                                          (default 1.5)
+//   transmissionFactor > 0 otherwise, unless metallic   → MetallicRoughness with that transmission: the
+//   is 1 without a texture (transmission weighs the       dielectric half (1 − T) Plastic + T RoughDielectric
+//   dielectric half alone)
 //   a metallicRoughnessTexture                          → MetallicRoughness (glTF's metal/dielectric mix;
 //                                                          its dielectric the energy-conserving Plastic,
 //                                                          not Appendix B's fresnel_mix: docs/gltf.md)
@@ -48,9 +53,17 @@ bool markedMirror(const tinygltf::Value& extras) {
            ours.Get("bsdf").Get<std::string>() == "mirror";
 }
 
-MaterialType classifyMaterial(float metallic, float roughness, float transmission, bool metallicRoughnessTexture,
-                              bool mirror) {
-    if (transmission > 0) return MaterialType::Dielectric;
+// Whether KHR_materials_transmission's factor reaches the BSDF: it weighs the dielectric half
+// alone, which a metallic factor of 1 leaves out unless a texture lowers it.
+bool transmissive(float metallic, float transmission, bool metallicRoughnessTexture) {
+    return transmission > 0 && (metallic < 1 || metallicRoughnessTexture);
+}
+
+MaterialType classifyMaterial(float metallic, float roughness, float transmission, float ior,
+                              bool metallicRoughnessTexture, bool mirror) {
+    if (transmission == 1 && metallic == 0 && !metallicRoughnessTexture)
+        return roughness == 0 || ior == 1 ? MaterialType::Dielectric : MaterialType::RoughDielectric;
+    if (transmissive(metallic, transmission, metallicRoughnessTexture)) return MaterialType::MetallicRoughness;
     if (metallicRoughnessTexture) return MaterialType::MetallicRoughness;
     if (metallic == 1 && roughness == 0) return mirror ? MaterialType::Mirror : MaterialType::SmoothConductor;
     if (metallic == 1) return MaterialType::Conductor;
@@ -67,8 +80,7 @@ public:
     void warnIgnored();
 
 private:
-    void noteIgnoredMaterialFeatures(const tinygltf::Material& g, const std::string& name, float transmission,
-                                     float roughness);
+    void noteIgnoredMaterialFeatures(const tinygltf::Material& g, const std::string& name);
     std::shared_ptr<const MaterialTextures> readTextures(const tinygltf::Material& g, const std::string& context);
     Spectrum emission(const tinygltf::Material& g, const std::string& context) const;
     Spectrum volumeAbsorption(const tinygltf::Material& g, bool transmissive, const std::string& name,
@@ -94,15 +106,17 @@ Material MaterialConverter::convertMaterial(const tinygltf::Material& g, int ind
         extensionNumber(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, context),
         context + "transmissionFactor");
     m.ior = float(extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5, context));
-    m.type = classifyMaterial(metallic, roughness, transmission, pbr.metallicRoughnessTexture.index >= 0,
+    m.type = classifyMaterial(metallic, roughness, transmission, m.ior, pbr.metallicRoughnessTexture.index >= 0,
                               markedMirror(g.extras));
     m.roughness = isDelta(m) ? 0.0f : roughness;
     m.metallic = m.type == MaterialType::MetallicRoughness ? metallic : 0.0f;
+    m.transmission = m.type == MaterialType::MetallicRoughness ? transmission : 0.0f;
     m.emission = emission(g, context);
-    m.absorption = volumeAbsorption(g, m.type == MaterialType::Dielectric, m.name, context);
+    m.absorption =
+        volumeAbsorption(g, transmissive(metallic, transmission, pbr.metallicRoughnessTexture.index >= 0), m.name, context);
     m.twoSidedEmission = g.doubleSided;
     m.textures = readTextures(g, context);
-    noteIgnoredMaterialFeatures(g, m.name, transmission, roughness);
+    noteIgnoredMaterialFeatures(g, m.name);
     const std::string problem = validateMaterial(m);
     if (!problem.empty()) report_.fail(context + problem);
     return m;
@@ -133,14 +147,15 @@ std::shared_ptr<const MaterialTextures> MaterialConverter::readTextures(const ti
     return std::make_shared<const MaterialTextures>(std::move(t));
 }
 
-void MaterialConverter::noteIgnoredMaterialFeatures(const tinygltf::Material& g, const std::string& name,
-                                                    float transmission, float roughness) {
+void MaterialConverter::noteIgnoredMaterialFeatures(const tinygltf::Material& g, const std::string& name) {
     auto note = [&](const std::string& what) { ignored_[what].push_back(name); };
     if (g.occlusionTexture.index >= 0)
         note("occlusionTexture is ignored (path tracing computes what it stands in for)");
     if (g.alphaMode == "BLEND") note("alphaMode BLEND is rendered as MASK with alphaCutoff 0.5");
-    if (transmission > 0 && transmission < 1) note("transmissionFactor below 1 is treated as 1");
-    if (transmission > 0 && roughness > 0) note("rough transmission is rendered as smooth glass");
+    const auto transmission = g.extensions.find("KHR_materials_transmission");
+    if (transmission != g.extensions.end() && transmission->second.IsObject() &&
+        transmission->second.Has("transmissionTexture"))
+        note("transmissionTexture is ignored (transmissionFactor is used)");
     for (const auto& [extension, value] : g.extensions)  // as the file's extensionsUsed say it (gltf_loader.cpp)
         if (!isHandledExtension(extension)) report_.warnOnce("extension " + excerpt(extension) + " is ignored");
 }

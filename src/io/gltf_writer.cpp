@@ -44,6 +44,9 @@ void setVolume(tinygltf::ExtensionMap& extensions, Spectrum sigma) {
         {"attenuationColor", tinygltf::Value(std::move(colour))}, {"attenuationDistance", tinygltf::Value(1.0)}});
 }
 
+// Smooth or rough glass: KHR_materials_transmission at factor 1, its ior written always.
+bool isGlass(const Material& m) { return m.type == MaterialType::Dielectric || m.type == MaterialType::RoughDielectric; }
+
 // A node matrix, column-major: the affine map's columns, then its translation.
 std::vector<double> matrix(const Affine& a) {
     std::vector<double> m;
@@ -170,15 +173,16 @@ tinygltf::Material ModelBuilder::material(const Material& m) {
                 warn(fmt::format("material '{}': a metal of roughness 0 loads back as a smooth conductor", m.name));
             break;
         case MaterialType::Dielectric:
-            roughness = 0;
-            setExtension(g.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(1.0));
-            if (!isBlack(m.absorption)) setVolume(g.extensions, m.absorption);
-            break;
+        case MaterialType::RoughDielectric: roughness = m.type == MaterialType::Dielectric ? 0 : m.roughness; break;
         case MaterialType::MetallicRoughness: metallic = m.metallic, roughness = m.roughness; break;
     }
-    const bool usesIor = m.type == MaterialType::Dielectric || m.type == MaterialType::Plastic ||
-                         m.type == MaterialType::MetallicRoughness;
-    if (usesIor && (m.type == MaterialType::Dielectric || m.ior != 1.5f))
+    if (transmits(m) || isGlass(m)) {
+        const float transmission = m.type == MaterialType::MetallicRoughness ? m.transmission : 1.0f;
+        setExtension(g.extensions, "KHR_materials_transmission", "transmissionFactor", tinygltf::Value(number(transmission)));
+        if (!isBlack(m.absorption)) setVolume(g.extensions, m.absorption);
+    }
+    const bool usesIor = isGlass(m) || m.type == MaterialType::Plastic || m.type == MaterialType::MetallicRoughness;
+    if (usesIor && (isGlass(m) || m.ior != 1.5f))
         setExtension(g.extensions, "KHR_materials_ior", "ior", tinygltf::Value(number(m.ior)));
     const Scaled e = splitScale(m.emission);
     if (e.scale != 1.0f)

@@ -3,10 +3,10 @@
 // A walk plays roulette at each of its vertices from index depth − 1 on (once it holds `depth`
 // vertices; index 0, the sensor or the emitter point, never plays). It continues from surface
 // vertex v with probability q(v), which depends on v's material alone: a bound on how much the
-// BSDF can reflect (the albedo of a Lambertian or mirror surface; 1 for glass, whose tint only
-// colours transmission and whose 1/η² radiance scaling undoes itself on the way out; 1 for the
-// rough lobes, whose Fresnel term reaches 1 at grazing angles), capped at kMaxContinuation on
-// non-delta surfaces so that even albedo-1 diffuse scenes end their paths.
+// BSDF can reflect (the albedo of a Lambertian or mirror surface; 1 for glass, smooth or rough,
+// whose tint only colours transmission and whose 1/η² radiance scaling undoes itself on the way
+// out; 1 for the rough lobes, whose Fresnel term reaches 1 at grazing angles), capped at
+// kMaxContinuation on non-delta surfaces so that even albedo-1 diffuse scenes end their paths.
 //
 // Because q(v) ignores the direction of travel, a walk from either end that reaches v at walk
 // index j continues with the same q(v) whenever j is past the start depth: the pdf of generating
