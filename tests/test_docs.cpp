@@ -68,10 +68,11 @@ TEST(Docs, ProseNamesEveryFlagAndNoOther) {
     ASSERT_GT(help.size(), 40u) << "docs/flags.md lists too few flags to be the reference";
     for (const std::string& f : help)
         if (f != "--help" && f != "--version") EXPECT_TRUE(named.count(f)) << f << " is in --help but in no page of docs/";
-    // mpirun's and srun's, CMake's, pip's and venv's, and Embree's tutorial's.
+    // mpirun's and srun's, CMake's, pip's and venv's, Embree's tutorial's, and those of the scripts
+    // measuring tripath against Cycles (scripts/cycles-compare.sh, cycles-render.py).
     const std::set<std::string> others{"--allow-run-as-root", "--bind-to", "--cpus-per-task", "--hostfile", "--map-by",
                                        "--mpi", "--ntasks-per-node", "--install", "--prefix", "--system-site-packages",
-                                       "--benchmark"};
+                                       "--benchmark", "--cycles-only", "--flat", "--lambert", "--no-terminator-offset"};
     for (const std::string& f : named)
         EXPECT_TRUE(help.count(f) || others.count(f)) << f << " is named in the docs but is no flag of tripath's";
 }
