@@ -69,10 +69,11 @@ TEST(Docs, ProseNamesEveryFlagAndNoOther) {
     for (const std::string& f : help)
         if (f != "--help" && f != "--version") EXPECT_TRUE(named.count(f)) << f << " is in --help but in no page of docs/";
     // mpirun's and srun's, CMake's, pip's and venv's, Embree's tutorial's, and those of the scripts
-    // measuring tripath against Cycles (scripts/cycles-compare.sh, cycles-render.py).
+    // measuring tripath against Cycles (scripts/cycles-compare.sh, cycles-compare.py, cycles-render.py).
     const std::set<std::string> others{"--allow-run-as-root", "--bind-to", "--cpus-per-task", "--hostfile", "--map-by",
                                        "--mpi", "--ntasks-per-node", "--install", "--prefix", "--system-site-packages",
-                                       "--benchmark", "--cycles-only", "--flat", "--lambert", "--no-terminator-offset"};
+                                       "--benchmark", "--cycles", "--cycles-only", "--flat", "--lambert", "--no-terminator-offset",
+                                       "--tripath"};
     for (const std::string& f : named)
         EXPECT_TRUE(help.count(f) || others.count(f)) << f << " is named in the docs but is no flag of tripath's";
 }

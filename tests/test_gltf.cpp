@@ -774,23 +774,82 @@ TEST_F(GltfTest, IgnoredFeaturesWarnOnceEach) {
     for (const std::string& w : warnings) EXPECT_EQ(w.find(file("ignored.gltf").string()), 0u) << w;
 }
 
-// COLOR_0 changes how a model looks (glTF multiplies the base colour by it), so ignoring it is said
-// once, however many primitives carry it, and not at all when none does.
-TEST_F(GltfTest, VertexColoursWarnOnce) {
+// COLOR_0 is read as glTF stores it: float, or unsigned byte or short normalized (c / 255,
+// c / 65535), VEC3 (alpha 1) or VEC4 (a stride wider than the element included), linear (no sRGB
+// decoding), per vertex, with no warning; COLOR_1 (here a type COLOR_0 may not have) is not read.
+// Catches integers scaled by 256 or decoded as sRGB, and a VEC3's alpha left at 0.
+TEST_F(GltfTest, VertexColoursReadAsTheirComponentTypeSays) {
     GltfBuilder b;
     const int p = b.addVec3(kTriangle);
-    tinygltf::Primitive coloured = primitive(p);
-    coloured.attributes["COLOR_0"] = b.addVec3({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
-    b.addMesh({coloured, coloured, primitive(p)});
+    const std::vector<float> floats = {0.5f, 0.25f, 1.0f, 0.1f, 0.2f, 0.3f, 0.0f, 0.75f, 0.125f};
+    const int f3 = b.addAccessor(b.addView(floats.data(), floats.size() * 4), kFloat, 3, TINYGLTF_TYPE_VEC3);
+    const std::vector<uint8_t> bytes = {64, 128, 255, 51, 0, 1, 2, 3, 254, 253, 252, 251};
+    const int u4 = b.addAccessor(b.addView(bytes.data(), bytes.size()), kUnsignedByte, 3, TINYGLTF_TYPE_VEC4);
+    const std::vector<uint16_t> shorts = {65535, 32768, 1, 0, 1000, 2000, 3000, 0, 0, 65534, 7, 0};
+    const int s3 = b.addAccessor(b.addView(shorts.data(), shorts.size() * 2, 8), kUnsignedShort, 3, TINYGLTF_TYPE_VEC3);
+    b.model.accessors[size_t(u4)].normalized = b.model.accessors[size_t(s3)].normalized = true;
+    std::vector<tinygltf::Primitive> primitives;
+    for (int colours : {f3, u4, s3}) {
+        primitives.push_back(primitive(p));
+        primitives.back().attributes["COLOR_0"] = colours;
+    }
+    primitives.back().attributes["COLOR_1"] = b.addAccessor(b.addView(floats.data(), 24), kFloat, 3, TINYGLTF_TYPE_VEC2);
+    b.addMesh(primitives);
     b.addRoot({.mesh = 0});
-    EXPECT_EQ(triangles(load(b.write(file("colours.gltf")))).size(), 3u);
-    EXPECT_EQ(warningsContaining("vertex colours (COLOR_0) are ignored"), 1u);
-    EXPECT_EQ(warnings.size(), 1u);
+    const SceneDesc scene = load(b.write(file("colours.gltf")));
+    ASSERT_EQ(scene.meshes.size(), 3u);
+    std::array<std::vector<std::array<double, 4>>, 3> expected;
+    for (size_t v = 0; v < 3; ++v) {
+        expected[0].push_back({floats[3 * v], floats[3 * v + 1], floats[3 * v + 2], 1});
+        expected[1].push_back({bytes[4 * v] / 255.0, bytes[4 * v + 1] / 255.0, bytes[4 * v + 2] / 255.0,
+                               bytes[4 * v + 3] / 255.0});
+        expected[2].push_back({shorts[4 * v] / 65535.0, shorts[4 * v + 1] / 65535.0, shorts[4 * v + 2] / 65535.0, 1});
+    }
+    for (size_t m = 0; m < 3; ++m) {
+        ASSERT_EQ(scene.meshes[m].colours.size(), 3u) << "primitive " << m;
+        for (size_t v = 0; v < 3; ++v)
+            for (size_t c = 0; c < 4; ++c)
+                EXPECT_FLOAT_EQ(scene.meshes[m].colours[v][c], float(expected[m][v][c]))
+                    << "primitive " << m << " vertex " << v << " component " << c;
+    }
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+}
 
-    warnings.clear();
-    b.model.meshes[0].primitives = {primitive(p)};
-    load(b.write(file("plain.gltf")));
-    EXPECT_TRUE(warnings.empty());
+// COLOR_0 of a type glTF does not allow for it, outside [0, 1] (a base colour multiplier: albedo
+// above 1 would create energy) or of another count than POSITION is refused in one line.
+TEST_F(GltfTest, BadVertexColoursAreRefused) {
+    const float nan = std::nanf("");
+    struct Case {
+        const char* what;
+        std::vector<float> values;  // as floats, unless `bytes`
+        int type;
+        bool bytes;
+        const char* fragment;
+    };
+    const Case cases[] = {
+        {"bytes not normalized", {}, TINYGLTF_TYPE_VEC4, true, "COLOR_0 accessor 1 is not float or normalized unsigned VEC4"},
+        {"VEC2", {0, 0, 0, 0, 0, 0}, TINYGLTF_TYPE_VEC2, false, "is not float or normalized unsigned VEC3 or VEC4"},
+        {"above 1", {0, 0, 0, 0, 1.5f, 0, 0, 0, 0}, TINYGLTF_TYPE_VEC3, false, "COLOR_0 has a value 1.5 outside [0, 1]"},
+        {"negative", {0, 0, 0, 0, 0, 0, 0, 0, -0.25f}, TINYGLTF_TYPE_VEC3, false, "outside [0, 1]"},
+        {"NaN", {0, 0, 0, nan, 0, 0, 0, 0, 0}, TINYGLTF_TYPE_VEC3, false, "outside [0, 1]"},
+        {"two for three positions", {0, 0, 0, 0, 0, 0}, TINYGLTF_TYPE_VEC3, false, "has 2 COLOR_0 for 3 positions"},
+    };
+    for (const Case& k : cases) {
+        SCOPED_TRACE(k.what);
+        GltfBuilder b;
+        tinygltf::Primitive coloured = primitive(b.addVec3(kTriangle));
+        if (k.bytes) {
+            const std::vector<uint8_t> bytes(12, 255);
+            coloured.attributes["COLOR_0"] = b.addAccessor(b.addView(bytes.data(), bytes.size()), kUnsignedByte, 3, k.type);
+        } else {
+            const size_t components = k.type == TINYGLTF_TYPE_VEC2 ? 2 : 3;
+            coloured.attributes["COLOR_0"] = b.addAccessor(b.addView(k.values.data(), k.values.size() * 4), kFloat,
+                                                           k.values.size() / components, k.type);
+        }
+        b.addMesh({coloured});
+        b.addRoot({.mesh = 0});
+        expectInputError(b.write(file("colours.gltf")), k.fragment);
+    }
 }
 
 TEST_F(GltfTest, DefaultWarningSinkPrintsWarningPrefix) {

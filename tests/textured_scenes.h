@@ -1,6 +1,7 @@
 // Small textured glTF scenes that the tests write themselves: axis-aligned quads with texture
-// coordinates, materials as glTF JSON, PNG textures written byte for byte (png_bytes.h), a camera
-// looking down −z. What the loader reads from them is what a user's file would give it.
+// coordinates and, if given, vertex colours (COLOR_0, in any of glTF's component types),
+// materials as glTF JSON, PNG textures written byte for byte (png_bytes.h), a camera looking down
+// −z. What the loader reads from them is what a user's file would give it.
 #pragma once
 #include <nlohmann/json.hpp>
 
@@ -34,6 +35,16 @@ struct Quad {
     bool facingDown = false;  // front face toward −z instead (the same uv seen from +z)
     float x = 0, y = 0;       // centre's x and y
     bool mirroredU = false;   // u runs toward −x instead (the image mirrored left to right)
+    // COLOR_0 (RGBA) at the corners (−h, −h), (h, −h), (h, h), (−h, h): none, or four.
+    std::vector<std::array<float, 4>> colours = {};
+};
+
+// How COLOR_0 is stored: glTF's component type (5126 float, 5121 unsigned byte or 5123 unsigned
+// short, the integers normalized) and VEC3 or VEC4; each element padded to 4 bytes, as glTF asks
+// of vertex attributes.
+struct ColourFormat {
+    int componentType = 5126;
+    int components = 4;
 };
 
 class TexturedScene {
@@ -72,6 +83,8 @@ public:
     }
     // Every vertex's TANGENT attribute (xyz and the bitangent's sign w), written when set.
     void setTangent(std::array<float, 4> tangent) { tangent_ = tangent; }
+    // How the quads' vertex colours are stored (float VEC4 unless set).
+    void setColourFormat(ColourFormat format) { colourFormat_ = format; }
     // The rotation (a unit quaternion x, y, z, w) of the node that places the quads and boxes.
     void setMeshRotation(std::array<float, 4> rotation) { meshRotation_ = rotation; }
     // A perspective camera at (0, 0, z) looking down −z whose view spans [−h, h]² at the plane 0.
@@ -89,22 +102,28 @@ public:
     std::string write(const std::filesystem::path& file) {
         std::vector<float> positions, uvs, tangents;
         std::vector<uint32_t> indices;
-        auto corner = [&](Vec3 p, Vec2 uv) {
+        std::string colours;  // COLOR_0 of every vertex, as colourFormat_ stores it (white where none is given)
+        auto corner = [&](Vec3 p, Vec2 uv, std::array<float, 4> colour = {1, 1, 1, 1}) {
             positions.insert(positions.end(), {p.x, p.y, p.z});
             uvs.insert(uvs.end(), {uv.x, uv.y});
             if (tangent_) tangents.insert(tangents.end(), tangent_->begin(), tangent_->end());
+            colours += storedColour(colour);
         };
         nlohmann::json primitives = nlohmann::json::array();
+        std::vector<size_t> coloured;  // the primitives whose quads have colours
         for (const Quad& q : quads_) {
             const auto base = uint32_t(positions.size() / 3);
             const float u0 = q.mirroredU ? 1.0f : 0.0f, u1 = 1.0f - u0;
-            corner({q.x - q.h, q.y - q.h, q.z}, {u0, 1});
-            corner({q.x + q.h, q.y - q.h, q.z}, {u1, 1});
-            corner({q.x + q.h, q.y + q.h, q.z}, {u1, 0});
-            corner({q.x - q.h, q.y + q.h, q.z}, {u0, 0});
+            const std::array<float, 4> white{1, 1, 1, 1};
+            auto colour = [&](size_t k) { return q.colours.empty() ? white : q.colours.at(k); };
+            corner({q.x - q.h, q.y - q.h, q.z}, {u0, 1}, colour(0));
+            corner({q.x + q.h, q.y - q.h, q.z}, {u1, 1}, colour(1));
+            corner({q.x + q.h, q.y + q.h, q.z}, {u1, 0}, colour(2));
+            corner({q.x - q.h, q.y + q.h, q.z}, {u0, 0}, colour(3));
             const size_t first = indices.size();
             if (q.facingDown) indices.insert(indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
             else indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+            if (!q.colours.empty()) coloured.push_back(primitives.size());
             primitives.push_back(primitive(first, q.material));
         }
         for (const Box& b : boxes_) {
@@ -130,6 +149,7 @@ public:
         const size_t uvOffset = append(uvs.data(), uvs.size() * 4);
         const size_t iOffset = append(indices.data(), indices.size() * 4);
         const size_t tOffset = append(tangents.data(), tangents.size() * 4);
+        const size_t cOffset = append(colours.data(), colours.size());
         std::vector<std::pair<size_t, size_t>> imageViews;  // offset and length of each embedded image
         for (const auto& [image, png] : embedded_) imageViews.push_back({append(png.data(), png.size()), png.size()});
         std::ofstream(file.string() + ".bin", std::ios::binary) << bytes;
@@ -155,6 +175,17 @@ public:
                                          {"componentType", 5126}, {"count", vertices}, {"type", "VEC4"}});
             for (auto& p : primitives) p["attributes"]["TANGENT"] = doc_["accessors"].size() - 1;
         }
+        if (!coloured.empty()) {
+            doc_["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", cOffset}, {"byteLength", colours.size()},
+                                           {"byteStride", colours.size() / vertices}});
+            nlohmann::json accessor = {{"bufferView", doc_["bufferViews"].size() - 1},
+                                       {"componentType", colourFormat_.componentType},
+                                       {"count", vertices},
+                                       {"type", colourFormat_.components == 3 ? "VEC3" : "VEC4"}};
+            if (colourFormat_.componentType != 5126) accessor["normalized"] = true;
+            doc_["accessors"].push_back(accessor);
+            for (size_t k : coloured) primitives[k]["attributes"]["COLOR_0"] = doc_["accessors"].size() - 1;
+        }
         doc_["meshes"] = {{{"primitives", primitives}}};
         doc_["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", yfov_}, {"znear", 0.01}}}}};
         doc_["nodes"] = {{{"mesh", 0}}, {{"camera", 0}, {"translation", {0, 0, cameraZ_}}}};
@@ -167,6 +198,24 @@ public:
     }
 
 private:
+    // One vertex's colour as colourFormat_ stores it: its components as floats or as normalized
+    // integers (rounded), padded with zero bytes to a multiple of 4.
+    std::string storedColour(const std::array<float, 4>& colour) const {
+        std::string bytes;
+        for (int c = 0; c < colourFormat_.components; ++c) {
+            const float x = colour[size_t(c)];
+            if (colourFormat_.componentType == 5126) {
+                bytes.append(reinterpret_cast<const char*>(&x), 4);
+            } else if (colourFormat_.componentType == 5121) {
+                bytes += char(uint8_t(std::lround(x * 255)));
+            } else {
+                const auto v = uint16_t(std::lround(x * 65535));
+                bytes.append(reinterpret_cast<const char*>(&v), 2);
+            }
+        }
+        bytes.resize((bytes.size() + 3) / 4 * 4, '\0');
+        return bytes;
+    }
     int addImageTexture(nlohmann::json image, bool nearest, bool repeat) {
         doc_["images"].push_back(std::move(image));
         return addSampledTexture(int(doc_["images"].size()) - 1, nearest, repeat);
@@ -204,6 +253,7 @@ private:
     float cameraZ_ = 2, yfov_ = 1;
     bool lookingUp_ = false;
     std::optional<std::array<float, 4>> tangent_, meshRotation_;
+    ColourFormat colourFormat_;
 };
 
 }  // namespace tripath::test

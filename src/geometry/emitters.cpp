@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "geometry/surface_textures.h"
 #include "geometry/triangle.h"
 #include "core/stats.h"
 
@@ -38,10 +37,9 @@ Emitters::Emitters(const std::vector<Triangle>& triangles, const std::vector<Mat
         // Φ = π · A · L for a Lambertian emitter, per emitting face (L averaged over the triangle).
         double areaTimesL = double(e.area) * luminance(e.radiance);
         if (m.textures && m.textures->variesEmission()) {
-            e.textures = m.textures.get();
-            e.texCoords = textures ? textures->find(i) : nullptr;
-            if (!e.texCoords) continue;  // unreachable: a textured material's triangles have records
-            areaTimesL = texturedEmitterPower(*e.textures, e.radiance, *e.texCoords, e.area);
+            e.surface = textures ? textures->find(i) : TriangleSurface{};
+            if (!e.surface.texCoords) continue;  // unreachable: a textured material's triangles have records
+            areaTimesL = texturedEmitterPower(e.surface, e.radiance, e.area);
             if (!(areaTimesL > 0)) continue;
         }
         e.power = kPi * areaTimesL * (e.twoSided ? 2.0 : 1.0);
@@ -146,8 +144,7 @@ float Emitters::directionPdf(int e, Vec3 frontNormal, Vec3 omega) const {
 
 Spectrum Emitters::otherLe(const Emitter& em, Vec3 frontNormal, Vec3 omega, Vec2 bary) const {
     if (em.kind == Emitter::Kind::Triangle)  // textured
-        return em.twoSided || dot(frontNormal, omega) > 0 ? em.textures->emissionAt(em.radiance, em.texCoords->at(bary))
-                                                          : Spectrum(0.0f);
+        return em.twoSided || dot(frontNormal, omega) > 0 ? emissionAt(em.surface, em.radiance, bary) : Spectrum(0.0f);
     if (em.kind == Emitter::Kind::Point || em.kind == Emitter::Kind::Directional) return em.radiance;
     if (em.kind == Emitter::Kind::Spot) return em.radiance * spotFalloff(em, dot(omega, em.axis));
     return environmentMap_->radiance(-omega);

@@ -22,15 +22,13 @@
 
 #include "geometry/environment.h"
 #include "geometry/material.h"
+#include "geometry/surface_textures.h"
 #include "core/sampling.h"
 #include "core/vec.h"
 
 namespace tripath {
 
 struct Triangle;
-class SurfaceTextures;
-struct MaterialTextures;
-struct TriangleTexCoords;
 
 struct Emitter {
     enum class Kind { Triangle, Point, Spot, Directional, Environment } kind = Kind::Triangle;
@@ -42,10 +40,9 @@ struct Emitter {
     bool twoSided = false;
     float area = 0;          // Triangle
     double power = 0;        // Φ, for the choice distribution
-    // A triangle whose material has an emissive texture or alpha holes: Le = radiance × the
-    // texture there, 0 in a hole.
-    const MaterialTextures* textures = nullptr;
-    const TriangleTexCoords* texCoords = nullptr;
+    // A triangle whose material has an emissive texture or alpha holes (surface.textures set): Le
+    // = radiance × the texture there, 0 in a hole (where its vertex colours' alpha counts too).
+    TriangleSurface surface;
     bool atInfinity() const { return kind == Kind::Directional || kind == Kind::Environment; }
     bool delta() const { return kind == Kind::Point || kind == Kind::Spot || kind == Kind::Directional; }
 };
@@ -69,7 +66,8 @@ class Emitters {
 public:
     Emitters() = default;
     // `triangles` must outlive this object's use of emitterOfTriangle; `textures` (the triangles'
-    // texture coordinates, null when none has any) and the materials' textures its use of Le.
+    // texture coordinates and colours, null when none has any) and the materials' textures its
+    // use of Le.
     // A triangle whose material has an emissive texture or alpha holes is weighed by its textured
     // power, and is no emitter where that is 0.
     Emitters(const std::vector<Triangle>& triangles, const std::vector<Material>& materials,
@@ -108,7 +106,7 @@ public:
     // for a directional light.
     Spectrum Le(int e, Vec3 frontNormal, Vec3 omega, Vec2 bary) const {
         const Emitter& em = all_[size_t(e)];
-        if (em.kind == Emitter::Kind::Triangle && !em.textures)  // the common case, inline
+        if (em.kind == Emitter::Kind::Triangle && !em.surface.textures)  // the common case, inline
             return em.twoSided || dot(frontNormal, omega) > 0 ? em.radiance : Spectrum(0.0f);
         return otherLe(em, frontNormal, omega, bary);
     }

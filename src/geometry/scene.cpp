@@ -69,6 +69,13 @@ void checkMesh(const SceneDesc& desc, const MeshDesc& m) {
         if (!isCoordinate(p))
             throw InputError(fmt::format("{}: mesh '{}' has a vertex position that is not finite or beyond ±1e15",
                                          desc.name, m.name));
+    if (!m.colours.empty() && m.colours.size() != m.positions.size())
+        throw InputError(fmt::format("{}: mesh '{}' has {} vertex colours for {} positions", desc.name, m.name,
+                                     m.colours.size(), m.positions.size()));
+    for (const auto& c : m.colours)
+        for (float x : c)
+            if (!(x >= 0 && x <= 1))
+                throw InputError(fmt::format("{}: mesh '{}' has a vertex colour outside [0, 1]", desc.name, m.name));
 }
 
 // The emitter a punctual light is, or none if it emits nothing; InputError for a bad one.
@@ -218,12 +225,14 @@ void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
     findBounds();
 }
 
-// Appends the mesh's triangles as they are, and their texture coordinates to `surfaces` if its
-// material has textures; returns how many were degenerate and left out.
+// Appends the mesh's triangles as they are, their texture coordinates to `surfaces` if its material
+// has textures and their corners' colours if the mesh has them; returns how many were degenerate
+// and left out.
 size_t Scene::addTriangles(const MeshDesc& m, SurfaceTextures& surfaces) {
     const MaterialTextures* textures = materials_[size_t(m.material)].textures.get();
     const auto first = uint32_t(triangles_.size());
     std::vector<TriangleTexCoords> texCoords;
+    std::vector<TriangleColours> colours;
     size_t degenerate = 0;
     for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
         Triangle t;
@@ -244,9 +253,11 @@ size_t Scene::addTriangles(const MeshDesc& m, SurfaceTextures& surfaces) {
             t.n[k] = normalize(n);
         }
         if (textures) texCoords.push_back(triangleTexCoords(m, t, &m.indices[i]));
+        if (!m.colours.empty())
+            colours.push_back({{m.colours[m.indices[i]], m.colours[m.indices[i + 1]], m.colours[m.indices[i + 2]]}});
         triangles_.push_back(t);
     }
-    if (textures) surfaces.add(first, textures, std::move(texCoords));
+    surfaces.add(first, uint32_t(triangles_.size()) - first, textures, std::move(texCoords), std::move(colours));
     return degenerate;
 }
 
@@ -289,9 +300,16 @@ TriangleTexCoords Scene::triangleTexCoords(const MeshDesc& m, const Triangle& t,
     return r;
 }
 
-TexCoords Scene::texCoords(uint32_t triangle, Vec2 b) const {
-    const TriangleTexCoords* r = surfaceTextures_->find(triangle);
-    return r ? r->at(b) : TexCoords{};
+const BsdfParams& Scene::variedBsdfAt(const Material& m, uint32_t triangle, Vec2 b,
+                                      std::optional<BsdfParams>& scratch) const {
+    const TriangleSurface surface = surfaceTextures_->find(triangle);
+    if (!m.textures && !surface.colours) return m;
+    BsdfParams& p = scratch.emplace(m.textures ? m.textures->at(m, surface.uvAt(b)) : BsdfParams(m));
+    if (surface.colours) {
+        const Texel c = surface.colours->at(b);
+        p.albedo = p.albedo * Spectrum(c[0], c[1], c[2]);
+    }
+    return p;
 }
 
 namespace {
@@ -317,18 +335,16 @@ RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Triangle>& tria
 }
 
 // Embree's filter for the triangles of alpha-masked materials, closest hits and shadow rays alike:
-// a hit where the material's alpha is below its cutoff is no hit (the ray goes on through). Its
-// user data is the geometry's AlphaMask: a primitive's triangle is `first` on from the geometry's.
+// a hit where the material's alpha (its vertex colour's included) is below its cutoff is no hit
+// (the ray goes on through). Its user data is the geometry's AlphaMask: a primitive's triangle is
+// `first` on from the geometry's.
 void alphaMaskFilter(const RTCFilterFunctionNArguments* args) {
     const auto* mask = static_cast<const Scene::AlphaMask*>(args->geometryUserPtr);
-    const SurfaceTextures* surfaces = mask->surfaces;
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         const uint32_t triangle = mask->first + RTCHitN_primID(args->hit, args->N, i);
-        const MaterialTextures* textures = surfaces->materialOf(triangle);
-        if (!textures || !textures->masks()) continue;
         const Vec2 b{RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)};
-        if (textures->holeAt(surfaces->find(triangle)->at(b))) args->valid[i] = 0;
+        if (mask->surfaces->find(triangle).holeAt(b)) args->valid[i] = 0;
     }
 }
 
@@ -429,7 +445,7 @@ Vec3 Scene::shadingNormal(uint32_t triangle, float u, float v) const {
     if (!t.smooth && !mapped) return ng;
     const Vec3 n = blendNormals(t.n[0], t.n[1], t.n[2], u, v, ng);
     if (!mapped) return n;
-    const TriangleTexCoords& r = *surfaceTextures_->find(triangle);
+    const TriangleTexCoords& r = *surfaceTextures_->find(triangle).texCoords;
     const Vec3 tangent = r.tangent[0] * (1.0f - u - v) + r.tangent[1] * u + r.tangent[2] * v;
     const MaterialTextures& textures = *materials_[size_t(t.material)].textures;
     return keepAbove(perturbNormal(n, tangent, r.bitangentSign, textures.tangentNormalAt(r.at({u, v}))), ng);

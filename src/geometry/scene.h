@@ -84,13 +84,13 @@ public:
     Vec3 shadingNormal(uint32_t triangle, float u, float v) const;
 
     // The BSDF parameters of material m (a triangle's) at barycentrics b: the material itself when
-    // it has no textures, else its textured parameters there, written to `scratch`.
+    // it has no textures and the triangle no vertex colours, else its parameters there, written to
+    // `scratch`: textured, and the base colour times the vertex colour (glTF's baseColorFactor ×
+    // baseColorTexture × COLOR_0).
     const BsdfParams& bsdfAt(const Material& m, uint32_t triangle, Vec2 b, std::optional<BsdfParams>& scratch) const {
-        if (!m.textures) return m;
-        return scratch.emplace(m.textures->at(m, texCoords(triangle, b)));
+        if (!m.textures && !surfaceTextures_->anyColours()) return m;
+        return variedBsdfAt(m, triangle, b, scratch);
     }
-    // The texture coordinates at barycentrics b of a triangle (zero where the mesh has none).
-    TexCoords texCoords(uint32_t triangle, Vec2 b) const;
 
     // What the alpha-mask filter of one Embree geometry reads: the scene's textures, and the index
     // of the geometry's first triangle in triangles().
@@ -109,12 +109,14 @@ private:
     };
 
     void addMeshes(const SceneDesc& desc, const WarningSink& warn);
-    // Appends mesh m's triangles as they are (and their texture coordinates to `surfaces`); returns
-    // how many were degenerate and left out.
+    // Appends mesh m's triangles as they are (and their texture coordinates and colours to
+    // `surfaces`); returns how many were degenerate and left out.
     size_t addTriangles(const MeshDesc& m, SurfaceTextures& surfaces);
     void findBounds();
     // The texture coordinates and tangents of one triangle of mesh m, corners `corners`.
     TriangleTexCoords triangleTexCoords(const MeshDesc& m, const Triangle& t, const uint32_t corners[3]) const;
+    // bsdfAt in a scene where the parameters may vary.
+    const BsdfParams& variedBsdfAt(const Material& m, uint32_t triangle, Vec2 b, std::optional<BsdfParams>& scratch) const;
     // Installs the alpha-mask filter on an Embree geometry of the triangles from `first` on, if
     // any material masks.
     void setAlphaFilters(RTCGeometryTy* geom, uint32_t first);
@@ -137,7 +139,7 @@ private:
     CameraDesc cameraDesc_;  // the file's camera, or one framing the bounds: what reframing starts from
     Camera camera_;
     Emitters emitters_;
-    std::shared_ptr<const SurfaceTextures> surfaceTextures_;  // never null; empty without textures
+    std::shared_ptr<const SurfaceTextures> surfaceTextures_;  // never null; empty without textures and colours
     bool anyNormalTexture_ = false;
     std::shared_ptr<std::vector<AlphaMask>> alphaMasks_;  // what the masked geometries' filters read
     RTCDeviceTy* device_ = nullptr;

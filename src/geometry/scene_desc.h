@@ -3,6 +3,7 @@
 // but for the meshes that instances place: each is kept once, in its own space, with the transforms
 // that place its copies, so that a model of many copies costs the memory of one.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,6 +23,9 @@ struct MeshDesc {
     std::vector<Vec2> texCoords[2]{};  // TEXCOORD_0 and _1: empty or one per position
     std::vector<Vec3> tangents{};      // world space TANGENT xyz: empty or one per position
     std::vector<float> tangentSigns{}; // TANGENT w (±1, the bitangent's sign), one per tangent
+    // COLOR_0: linear RGBA in [0, 1], empty or one per position. RGB multiplies the base colour
+    // (BsdfParams::albedo) and A its alpha, interpolated over each triangle.
+    std::vector<std::array<float, 4>> colours{};
 };
 
 // A KHR_lights_punctual light. Point and spot: radiant intensity I = colour × intensity (W/sr),

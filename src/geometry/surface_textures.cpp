@@ -1,4 +1,4 @@
-// Texture coordinates and tangents of textured triangles (surface_textures.h).
+// Texture coordinates, tangents and vertex colours of triangles (surface_textures.h).
 #include "geometry/surface_textures.h"
 
 #include <algorithm>
@@ -17,32 +17,37 @@ TexCoords TriangleTexCoords::at(Vec2 b) const {
     return uv;
 }
 
-void SurfaceTextures::add(uint32_t first, const MaterialTextures* material, std::vector<TriangleTexCoords> records) {
-    if (records.empty()) return;
-    ranges_.push_back({first, first + uint32_t(records.size()), records_.size(), material});
-    records_.insert(records_.end(), records.begin(), records.end());
+Texel TriangleColours::at(Vec2 b) const {
+    const float w0 = 1.0f - b.x - b.y;
+    Texel c;
+    for (size_t k = 0; k < 4; ++k) c[k] = corner[0][k] * w0 + corner[1][k] * b.x + corner[2][k] * b.y;
+    return c;
 }
 
-const SurfaceTextures::Range* SurfaceTextures::rangeOf(uint32_t triangle) const {
+float TriangleColours::maxAlpha() const { return std::max({corner[0][3], corner[1][3], corner[2][3]}); }
+
+bool TriangleSurface::holeAt(Vec2 b) const { return textures && textures->holeAt(uvAt(b), alphaAt(b)); }
+
+void SurfaceTextures::add(uint32_t first, uint32_t count, const MaterialTextures* material,
+                          std::vector<TriangleTexCoords> texCoords, std::vector<TriangleColours> colours) {
+    if (count == 0 || (texCoords.empty() && colours.empty())) return;
+    ranges_.push_back({first, first + count, texCoords.empty() ? kNone : texCoords_.size(),
+                       colours.empty() ? kNone : colours_.size(), material});
+    texCoords_.insert(texCoords_.end(), texCoords.begin(), texCoords.end());
+    colours_.insert(colours_.end(), colours.begin(), colours.end());
+}
+
+TriangleSurface SurfaceTextures::find(uint32_t triangle) const {
     auto it = std::upper_bound(ranges_.begin(), ranges_.end(), triangle,
                                [](uint32_t t, const Range& r) { return t < r.first; });
-    if (it == ranges_.begin()) return nullptr;
-    --it;
-    return triangle < it->end ? &*it : nullptr;
-}
-
-const TriangleTexCoords* SurfaceTextures::find(uint32_t triangle) const {
-    const Range* r = rangeOf(triangle);
-    return r ? &records_[r->offset + (triangle - r->first)] : nullptr;
-}
-
-const MaterialTextures* SurfaceTextures::materialOf(uint32_t triangle) const {
-    const Range* r = rangeOf(triangle);
-    return r ? r->material : nullptr;
+    if (it == ranges_.begin() || triangle >= (--it)->end) return {};
+    const uint32_t i = triangle - it->first;
+    return {it->material, it->texCoords == kNone ? nullptr : &texCoords_[it->texCoords + i],
+            it->colours == kNone ? nullptr : &colours_[it->colours + i]};
 }
 
 bool SurfaceTextures::anyMasks() const {
-    return std::any_of(ranges_.begin(), ranges_.end(), [](const Range& r) { return r.material->masks(); });
+    return std::any_of(ranges_.begin(), ranges_.end(), [](const Range& r) { return r.material && r.material->masks(); });
 }
 
 bool triangleTangent(const Vec3 p[3], const Vec2 uv[3], Vec3 ng, Vec3& tangent, float& sign) {
@@ -70,16 +75,21 @@ Vec3 perturbNormal(Vec3 n, Vec3 tangent, float bitangentSign, Vec3 t) {
     return normalize(mapped);
 }
 
-double texturedEmitterPower(const MaterialTextures& textures, Spectrum factor, const TriangleTexCoords& uv,
-                            float area) {
+Spectrum emissionAt(const TriangleSurface& surface, Spectrum factor, Vec2 b) {
+    return surface.textures->emissionAt(factor, surface.uvAt(b), surface.alphaAt(b));
+}
+
+double texturedEmitterPower(const TriangleSurface& surface, Spectrum factor, float area) {
     constexpr int kGrid = 16;
     double sum = 0;
     for (int j = 0; j < kGrid; ++j)
         for (int i = 0; i < kGrid; ++i) {
             const Vec2 b = sampleUniformTriangle({(i + 0.5f) / kGrid, (j + 0.5f) / kGrid});
-            sum += std::max(0.0f, luminance(textures.emissionAt(factor, uv.at(b))));
+            sum += std::max(0.0f, luminance(emissionAt(surface, factor, b)));
         }
-    if (!(sum > 0)) sum = std::max(0.0f, luminance(textures.emissionBound(factor, uv.corner)));
+    if (!(sum > 0))
+        sum = std::max(0.0f, luminance(surface.textures->emissionBound(factor, surface.texCoords->corner,
+                                                                      surface.maxAlpha())));
     return double(area) * sum / (kGrid * kGrid);
 }
 

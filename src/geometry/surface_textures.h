@@ -1,6 +1,7 @@
-// Where textured materials meet the triangles: the texture coordinates and tangents of every
-// triangle whose material has textures, kept apart from Triangle so that untextured meshes pay
-// nothing, and found from a triangle's index by the range of triangles its mesh became.
+// Where textured materials and vertex colours meet the triangles: the texture coordinates and
+// tangents of every triangle whose material has textures, and the corner colours (glTF's COLOR_0)
+// of every triangle whose mesh has them, kept apart from Triangle so that meshes without either
+// pay nothing, and found from a triangle's index by the range of triangles its mesh became.
 //
 // Shared (shared_ptr) by a Scene and its copies at other image sizes, since Embree's alpha-mask
 // filter (scene.cpp) reads it through the BVH they share.
@@ -23,26 +24,55 @@ struct TriangleTexCoords {
     TexCoords at(Vec2 b) const;
 };
 
+// A coloured triangle's per-corner vertex colour: linear RGBA in [0, 1].
+struct TriangleColours {
+    Texel corner[3];
+
+    // The colour at barycentrics b, interpolated linearly.
+    Texel at(Vec2 b) const;
+    // The largest alpha anywhere on the triangle: its corners' (the interpolation is convex).
+    float maxAlpha() const;
+};
+
+// What varies over one triangle besides its normals; each part null where it has none.
+struct TriangleSurface {
+    const MaterialTextures* textures = nullptr;    // its material's
+    const TriangleTexCoords* texCoords = nullptr;  // set whenever `textures` is
+    const TriangleColours* colours = nullptr;      // its mesh's COLOR_0
+
+    // The texture coordinates at barycentrics b; zero without texture coordinates.
+    TexCoords uvAt(Vec2 b) const { return texCoords ? texCoords->at(b) : TexCoords{}; }
+    // The vertex colour's alpha at b (1 without colours), and its largest on the triangle.
+    float alphaAt(Vec2 b) const { return colours ? colours->at(b)[3] : 1.0f; }
+    float maxAlpha() const { return colours ? colours->maxAlpha() : 1.0f; }
+    // Whether the surface is a hole at b: the material masks and its alpha there, the vertex
+    // colour's included, is below the cutoff.
+    bool holeAt(Vec2 b) const;
+};
+
 class SurfaceTextures {
 public:
-    // Adds the records of triangles [first, first + records.size()), whose material's textures
-    // are `material`; ranges must be added in increasing order of `first`.
-    void add(uint32_t first, const MaterialTextures* material, std::vector<TriangleTexCoords> records);
-    // The record of a triangle, or null when its material has no textures.
-    const TriangleTexCoords* find(uint32_t triangle) const;
-    // The textures of a triangle's material, or null.
-    const MaterialTextures* materialOf(uint32_t triangle) const;
+    // Adds triangles [first, first + count): `material` the textures of their material (null when
+    // it has none), `texCoords` one record per triangle when it has, `colours` one per triangle
+    // when their mesh has vertex colours, else empty. Ranges must be added in increasing order of
+    // `first`; a range with neither records is not kept.
+    void add(uint32_t first, uint32_t count, const MaterialTextures* material, std::vector<TriangleTexCoords> texCoords,
+             std::vector<TriangleColours> colours);
+    // A triangle's textures, texture coordinates and colours, each null where it has none.
+    TriangleSurface find(uint32_t triangle) const;
     bool anyMasks() const;
+    bool anyColours() const { return !colours_.empty(); }
 
 private:
+    static constexpr size_t kNone = ~size_t(0);
     struct Range {
         uint32_t first, end;
-        size_t offset;  // of its first record
+        size_t texCoords, colours;  // the offsets of its first records, or kNone
         const MaterialTextures* material;
     };
-    const Range* rangeOf(uint32_t triangle) const;
     std::vector<Range> ranges_;
-    std::vector<TriangleTexCoords> records_;
+    std::vector<TriangleTexCoords> texCoords_;
+    std::vector<TriangleColours> colours_;
 };
 
 // The tangent of a triangle of corners p with texture coordinates uv (one set) from the uv
@@ -55,13 +85,16 @@ bool triangleTangent(const Vec3 p[3], const Vec2 uv[3], Vec3 ng, Vec3& tangent, 
 // frame of the shading normal n and the tangent, orthonormalised against n (Gram-Schmidt).
 Vec3 perturbNormal(Vec3 n, Vec3 tangent, float bitangentSign, Vec3 t);
 
+// The emitted radiance of a textured emitter triangle at barycentrics b, its material's emission
+// being `factor`: MaterialTextures::emissionAt there, 0 in a hole.
+Spectrum emissionAt(const TriangleSurface& surface, Spectrum factor, Vec2 b);
+
 // The power weight of a textured emitter triangle: its area times the average luminance of its
 // emission over it, from the emission at the centres of a 16 × 16 stratified grid of points
 // uniform by area (sampleUniformTriangle of the cell centres). Where every point is dark but the
 // texels under the triangle can emit (one bright texel between the points), the weight is as if
 // one point had seen the brightest of them, so that every triangle that emits anywhere keeps a
 // choice probability above 0; 0 only for a triangle that emits nowhere.
-double texturedEmitterPower(const MaterialTextures& textures, Spectrum factor, const TriangleTexCoords& uv,
-                            float area);
+double texturedEmitterPower(const TriangleSurface& surface, Spectrum factor, float area);
 
 }  // namespace tripath

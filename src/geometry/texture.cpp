@@ -142,23 +142,24 @@ BsdfParams MaterialTextures::at(const BsdfParams& factors, const TexCoords& uv) 
     return p;
 }
 
-Spectrum MaterialTextures::emissionAt(Spectrum factor, const TexCoords& uv) const {
-    if (holeAt(uv)) return Spectrum(0.0f);
+Spectrum MaterialTextures::emissionAt(Spectrum factor, const TexCoords& uv, float vertexAlpha) const {
+    if (holeAt(uv, vertexAlpha)) return Spectrum(0.0f);
     if (!emissive) return factor;
     const Texel t = emissive.lookup(uv);
     return factor * Spectrum(t[0], t[1], t[2]);
 }
 
-Spectrum MaterialTextures::emissionBound(Spectrum factor, const TexCoords corners[3]) const {
-    if (masks() && baseAlpha * (baseColor ? baseColor.maxOver(corners)[3] : 1.0f) < alphaCutoff) return Spectrum(0.0f);
+Spectrum MaterialTextures::emissionBound(Spectrum factor, const TexCoords corners[3], float maxVertexAlpha) const {
+    if (masks() && baseAlpha * (baseColor ? baseColor.maxOver(corners)[3] : 1.0f) * maxVertexAlpha < alphaCutoff)
+        return Spectrum(0.0f);
     if (!emissive) return factor;
     const Texel t = emissive.maxOver(corners);
     return factor * Spectrum(t[0], t[1], t[2]);
 }
 
-bool MaterialTextures::holeAt(const TexCoords& uv) const {
+bool MaterialTextures::holeAt(const TexCoords& uv, float vertexAlpha) const {
     if (!masks()) return false;
-    const float alpha = baseAlpha * (baseColor ? baseColor.lookup(uv)[3] : 1.0f);
+    const float alpha = baseAlpha * (baseColor ? baseColor.lookup(uv)[3] : 1.0f) * vertexAlpha;
     return alpha < alphaCutoff;
 }
 

@@ -70,6 +70,9 @@ struct TextureSlot {
     Vec2 transformed(const TexCoords& uv) const;
 };
 
+// The vertex colour (COLOR_0) multiplies what these give, where a mesh has one: its RGB the base
+// colour (Scene::bsdfAt), its alpha the alpha a mask compares with the cutoff (`vertexAlpha`, 1
+// without one).
 struct MaterialTextures {
     TextureSlot baseColor;          // RGB × BsdfParams::albedo; A × baseAlpha
     TextureSlot metallicRoughness;  // B × metallic, G × roughness
@@ -85,13 +88,13 @@ struct MaterialTextures {
     // Whether the emission varies over the surface: an emissive texture, or holes that emit nothing.
     bool variesEmission() const { return emissive || masks(); }
     // The emitted radiance at a point, the material's emission being `factor`: 0 in a hole.
-    Spectrum emissionAt(Spectrum factor, const TexCoords& uv) const;
-    // Per channel, a bound on emissionAt over the triangle of corner coordinates `corners`: 0
-    // only where no point of it can emit (its emissive texels there are black, or its alpha is
-    // below the cutoff throughout).
-    Spectrum emissionBound(Spectrum factor, const TexCoords corners[3]) const;
+    Spectrum emissionAt(Spectrum factor, const TexCoords& uv, float vertexAlpha) const;
+    // Per channel, a bound on emissionAt over the triangle of corner coordinates `corners`, whose
+    // vertex alpha is at most `maxVertexAlpha`: 0 only where no point of it can emit (its emissive
+    // texels there are black, or its alpha is below the cutoff throughout).
+    Spectrum emissionBound(Spectrum factor, const TexCoords corners[3], float maxVertexAlpha) const;
     // Whether the surface is a hole at a point (alpha below the cutoff); false unless masking.
-    bool holeAt(const TexCoords& uv) const;
+    bool holeAt(const TexCoords& uv, float vertexAlpha) const;
     // The tangent-space normal (x, y, z) the normal texture gives at a point; (0, 0, 1) without one.
     Vec3 tangentNormalAt(const TexCoords& uv) const;
 };

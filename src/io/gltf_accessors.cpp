@@ -76,6 +76,18 @@ std::vector<float> Accessors::readFloats(int index, int components, const std::s
     return out;
 }
 
+std::vector<std::array<float, 4>> Accessors::readColours(int index, const std::string& what) const {
+    const tinygltf::Accessor& a = accessor(index, what);
+    if (a.type != TINYGLTF_TYPE_VEC3 && a.type != TINYGLTF_TYPE_VEC4)
+        report_.fail(what + " accessor " + std::to_string(index) + " is not float or normalized unsigned VEC3 or VEC4");
+    const size_t components = a.type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    const std::vector<float> v = readFloats(index, int(components), what, true);
+    std::vector<std::array<float, 4>> out(v.size() / components, {1, 1, 1, 1});
+    for (size_t i = 0; i < out.size(); ++i)
+        for (size_t c = 0; c < components; ++c) out[i][c] = v[i * components + c];
+    return out;
+}
+
 std::vector<uint32_t> Accessors::readIndices(int index, const std::string& what) const {
     const tinygltf::Accessor& a = accessor(index, what + " indices");
     size_t size = 0;

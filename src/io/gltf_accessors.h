@@ -1,12 +1,14 @@
 // Typed reads of a glTF model's accessors, as the loader needs them: float VEC3 and VEC4 data
-// (POSITION, NORMAL, the instancing TRS) and unsigned byte, short or int indices. Every accessor, bufferView and
-// buffer index, the stride and the whole byte range are checked before a byte is read, so a
-// hostile file fails with a message instead of reading out of bounds. Sparse accessors and
-// accessors without a bufferView are refused. A header of the io library's own (the
-// loader's interface is gltf_loader.h).
+// (POSITION, NORMAL, the instancing TRS), float or normalized VEC2 to VEC4 data (TEXCOORD_n,
+// COLOR_0) and unsigned byte, short or int indices. Every accessor, bufferView and buffer index,
+// the stride and the whole byte range are checked before a byte is read, so a hostile file fails
+// with a message instead of reading out of bounds. Sparse accessors and accessors without a
+// bufferView are refused. A header of the io library's own (the loader's interface is
+// gltf_loader.h).
 #pragma once
 #include <tiny_gltf.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -27,6 +29,9 @@ public:
     // flattened: float, or where `normalizedToo` also normalized unsigned byte or short scaled to
     // [0, 1] (TEXCOORD_n's other types).
     std::vector<float> readFloats(int index, int components, const std::string& what, bool normalizedToo = false) const;
+    // The elements of COLOR_n accessor `index` as RGBA: float, or normalized unsigned byte or short
+    // scaled to [0, 1]; VEC3 or VEC4, alpha 1 for VEC3.
+    std::vector<std::array<float, 4>> readColours(int index, const std::string& what) const;
     // The elements of unsigned byte, short or int SCALAR accessor `index`, widened; `what` names
     // the primitive in messages.
     std::vector<uint32_t> readIndices(int index, const std::string& what) const;

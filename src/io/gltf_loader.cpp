@@ -16,7 +16,9 @@
 // transform per copy (SceneDesc::instances).
 // Primitives whose material has textures also keep TEXCOORD_0, TEXCOORD_1 and TANGENT (its xyz by
 // the full matrix's linear part, its sign flipped by a mirroring one); the textures themselves are
-// read with the materials (gltf_textures.cpp).
+// read with the materials (gltf_textures.cpp). Every primitive keeps its COLOR_0 (linear RGBA,
+// float or normalized unsigned byte or short, in [0, 1]), which multiplies the base colour and
+// its alpha (glTF 2.0 §3.9.2); COLOR_1… mean nothing to glTF's material and are not read.
 // Lights: KHR_lights_punctual point, spot and directional lights; camera: the first perspective camera in depth-first order.
 #include "io/gltf_loader.h"
 
@@ -24,6 +26,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -127,8 +130,10 @@ private:
                                    const glm::dmat4& world, const std::string& what);
     MeshDesc textureAttributes(const tinygltf::Primitive& prim, size_t vertexCount, const glm::dmat4& world,
                                const std::string& what);
+    std::vector<std::array<float, 4>> vertexColours(const tinygltf::Primitive& prim, size_t vertexCount,
+                                                    const std::string& what);
     MeshDesc keepGoodTriangles(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
-                               const MeshDesc& textured, const std::vector<uint32_t>& indices, bool flipWinding,
+                               const MeshDesc& attributes, const std::vector<uint32_t>& indices, bool flipWinding,
                                const std::string& what);
 
     void addCamera(int cameraIndex, const glm::dmat4& world, int nodeIndex);
@@ -335,8 +340,6 @@ void Loader::addPrimitive(const tinygltf::Primitive& prim, const std::string& na
         return;
     }
     if (!prim.targets.empty()) report_.warnOnce("morph targets are ignored (the base geometry is used)");
-    if (prim.attributes.count("COLOR_0"))
-        report_.warnOnce("vertex colours (COLOR_0) are ignored (the base colour is not multiplied by them)");
     const auto position = prim.attributes.find("POSITION");
     if (position == prim.attributes.end()) report_.fail(name + " has no POSITION attribute");
 
@@ -346,8 +349,9 @@ void Loader::addPrimitive(const tinygltf::Primitive& prim, const std::string& na
         if (!isFinite(p)) report_.fail(name + " has non-finite vertex positions");
     const std::vector<Vec3> normals = worldNormals(prim, positions.size(), world, name);
     const int material = materialIndex(prim.material, name);
-    const MeshDesc textured = scene_.materials[size_t(material)].textures
-                                  ? textureAttributes(prim, positions.size(), world, name) : MeshDesc{};
+    MeshDesc attributes = scene_.materials[size_t(material)].textures
+                              ? textureAttributes(prim, positions.size(), world, name) : MeshDesc{};
+    attributes.colours = vertexColours(prim, positions.size(), name);
 
     std::vector<uint32_t> indices;
     if (prim.indices >= 0) {
@@ -363,7 +367,7 @@ void Loader::addPrimitive(const tinygltf::Primitive& prim, const std::string& na
             report_.fail(name + " index " + std::to_string(i) + " is out of range (" +
                          std::to_string(positions.size()) + " vertices)");
 
-    MeshDesc mesh = keepGoodTriangles(positions, normals, textured, indices, mirrors(world), name);
+    MeshDesc mesh = keepGoodTriangles(positions, normals, attributes, indices, mirrors(world), name);
     if (mesh.indices.empty()) return;
     mesh.name = name;
     mesh.material = material;
@@ -423,20 +427,36 @@ MeshDesc Loader::textureAttributes(const tinygltf::Primitive& prim, size_t verte
     return m;
 }
 
-// Copies vertex v's texture attributes (those `from` has) onto the end of `to`'s.
-void copyTextureAttributes(const MeshDesc& from, uint32_t v, MeshDesc& to) {
+// COLOR_0 of a primitive, per vertex, or none when it has no such attribute.
+std::vector<std::array<float, 4>> Loader::vertexColours(const tinygltf::Primitive& prim, size_t vertexCount,
+                                                        const std::string& what) {
+    const auto it = prim.attributes.find("COLOR_0");
+    if (it == prim.attributes.end()) return {};
+    std::vector<std::array<float, 4>> colours = accessors_.readColours(it->second, what + " COLOR_0");
+    if (colours.size() != vertexCount)
+        report_.fail(what + " has " + std::to_string(colours.size()) + " COLOR_0 for " + std::to_string(vertexCount) +
+                     " positions");
+    for (const auto& c : colours)
+        for (float x : c)
+            if (!(x >= 0 && x <= 1)) report_.fail(what + " COLOR_0 has a value " + formatNumber(x) + " outside [0, 1]");
+    return colours;
+}
+
+// Copies vertex v's texture attributes and colour (those `from` has) onto the end of `to`'s.
+void copyVertexAttributes(const MeshDesc& from, uint32_t v, MeshDesc& to) {
     for (int set = 0; set < 2; ++set)
         if (!from.texCoords[set].empty()) to.texCoords[set].push_back(from.texCoords[set][v]);
+    if (!from.colours.empty()) to.colours.push_back(from.colours[v]);
     if (from.tangents.empty()) return;
     to.tangents.push_back(from.tangents[v]);
     to.tangentSigns.push_back(from.tangentSigns[v]);
 }
 
 // Copies the non-degenerate triangles and the vertices they use, with their attributes (normals,
-// and the texture attributes `textured` holds); counts the dropped ones. Fails on a triangle too
-// large for float.
+// and the texture attributes and colours `attributes` holds); counts the dropped ones. Fails on a
+// triangle too large for float.
 MeshDesc Loader::keepGoodTriangles(const std::vector<Vec3>& positions,
-                                   const std::vector<Vec3>& normals, const MeshDesc& textured,
+                                   const std::vector<Vec3>& normals, const MeshDesc& attributes,
                                    const std::vector<uint32_t>& indices, bool flipWinding, const std::string& what) {
     constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
     std::vector<uint32_t> remap(positions.size(), kUnused);
@@ -458,7 +478,7 @@ MeshDesc Loader::keepGoodTriangles(const std::vector<Vec3>& positions,
                 remap[v] = uint32_t(mesh.positions.size());
                 mesh.positions.push_back(positions[v]);
                 if (!normals.empty()) mesh.normals.push_back(normals[v]);
-                copyTextureAttributes(textured, v, mesh);
+                copyVertexAttributes(attributes, v, mesh);
             }
             mesh.indices.push_back(remap[v]);
         }

@@ -202,6 +202,7 @@ tinygltf::Material ModelBuilder::material(const Material& m) {
 
 // The buffer holds the scene's arrays as they lie in memory: glTF wants packed little-endian floats.
 static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floats");
+static_assert(sizeof(MeshDesc::colours[0]) == 4 * sizeof(float), "a vertex colour must be four packed floats");
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
 
 std::optional<tinygltf::Primitive> ModelBuilder::primitive(const MeshDesc& m) {
@@ -225,6 +226,9 @@ std::optional<tinygltf::Primitive> ModelBuilder::primitive(const MeshDesc& m) {
     if (!m.normals.empty())
         primitive.attributes["NORMAL"] = addArray(m.normals.data(), m.normals.size() * sizeof(Vec3),
                                                   TINYGLTF_COMPONENT_TYPE_FLOAT, m.normals.size(), TINYGLTF_TYPE_VEC3);
+    if (!m.colours.empty())
+        primitive.attributes["COLOR_0"] = addArray(m.colours.data(), m.colours.size() * sizeof(m.colours[0]),
+                                                   TINYGLTF_COMPONENT_TYPE_FLOAT, m.colours.size(), TINYGLTF_TYPE_VEC4);
     primitive.indices = addIndices(m.indices);
     primitive.material = m.material;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;

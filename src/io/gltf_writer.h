@@ -15,9 +15,9 @@
 // Textures are not written (a warning names each textured material): its factors are.
 // Emission is emissiveFactor × KHR_materials_emissive_strength with the strength a power of two,
 // so the factor (≤ 1, as glTF requires) times the strength gives the radiance back exactly; point
-// lights likewise split into KHR_lights_punctual colour × intensity. Positions and normals go into
-// the buffer as the floats they are, one node per mesh with no transform, so triangles come back
-// bit for bit; indices as unsigned shorts where they fit, else unsigned ints; other numbers as
+// lights likewise split into KHR_lights_punctual colour × intensity. Positions, normals and vertex
+// colours (COLOR_0, float RGBA) go into the buffer as the floats they are, one node per mesh with
+// no transform, so triangles and their colours come back bit for bit; indices as unsigned shorts where they fit, else unsigned ints; other numbers as
 // the shortest decimals that read back as the same floats. An array written once is not written
 // again: a later one with the same type, count and bytes reuses its accessor (the vertices of
 // meshes that share them in the file and differ in material). A mesh with instances is written

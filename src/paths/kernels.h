@@ -145,8 +145,7 @@ public:
             } else {
                 bendFrames(*towardLight, *towardCamera);
             }
-            if (v.material->textures)
-                textured_ = v.material->textures->at(*v.material, scene.texCoords(v.triangle, v.bary));
+            scene.bsdfAt(*v.material, v.triangle, v.bary, varied_);  // sets varied_ where they vary
         }
     }
     // What v contributes besides cosines: Le toward the camera side at an emitter end, f_r ×
@@ -168,8 +167,8 @@ private:
     // The frames of a surface whose shading normal differs from its geometric one (shading_normal.h).
     void bendFrames(Vec3 towardLight, Vec3 towardCamera);
     Spectrum valueAboutThePairsNormal() const;
-    // The BSDF at v: its material's, or a textured material's parameters at v.
-    const BsdfParams& bsdf() const { return textured_ ? *textured_ : *v_.material; }
+    // The BSDF at v: its material's, or its parameters at v where textures or vertex colours vary them.
+    const BsdfParams& bsdf() const { return varied_ ? *varied_ : *v_.material; }
     const Scene& scene_;
     const Vertex& v_;
     bool hasLight_, hasCamera_;
@@ -187,7 +186,7 @@ private:
     };
     Vec3 normal_, lightLocal_, cameraLocal_;
     std::optional<BentApart> apart_;
-    std::optional<BsdfParams> textured_;
+    std::optional<BsdfParams> varied_;
 };
 
 // The segment from a camera or light subpath's vertex v back to its predecessor, along the

@@ -165,8 +165,8 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
         // the image a seed gives must not depend on the compiler.
         const Vec2 u = uniform2(rng);
         const float uc = rng.uniform();
-        std::optional<BsdfParams> textured;
-        const BsdfParams& bsdf = scene.bsdfAt(*v.material, v.triangle, v.bary, textured);
+        std::optional<BsdfParams> varied;
+        const BsdfParams& bsdf = scene.bsdfAt(*v.material, v.triangle, v.bary, varied);
         const auto bs = sampleBsdf(bsdf, frame.toLocal(wo), u, uc, mode);
         if (!bs || !(bs->pdf > 0)) return;
         const Vec3 wi = frame.toWorld(bs->wi);
