@@ -5,12 +5,14 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <mutex>
 
 #include "scenes/builtin_scenes.h"
+#include "scenes/scene_source.h"
 
 namespace tripath::bench {
 
@@ -36,9 +38,20 @@ bool resetPeakRss() {
     return static_cast<bool>(f);
 }
 
+bool isGltfFile(const std::string& key) {
+    const std::string ext = std::filesystem::path(key).extension().string();
+    return ext == ".gltf" || ext == ".glb";
+}
+
 SceneDesc describe(const std::string& key) {
     if (key.rfind(kTessPrefix, 0) == 0) return cornellTessellated(std::stoull(key.substr(std::strlen(kTessPrefix))));
-    return builtinScene(key);
+    if (!isGltfFile(key)) return builtinScene(key);
+    // Under a white sky, as `--environment 1,1,1` lights it: Khronos's sample models bring no light.
+    SceneDesc desc = loadSceneDesc(key);
+    desc.environment.width = desc.environment.height = 1;
+    desc.environment.texels = {Spectrum(1.0f)};
+    desc.environment.source = "1,1,1";
+    return desc;
 }
 
 Entry& entryFor(const std::string& key) {

@@ -17,7 +17,8 @@ namespace tripath::bench {
 // Every cached scene is built for this film: the size of the 512×512 renders the README times.
 constexpr int kWidth = 512, kHeight = 512;
 
-// Cache keys: a built-in scene name ("cornell", "veach-mis", …) or tessellatedKey(n).
+// Cache keys: a built-in scene name ("cornell", "veach-mis", …), tessellatedKey(n), or the path
+// of a .gltf or .glb file, which is lit by a white sky (`--environment 1,1,1`).
 std::string tessellatedKey(size_t triangles);
 // The scene for a key, built on first use (outside any timed region) and kept for the process.
 const Scene& cachedScene(const std::string& key);

@@ -66,6 +66,7 @@ std::string_view eventName(Event e) {
     case Event::BsdfSamples: return "BSDF samples";
     case Event::BsdfEvaluations: return "BSDF evaluations";
     case Event::BsdfPdfs: return "BSDF pdfs";
+    case Event::BsdfDerivations: return "BSDF derivations";
     case Event::EmitterSamples: return "emitter samples";
     case Event::Connections: return "connections";
     case Event::EmitterHits: return "emitter hits";

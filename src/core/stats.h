@@ -31,6 +31,7 @@ enum class Event : int {
     BsdfSamples,      // sampleBsdf
     BsdfEvaluations,  // evalBsdf
     BsdfPdfs,         // pdfBsdf
+    BsdfDerivations,  // Scene::bsdfAt where textures or vertex colours vary a material's parameters
     EmitterSamples,   // a point drawn on an emitter (light subpath start, next-event estimation)
     Connections,      // a join of two subpath endpoints evaluated up to its shadow ray
     EmitterHits,      // a camera vertex found on an emitter (strategy s = 0)

@@ -18,6 +18,7 @@ namespace tripath {
 namespace {
 constexpr Counter kClosestHitRays{Event::ClosestHitRays};
 constexpr Counter kShadowRays{Event::ShadowRays};
+constexpr Counter kBsdfDerivations{Event::BsdfDerivations};
 }  // namespace
 
 // A hit point computed from barycentrics is off the triangle's plane by a few ulps of the LARGEST
@@ -304,6 +305,7 @@ const BsdfParams& Scene::variedBsdfAt(const Material& m, uint32_t triangle, Vec2
                                       std::optional<BsdfParams>& scratch) const {
     const TriangleSurface surface = surfaceTextures_->find(triangle);
     if (!m.textures && !surface.colours) return m;
+    kBsdfDerivations.add();
     BsdfParams& p = scratch.emplace(m.textures ? m.textures->at(m, surface.uvAt(b)) : BsdfParams(m));
     if (surface.colours) {
         const Texel c = surface.colours->at(b);

@@ -1,0 +1,75 @@
+// Whole render passes of each integrator on scenes with and without textures: what a textured
+// vertex costs, next to the untextured built-ins.
+//
+//   integrator_pass/<integrator>/<scene>   one pass of render() at 512², max-depth 8, one thread,
+//                                          for pt, bdpt, vcm and mlt: samples/s (mlt: chain steps,
+//                                          one per pixel, its bootstrap inside the time)
+//
+// The scenes: `cornell` and `veach-mis` (no texture), `sky` (its checkered ground a texture, read
+// at every vertex there), and each .gltf or .glb file in TRIPATH_BENCH_GLTF (colon-separated), lit
+// by a white sky, e.g. a Khronos sample model textured all over. One thread, and CPU time beside
+// the wall clock: the ratios between builds are taken from interleaved runs on a shared machine.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench_scenes.h"
+#include "integrators/render.h"
+
+namespace tripath::bench {
+
+namespace {
+
+constexpr int kDepth = 8;  // the depth bench/README.md states its targets at
+
+void runPass(benchmark::State& state, const std::string& integratorName, const std::string& key) {
+    const Scene& scene = cachedScene(key);
+    IntegratorSettings settings;
+    settings.walk.maxDepth = kDepth;
+    settings.walk.rrDepth = defaultRouletteDepth(integratorName);  // as the front ends render
+    const auto integrator = makeIntegrator(integratorName, settings);
+    RenderSettings rs;
+    rs.spp = 1;
+    rs.threads = 1;
+    uint64_t samples = 0;
+    for (auto _ : state) {
+        const RenderResult r = render(scene, *integrator, rs);
+        benchmark::DoNotOptimize(r.film.width());
+        samples += uint64_t(kWidth) * kHeight;
+        ++rs.firstPass;
+    }
+    using C = benchmark::Counter;
+    state.counters["samples_per_s"] = C(double(samples), C::kIsRate);
+}
+
+// (label, cache key) of the scenes measured.
+std::vector<std::pair<std::string, std::string>> passScenes() {
+    std::vector<std::pair<std::string, std::string>> scenes{{"cornell", "cornell"}, {"veach-mis", "veach-mis"}, {"sky", "sky"}};
+    if (const char* files = std::getenv("TRIPATH_BENCH_GLTF")) {
+        std::istringstream list(files);
+        for (std::string file; std::getline(list, file, ':');)
+            if (!file.empty()) scenes.push_back({std::filesystem::path(file).stem().string(), file});
+    }
+    return scenes;
+}
+
+const bool registered = [] {
+    for (const auto& [label, key] : passScenes())
+        for (const char* integrator : {"pt", "bdpt", "vcm", "mlt"})
+            benchmark::RegisterBenchmark(("integrator_pass/" + std::string(integrator) + "/" + label).c_str(),
+                                         [integrator = std::string(integrator), key = key](benchmark::State& st) {
+                                             runPass(st, integrator, key);
+                                         })
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime()
+                ->MeasureProcessCPUTime();
+    return true;
+}();
+
+}  // namespace
+
+}  // namespace tripath::bench
