@@ -49,7 +49,7 @@ void environmentSampling(benchmark::State& state) {
                 y0.ns = sampleUniformSphere({a, rng.uniform()});
                 y0.pdfFwd = kUniformSpherePdf;
                 y0.beta = Spectrum(1.0f / kUniformSpherePdf);
-                const Connection flat = connect(scene, std::span<const Vertex>(&y0, 1), 1, camera, 2, mis);
+                const Connection flat = connect(scene, SubpathView(std::span<const Vertex>(&y0, 1)), 1, camera, 2, mis);
                 const double v[2] = {luminance(drawn.unweighted), luminance(flat.unweighted)};
                 for (int k = 0; k < 2; ++k) s[k] += v[k], s2[k] += v[k] * v[k];
             }

@@ -187,7 +187,7 @@ void registerPathKernels() {
         cycle(st, kPool, [&](size_t i) {
             const auto& [light, v, camera] = p.triples[i];
             const Vec3 l = normalize(light.p - v.p), c = normalize(camera.p - v.p);
-            const LocalScattering at(scene, v, &l, &c);
+            const LocalScattering at(scene, v, v.material, &l, &c);  // cornell: its materials' parameters
             Spectrum f = at.value();
             float pdfs = at.pdfTowardCamera() + at.pdfTowardLight(kLightPaths);
             benchmark::DoNotOptimize(f);
@@ -205,7 +205,7 @@ void registerPathKernels() {
         std::vector<LocalScattering> at;
         std::vector<Segment> out;
         for (size_t i = 0; i < kPool; ++i) {
-            at.emplace_back(scene, p.triples[i][1], &toLight[i], &toCamera[i]);
+            at.emplace_back(scene, p.triples[i][1], p.triples[i][1].material, &toLight[i], &toCamera[i]);
             out.emplace_back(p.triples[i][1], p.triples[i][2]);
         }
         cycle(st, kPool, [&](size_t i) {

@@ -74,7 +74,7 @@ struct MergeSetup {
             const Vec2 raster{rng.uniform() * kWidth, rng.uniform() * kHeight};
             Subpath z;
             cameraSubpath(scene, raster, rng, walk, WalkPdfs::All, pass.mis.constants.lightPaths, z);
-            recordRunningSums(z, false, pass.mis);
+            recordRunningSums(z.vertices, false, pass.mis);
             cameras.push_back(std::move(z));
         }
     }

@@ -47,7 +47,7 @@ struct Worker {
 };
 
 // Vertices a walk found with a ray: all but the sensor z0 and the sampled emitter point y0.
-uint64_t traced(const Subpath& p) { return p.empty() ? 0 : p.size() - 1; }
+uint64_t traced(const Subpath& p) { return p.size() == 0 ? 0 : p.size() - 1; }
 
 void runSamples(benchmark::State& state, const SampleSpec& spec) {
     const Scene& scene = cachedScene(spec.sceneKey);
@@ -80,11 +80,11 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
         switch (spec.kind) {
             case SampleKind::CameraSubpath:
                 cameraSubpath(scene, raster, rng, settings.walk, WalkPdfs::All, pass.mis.constants.lightPaths, w.paths.camera);
-                w.sink.sum += w.paths.camera.back().beta.x;
+                w.sink.sum += w.paths.camera.vertices.back().beta.x;
                 break;
             case SampleKind::LightSubpath:
                 lightSubpath(scene, rng, settings.walk, WalkPdfs::All, w.paths.light);
-                if (!w.paths.light.empty()) w.sink.sum += w.paths.light.back().beta.x;
+                if (w.paths.light.size() > 0) w.sink.sum += w.paths.light.vertices.back().beta.x;
                 break;
             default:
                 integrator->sample(scene, pass, blockPixel, raster, rng, w.paths, w.sink);

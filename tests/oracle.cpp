@@ -28,7 +28,9 @@ Spectrum geometricFactor(const Vertex& a, const Vertex& b) {
 Spectrum scatter(const Scene& scene, const Vertex& v, const Vertex* towardLight, const Vertex* towardCamera) {
     const Vec3 l = towardLight ? unitDirection(v, *towardLight) : Vec3();
     const Vec3 c = towardCamera ? unitDirection(v, *towardCamera) : Vec3();
-    return LocalScattering(scene, v, towardLight ? &l : nullptr, towardCamera ? &c : nullptr).value();
+    std::optional<BsdfParams> parameters;
+    return LocalScattering(scene, v, bsdfAt(scene, v, parameters), towardLight ? &l : nullptr, towardCamera ? &c : nullptr)
+        .value();
 }
 
 float toAreaPdf(float pdfOmega, const Vertex& from, const Vertex& to) {

@@ -304,8 +304,8 @@ TEST(Mis, RunningSumsGiveTheWeightsOfTheFullWalk) {
                             const Vec2 raster{rng.uniform() * 24, rng.uniform() * 24};
                             cameraSubpath(scene, raster, rng, ws, WalkPdfs::All, full.constants.lightPaths, camera);
                             lightSubpath(scene, rng, ws, WalkPdfs::All, light);
-                            recordRunningSums(camera, false, sums);
-                            recordRunningSums(light, true, sums);
+                            recordRunningSums(camera.vertices, false, sums);
+                            recordRunningSums(light.vertices, true, sums);
                             auto expectSame = [&](const Connection& a, const Connection& b, const char* what, int s, int t) {
                                 if (isBlack(a.unweighted)) return;
                                 ASSERT_EQ(a.weightGuarded, b.weightGuarded)
@@ -322,7 +322,8 @@ TEST(Mis, RunningSumsGiveTheWeightsOfTheFullWalk) {
                                     expectSame(connect(scene, light, s, camera, t, sums), connect(scene, light, s, camera, t, full),
                                                "connection", s, t);
                                     if (set.merges() && s >= 2 && t >= 2)
-                                        expectSame(merge(scene, light, s, camera, t, sums), merge(scene, light, s, camera, t, full),
+                                        expectSame(merge(scene, light.vertices, s, camera, t, sums),
+                                                   merge(scene, light.vertices, s, camera, t, full),
                                                    "merge", s, t);
                                 }
                         }
@@ -339,7 +340,7 @@ const Roulette kNoRoulette{1000};
 // A path x0 (light[0], an area emitter) … xk (camera[0], the sensor) with the given camera
 // vertices' forward pdfs; every other pdf the weight reads comes from the junction.
 struct HandPath {
-    Subpath light, camera;
+    std::vector<Vertex> light, camera;
     Junction junction;
 };
 
@@ -459,7 +460,7 @@ TEST(Mis, RunningSumsGiveTheWalksWeightWhereTheirProductsLeaveTheFloatRange) {
 // Re-splits one full path into every strategy (s', t') and runs the production `connect` on each:
 // the weights of the strategies that can sample the path add up to 1.
 Subpath lightPrefix(const Scene& scene, const Path& x, int s) {
-    Subpath y(x.begin(), x.begin() + s);
+    Subpath y{{x.begin(), x.begin() + s}, {}};
     for (int i = 0; i < s; ++i) {
         y[i].pdfFwd = forwardPdf(scene, x, i);
         y[i].pdfRev = reversePdf(scene, x, i);
@@ -474,7 +475,7 @@ Subpath lightPrefix(const Scene& scene, const Path& x, int s) {
 }
 
 Subpath cameraPrefix(const Scene& scene, const Path& x, int s) {
-    Subpath z(x.rbegin(), x.rend() - s);
+    Subpath z{{x.rbegin(), x.rend() - s}, {}};
     const int k = static_cast<int>(x.size()) - 1;
     for (int j = 0; j < static_cast<int>(z.size()); ++j) {
         z[j].pdfFwd = reversePdf(scene, x, k - j);
@@ -483,7 +484,7 @@ Subpath cameraPrefix(const Scene& scene, const Path& x, int s) {
         if (j > 0) z[j].arrival = dirTo(z[j], z[j - 1]);
     }
     if (s == 0 && !x[0].atInfinity) {  // x0 reached by the camera walk: a surface that happens to emit
-        Vertex& e = z.back();
+        Vertex& e = z.vertices.back();
         e.kind = Vertex::Kind::Surface;
         e.material = &scene.materialOf(e.triangle);
         e.ns = e.ng;
@@ -496,7 +497,7 @@ Subpath cameraPrefix(const Scene& scene, const Path& x, int s) {
 Connection mergeAt(const Scene& scene, const Path& x, int j, const MisContext& mis) {
     const int k = static_cast<int>(x.size()) - 1;
     const Subpath y = lightPrefix(scene, x, j + 1), z = cameraPrefix(scene, x, j);
-    return merge(scene, y, j + 1, z, k - j + 1, mis);
+    return merge(scene, y.vertices, j + 1, z, k - j + 1, mis);
 }
 
 // Merge weights, every set, both merge factors: production (merge.cpp, mis.cpp) against the brute
@@ -561,12 +562,13 @@ TEST(Mis, LightTracingsOddsGrowWithTheLightPaths) {
                     seen = false;
                     break;
                 }
-                const Connection hit = connect(scene, {}, 0, camera, 2, mis);
+                const Connection hit = connect(scene, SubpathView(), 0, camera, 2, mis);
                 Vertex y0 = camera[1];
                 y0.kind = Vertex::Kind::Emitter;
                 y0.pdfFwd = scene.emitters().pdfA(y0.emitter, y0.ns);
                 y0.beta = Spectrum(1.0f / y0.pdfFwd);
-                const Connection splat = connect(scene, std::span<const Vertex>(&y0, 1), 1, std::span(camera).first(1), 1, mis);
+                const Connection splat =
+                    connect(scene, SubpathView(std::span<const Vertex>(&y0, 1)), 1, SubpathView(camera).first(1), 1, mis);
                 if (isBlack(hit.unweighted) || isBlack(splat.unweighted)) {
                     seen = false;
                     break;
@@ -657,6 +659,45 @@ TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
     }
 }
 
+// A textured vertex's BSDF parameters are derived once, when its walk finds it (Subpath,
+// paths/vertex.h): on the sky scene's checkered ground the walks derive exactly one per textured
+// surface vertex (the count of Scene::bsdfAt's derivations, core/stats.h), and the pdfs they
+// record, vcm's connections and the merges of the subpaths' vertices read those, deriving none.
+TEST(Paths, ATexturedVertexDerivesItsBsdfOnce) {
+    const Scene scene(builtinScene("sky"), 24, 24);
+    const MisContext mis{MisHeuristic::Power, makeIntegrator("vcm", {})->strategies(), Roulette{2}, testPass(1.0f)};
+    auto derivations = [] { return tlsEvents[static_cast<int>(Event::BsdfDerivations)]; };
+    auto textured = [](const Subpath& p) {
+        uint64_t n = 0;
+        for (const Vertex& v : p.vertices) n += v.kind == Vertex::Kind::Surface && v.material->textures;
+        return n;
+    };
+    const WalkSettings ws{8, 2};
+    Subpath light, camera;
+    uint64_t vertices = 0, connections = 0, merges = 0;
+    for (int i = 0; i < 1000; ++i) {
+        Rng rng(23, static_cast<uint64_t>(StreamDomain::Test), i);
+        const Vec2 raster{rng.uniform() * 24, rng.uniform() * 24};
+        const uint64_t before = derivations();
+        cameraSubpath(scene, raster, rng, ws, WalkPdfs::All, mis.constants.lightPaths, camera);
+        lightSubpath(scene, rng, ws, WalkPdfs::All, light);
+        ASSERT_EQ(derivations() - before, textured(camera) + textured(light)) << "sample " << i;
+        vertices += textured(camera) + textured(light);
+        const uint64_t walked = derivations();
+        evaluateStrategies(scene, light, camera, 1, rng, ws.maxDepth, mis, [&](Strategy, const Connection&) { ++connections; });
+        for (int t = 2; t <= static_cast<int>(camera.size()); ++t)
+            for (int s = 2; s <= static_cast<int>(light.size()); ++s)
+                if (!camera[t - 1].delta && !camera[t - 1].atInfinity) {
+                    merge(scene, light.vertices, s, camera, t, mis);
+                    ++merges;
+                }
+        ASSERT_EQ(derivations(), walked) << "sample " << i;
+    }
+    EXPECT_GT(vertices, 500u);
+    EXPECT_GT(connections, 1000u);
+    EXPECT_GT(merges, 200u);
+}
+
 
 // ---- Metropolis: a chain's acceptance against the brute-force target ---------------------
 
@@ -665,7 +706,7 @@ TEST(Paths, ConnectionEstimateIsContributionOverPdf) {
 // strategy (a state of value 0).
 Path joined(const TargetPaths& paths, Strategy st) {
     if (st.s == 1 || paths.light.size() < size_t(st.s) || paths.camera.size() < size_t(st.t)) return {};
-    Path x(paths.light.begin(), paths.light.begin() + st.s);
+    Path x(paths.light.vertices.begin(), paths.light.vertices.begin() + st.s);
     for (int j = st.t - 1; j >= 0; --j) x.push_back(paths.camera[size_t(j)]);
     return x;
 }

@@ -187,7 +187,8 @@ Scene::Scene(const Scene& base, int width, int height)
     : name_(base.name_), sources_(base.sources_), materials_(base.materials_), triangles_(base.triangles_),
       worldTriangles_(base.worldTriangles_), instances_(base.instances_), lo_(base.lo_), hi_(base.hi_),
       cameraDesc_(base.cameraDesc_), camera_(base.cameraDesc_, width, height), emitters_(base.emitters_),
-      surfaceTextures_(base.surfaceTextures_), anyNormalTexture_(base.anyNormalTexture_), alphaMasks_(base.alphaMasks_),
+      surfaceTextures_(base.surfaceTextures_), anyNormalTexture_(base.anyNormalTexture_),
+      variesBsdfs_(base.variesBsdfs_), alphaMasks_(base.alphaMasks_),
       device_(base.device_),
       rtcScene_(base.rtcScene_) {
     rtcRetainDevice(device_);
@@ -222,6 +223,8 @@ void Scene::addMeshes(const SceneDesc& desc, const WarningSink& warn) {
     surfaceTextures_ = std::move(surfaceTextures);
     anyNormalTexture_ = std::any_of(materials_.begin(), materials_.end(),
                                     [](const Material& m) { return m.textures && m.textures->normal; });
+    variesBsdfs_ = surfaceTextures_->anyColours() ||
+                   std::any_of(materials_.begin(), materials_.end(), [](const Material& m) { return m.textures != nullptr; });
     if (degenerate > 0) warn(fmt::format("{}: dropped {} degenerate (zero-area) triangles", name_, degenerate));
     findBounds();
 }

@@ -91,6 +91,10 @@ public:
         if (!m.textures && !surfaceTextures_->anyColours()) return m;
         return variedBsdfAt(m, triangle, b, scratch);
     }
+    // Whether bsdfAt can return anything but the material itself: some material has textures, or
+    // some mesh vertex colours. Where none can, a path's vertices keep no parameters of their own
+    // (paths/vertex.h: Subpath).
+    bool variesBsdfs() const { return variesBsdfs_; }
 
     // What the alpha-mask filter of one Embree geometry reads: the scene's textures, and the index
     // of the geometry's first triangle in triangles().
@@ -141,6 +145,7 @@ private:
     Emitters emitters_;
     std::shared_ptr<const SurfaceTextures> surfaceTextures_;  // never null; empty without textures and colours
     bool anyNormalTexture_ = false;
+    bool variesBsdfs_ = false;
     std::shared_ptr<std::vector<AlphaMask>> alphaMasks_;  // what the masked geometries' filters read
     RTCDeviceTy* device_ = nullptr;
     RTCSceneTy* rtcScene_ = nullptr;

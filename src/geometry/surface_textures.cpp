@@ -31,19 +31,12 @@ bool TriangleSurface::holeAt(Vec2 b) const { return textures && textures->holeAt
 void SurfaceTextures::add(uint32_t first, uint32_t count, const MaterialTextures* material,
                           std::vector<TriangleTexCoords> texCoords, std::vector<TriangleColours> colours) {
     if (count == 0 || (texCoords.empty() && colours.empty())) return;
-    ranges_.push_back({first, first + count, texCoords.empty() ? kNone : texCoords_.size(),
-                       colours.empty() ? kNone : colours_.size(), material});
+    ranges_.push_back({first, texCoords.empty() ? kNone : texCoords_.size(), colours.empty() ? kNone : colours_.size(),
+                       material});
     texCoords_.insert(texCoords_.end(), texCoords.begin(), texCoords.end());
     colours_.insert(colours_.end(), colours.begin(), colours.end());
-}
-
-TriangleSurface SurfaceTextures::find(uint32_t triangle) const {
-    auto it = std::upper_bound(ranges_.begin(), ranges_.end(), triangle,
-                               [](uint32_t t, const Range& r) { return t < r.first; });
-    if (it == ranges_.begin() || triangle >= (--it)->end) return {};
-    const uint32_t i = triangle - it->first;
-    return {it->material, it->texCoords == kNone ? nullptr : &texCoords_[it->texCoords + i],
-            it->colours == kNone ? nullptr : &colours_[it->colours + i]};
+    rangeOf_.resize(size_t(first) + count, kNoRange);
+    std::fill(rangeOf_.begin() + first, rangeOf_.end(), uint32_t(ranges_.size() - 1));
 }
 
 bool SurfaceTextures::anyMasks() const {

@@ -60,16 +60,19 @@ MisContext Integrator::misContext(const PassConstants& constants) const {
 
 void Integrator::sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
                         ContributionSink& sink) const {
-    const std::span<const Vertex> light = pass.light ? pass.light->path(size_t(pixel) % pass.light->paths()) : std::span<const Vertex>();
+    const SubpathView light = pass.light ? pass.light->path(size_t(pixel) % pass.light->paths()) : SubpathView();
     // The light path was likely traced on another core: its lines are requested before the camera walk.
-    for (size_t i = 0; i < light.size_bytes(); i += 64) __builtin_prefetch(reinterpret_cast<const char*>(light.data()) + i);
+    for (size_t i = 0; i < light.vertices.size_bytes(); i += 64)
+        __builtin_prefetch(reinterpret_cast<const char*>(light.vertices.data()) + i);
+    for (size_t i = 0; i < light.bsdfs.size_bytes(); i += 64)
+        __builtin_prefetch(reinterpret_cast<const char*>(light.bsdfs.data()) + i);
     cameraWalk(scene, pass, ray, rng, paths.camera);
-    splatLightPaths(scene, pass, pixel, std::span<const Vertex>(paths.camera).first(1), rng, sink);
+    splatLightPaths(scene, pass, pixel, SubpathView(paths.camera).first(1), rng, sink);
     connectAll(scene, pass, light, paths.camera, 2, rng, sink);
     if (pass.search) mergeAll(scene, pass, paths.camera, sink);
 }
 
-void Integrator::splatLightPaths(const Scene& scene, const Pass& pass, int pixel, std::span<const Vertex> sensor, Rng& rng,
+void Integrator::splatLightPaths(const Scene& scene, const Pass& pass, int pixel, const SubpathView& sensor, Rng& rng,
                                  ContributionSink& sink) const {
     if (!pass.light || !strategies().enabled(1, 1)) return;
     const size_t pixels = size_t(scene.camera().width()) * scene.camera().height();
@@ -78,7 +81,7 @@ void Integrator::splatLightPaths(const Scene& scene, const Pass& pass, int pixel
 
 void Integrator::cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng, Subpath& camera) const {
     cameraSubpath(scene, ray, rng, settings_.walk, strategies().cameraWalkPdfs(), pass.mis.constants.lightPaths, camera);
-    recordRunningSums(camera, false, pass.mis);
+    recordRunningSums(camera.vertices, false, pass.mis);
 }
 
 }  // namespace tripath

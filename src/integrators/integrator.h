@@ -107,8 +107,8 @@ protected:
     // the pass's context where it keeps them.
     void cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng, Subpath& camera) const;
     // Runs every enabled connection with t ≥ firstT over the two subpaths into the sink.
-    void connectAll(const Scene& scene, const Pass& pass, std::span<const Vertex> light, std::span<const Vertex> camera,
-                    int firstT, Rng& rng, ContributionSink& sink) const {
+    void connectAll(const Scene& scene, const Pass& pass, const SubpathView& light, const SubpathView& camera, int firstT,
+                    Rng& rng, ContributionSink& sink) const {
         evaluateStrategies(scene, light, camera, firstT, rng, settings_.walk.maxDepth, pass.mis,
                            [&](Strategy st, const Connection& c) { sink.add(st, c); });
     }
@@ -116,7 +116,7 @@ protected:
     // pixel + P, pixel + 2P, … below N_L, P being the pixel count: every light path is joined to
     // the sensor `sensor` once per pass, whatever N_L, in the order of the pixels' samples (so the
     // film's sums do not depend on threads). Each draws what it needs from the pixel's stream.
-    void splatLightPaths(const Scene& scene, const Pass& pass, int pixel, std::span<const Vertex> sensor, Rng& rng,
+    void splatLightPaths(const Scene& scene, const Pass& pass, int pixel, const SubpathView& sensor, Rng& rng,
                          ContributionSink& sink) const;
     // Runs every merge of the camera subpath with the pass's light vertices into the sink.
     void mergeAll(const Scene& scene, const Pass& pass, const Subpath& camera, ContributionSink& sink) const {

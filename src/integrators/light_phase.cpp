@@ -38,7 +38,7 @@ Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t 
             for (uint64_t i = first; i < std::min(paths, first + LightStore::kPathsPerChunk); ++i) {
                 Rng rng(seed, domain, index * paths + i);
                 lightSubpath(scene, rng, walk, pdfs, path);
-                recordRunningSums(path, true, pass.mis);
+                recordRunningSums(path.vertices, true, pass.mis);
                 kLightVertices.add(path.size());
                 chunk.append(path);
             }

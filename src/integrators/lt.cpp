@@ -18,7 +18,7 @@ public:
     bool tracesCameraRays() const override { return false; }
     void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay&, Rng& rng, PathBuffers& paths,
                 ContributionSink& sink) const override {
-        paths.camera.assign(1, sensorVertex(scene));
+        sensorSubpath(scene, paths.camera);
         splatLightPaths(scene, pass, pixel, paths.camera, rng, sink);
     }
 };

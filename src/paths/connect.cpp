@@ -22,7 +22,7 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
     if (pt.emitter < 0) return c;
     kEmitterHits.add();
     const Segment toCamera(pt, ptMinus);
-    const LocalScattering at(scene, pt, nullptr, toCamera.towardB());
+    const LocalScattering at(scene, pt, nullptr, nullptr, toCamera.towardB());  // an emitter: no BSDF
     c.unweighted = pt.beta * emittance(at.value(), traced(pt, ptMinus));  // ε(pt → ptMinus)
     if (isBlack(c.unweighted)) return c;
     Junction junction;
@@ -37,7 +37,7 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
 // completes (kernels.h): ε(qs → pt) or ρ(qs−1 → qs → pt), g(qs, pt), and ρ(qs → pt → pt−1) or
 // W(qs → pt). The segment and each endpoint's local geometry are computed once, and of the four
 // reverse pdfs the connection defines only those the strategy set's weight reads are computed.
-Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
+Connection join(const Scene& scene, const SubpathView& light, int s, const SubpathView& camera, int t,
                 const MisContext& mis) {
     Connection c;
     const Vertex& qs = light[s - 1];
@@ -55,8 +55,8 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     }
     const Vec3 towardQ = -segment.direction();
     const Segment backQ(qs, qsMinus), backP(pt, ptMinus);  // to each endpoint's own predecessor
-    const LocalScattering atQ(scene, qs, backQ.towardB(), segment.towardB());
-    const LocalScattering atP(scene, pt, &towardQ, backP.towardB());
+    const LocalScattering atQ(scene, qs, light.bsdf(s - 1), backQ.towardB(), segment.towardB());
+    const LocalScattering atP(scene, pt, camera.bsdf(t - 1), &towardQ, backP.towardB());
     const Spectrum kernelQ = s == 1 ? emittance(atQ, segment) : rho(atQ, segment);
     const Spectrum kernelP = t == 1 ? Spectrum(W(atP)) : rho(atP.value(), traced(pt, *ptMinus));
     c.unweighted = qs.beta * kernelQ * g(segment) * kernelP * pt.beta;
@@ -70,15 +70,15 @@ Connection join(const Scene& scene, std::span<const Vertex> light, int s, std::s
     if (mis.strategies.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);
     if (mis.strategies.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(mis.constants.lightPaths), qs);
     if (mis.strategies.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(mis.constants.lightPaths), *qsMinus);
-    c.setWeight(misWeight(light, s, camera, t, junction, mis));
+    c.setWeight(misWeight(light.vertices, s, camera.vertices, t, junction, mis));
     return c;
 }
 
 }  // namespace
 
-Connection connect(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
+Connection connect(const Scene& scene, const SubpathView& light, int s, const SubpathView& camera, int t,
                    const MisContext& mis) {
-    return s == 0 ? emitterHit(scene, light, camera, t, mis) : join(scene, light, s, camera, t, mis);
+    return s == 0 ? emitterHit(scene, light.vertices, camera.vertices, t, mis) : join(scene, light, s, camera, t, mis);
 }
 
 }  // namespace tripath

@@ -35,8 +35,9 @@ struct Connection {
 //   s = 1  light[0] is an emitter point sampled on its own (next-event estimation);
 //   t = 1  the light subpath's last vertex is connected to the sensor (the result is a splat);
 //   else   the two endpoints are joined by a shadow ray.
-// The subpaths are only read: what the strategy defines at the junction goes to misWeight apart.
-Connection connect(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
+// The subpaths are only read: what the strategy defines at the junction goes to misWeight apart;
+// the endpoints' BSDF parameters are those the subpaths keep (vertex.h).
+Connection connect(const Scene& scene, const SubpathView& light, int s, const SubpathView& camera, int t,
                    const MisContext& mis);
 
 }  // namespace tripath

@@ -26,7 +26,7 @@ Spectrum LocalScattering::value() const {
     if (emits()) return scene_.emitters().Le(v_.emitter, v_.ng, camera_, v_.bary);
     if (apart_) [[unlikely]] return valueAboutThePairsNormal();
     if (!sidesAgree(v_, normal_, light_) || !sidesAgree(v_, normal_, camera_)) return Spectrum(0.0f);
-    return evalBsdf(bsdf(), cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, normal_, light_);
+    return evalBsdf(*bsdf_, cameraLocal_, lightLocal_, TransportMode::Radiance) * shadingCorrection(v_, normal_, light_);
 }
 
 // f_r × shading correction where the two directions' bent normals differ: about the one nearer ng.
@@ -34,15 +34,15 @@ Spectrum LocalScattering::valueAboutThePairsNormal() const {
     const bool aboutCamera = dot(apart_->normal, v_.ng) > dot(normal_, v_.ng);
     const Vec3 n = aboutCamera ? apart_->normal : normal_;
     if (!sidesAgree(v_, n, light_) || !sidesAgree(v_, n, camera_)) return Spectrum(0.0f);
-    const Spectrum f = aboutCamera ? evalBsdf(bsdf(), apart_->cameraLocal, apart_->lightLocal, TransportMode::Radiance)
-                                   : evalBsdf(bsdf(), cameraLocal_, lightLocal_, TransportMode::Radiance);
+    const Spectrum f = aboutCamera ? evalBsdf(*bsdf_, apart_->cameraLocal, apart_->lightLocal, TransportMode::Radiance)
+                                   : evalBsdf(*bsdf_, cameraLocal_, lightLocal_, TransportMode::Radiance);
     return f * shadingCorrection(v_, n, light_);
 }
 
 float LocalScattering::pdfTowardCamera() const {
     if (v_.kind == Vertex::Kind::Sensor) return 0.0f;  // the path's end: nothing lies beyond it
     if (emits()) return scene_.emitters().directionPdf(v_.emitter, v_.ng, camera_);
-    return pdfBsdf(bsdf(), lightLocal_, cameraLocal_);
+    return pdfBsdf(*bsdf_, lightLocal_, cameraLocal_);
 }
 
 float LocalScattering::pdfTowardLight(double lightPaths) const {
@@ -57,7 +57,7 @@ float LocalScattering::pdfTowardLight(double lightPaths) const {
         return cam.pixelDensity(light_) / static_cast<float>(lightPaths);
     }
     if (emits()) return 0.0f;  // the path's start: nothing lies before it
-    return apart_ ? pdfBsdf(bsdf(), apart_->cameraLocal, apart_->lightLocal) : pdfBsdf(bsdf(), cameraLocal_, lightLocal_);
+    return apart_ ? pdfBsdf(*bsdf_, apart_->cameraLocal, apart_->lightLocal) : pdfBsdf(*bsdf_, cameraLocal_, lightLocal_);
 }
 
 Spectrum g(const Scene& scene, const Vertex& x, const Vertex& xp) {
@@ -66,17 +66,18 @@ Spectrum g(const Scene& scene, const Vertex& x, const Vertex& xp) {
 
 Spectrum emittance(const Scene& scene, const Vertex& x0, const Vertex& x1) {
     const Segment out(x0, x1);
-    return emittance(LocalScattering(scene, x0, nullptr, out.towardB()), out);
+    return emittance(LocalScattering(scene, x0, nullptr, nullptr, out.towardB()), out);
 }
 
 Spectrum rho(const Scene& scene, const Vertex& xpp, const Vertex& xp, const Vertex& x) {
     const Segment in(xp, xpp), out(xp, x);
-    return rho(LocalScattering(scene, xp, in.towardB(), out.towardB()), out);
+    std::optional<BsdfParams> scratch;
+    return rho(LocalScattering(scene, xp, bsdfAt(scene, xp, scratch), in.towardB(), out.towardB()), out);
 }
 
 float W(const Scene& scene, const Vertex& xkm1, const Vertex& xk) {
     const Segment in(xk, xkm1);
-    return W(LocalScattering(scene, xk, in.towardB(), nullptr));
+    return W(LocalScattering(scene, xk, nullptr, in.towardB(), nullptr));
 }
 
 }  // namespace tripath

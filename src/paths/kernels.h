@@ -128,13 +128,16 @@ inline bool sidesAgree(const Vertex& v, Vec3 n, Vec3 w) { return dot(v.ng, w) * 
 //
 // The neighbours are given as unit directions from v, null where there is none. An endpoint
 // lacks one: the sensor its camera side, an emitter point its light side -- as does a surface a
-// camera walk hit, taken as the start of the light's path (strategy s = 0). (Pointers rather than
-// optionals, and an inline constructor: this runs several times per connection.)
+// camera walk hit, taken as the start of the light's path (strategy s = 0). v's BSDF parameters
+// come derived (the subpath keeps them: vertex.h), and are read only at a surface between two
+// neighbours. (Pointers rather than optionals, and an inline constructor: this runs several
+// times per connection.)
 class LocalScattering {
 public:
     // Local directions from the arguments, not from the members just written (store forwarding).
-    LocalScattering(const Scene& scene, const Vertex& v, const Vec3* towardLight, const Vec3* towardCamera)
-        : scene_(scene), v_(v), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr),
+    LocalScattering(const Scene& scene, const Vertex& v, const BsdfParams* bsdf, const Vec3* towardLight,
+                    const Vec3* towardCamera)
+        : scene_(scene), v_(v), bsdf_(bsdf), hasLight_(towardLight != nullptr), hasCamera_(towardCamera != nullptr),
           light_(hasLight_ ? *towardLight : Vec3()), camera_(hasCamera_ ? *towardCamera : Vec3()) {
         if (v.kind == Vertex::Kind::Surface && hasLight_ && hasCamera_) {
             if (v.ns == v.ng) [[likely]] {  // flat shading: one frame, nothing bent
@@ -145,7 +148,6 @@ public:
             } else {
                 bendFrames(*towardLight, *towardCamera);
             }
-            scene.bsdfAt(*v.material, v.triangle, v.bary, varied_);  // sets varied_ where they vary
         }
     }
     // What v contributes besides cosines: Le toward the camera side at an emitter end, f_r ×
@@ -167,10 +169,9 @@ private:
     // The frames of a surface whose shading normal differs from its geometric one (shading_normal.h).
     void bendFrames(Vec3 towardLight, Vec3 towardCamera);
     Spectrum valueAboutThePairsNormal() const;
-    // The BSDF at v: its material's, or its parameters at v where textures or vertex colours vary them.
-    const BsdfParams& bsdf() const { return varied_ ? *varied_ : *v_.material; }
     const Scene& scene_;
     const Vertex& v_;
+    const BsdfParams* bsdf_;  // v's parameters: its material's, or its own where textures or vertex colours vary them
     bool hasLight_, hasCamera_;
     Vec3 light_, camera_;
     // Surfaces between two neighbours: both directions in the frame of the normal bent for the
@@ -186,7 +187,6 @@ private:
     };
     Vec3 normal_, lightLocal_, cameraLocal_;
     std::optional<BentApart> apart_;
-    std::optional<BsdfParams> varied_;
 };
 
 // The segment from a camera or light subpath's vertex v back to its predecessor, along the

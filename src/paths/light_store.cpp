@@ -33,7 +33,7 @@ LightVertexSearch::LightVertexSearch(std::span<const std::vector<Entry>> chunks,
 
 void LightVertexSearch::mergeable(const LightStore::Chunk& chunk, std::vector<Entry>& out) {
     for (size_t i = 0; i < chunk.paths(); ++i) {
-        const std::span<const Vertex> path = chunk.path(i);
+        const std::span<const Vertex> path = chunk.path(i).vertices;
         for (size_t j = 1; j < path.size(); ++j)
             if (!path[j].delta) out.push_back({path[j].p, {&path[j], static_cast<uint32_t>(j + 1)}});
     }

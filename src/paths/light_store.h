@@ -24,26 +24,35 @@ class LightStore {
 public:
     static constexpr size_t kPathsPerChunk = 1024;
 
-    // Light paths in order, each of its chunk's paths appended in turn by one writer.
+    // Light paths in order, each of its chunk's paths appended in turn by one writer, with the
+    // BSDF parameters their walks kept (in a scene that varies them: vertex.h), indexed alike.
     class Chunk {
     public:
         void clear() {
             vertices_.clear();
+            bsdfs_.clear();
             begin_.assign(1, 0);
         }
-        void append(std::span<const Vertex> path) {
-            vertices_.insert(vertices_.end(), path.begin(), path.end());
+        void append(const SubpathView& path) {
+            vertices_.insert(vertices_.end(), path.vertices.begin(), path.vertices.end());
+            bsdfs_.insert(bsdfs_.end(), path.bsdfs.begin(), path.bsdfs.end());
             begin_.push_back(static_cast<uint32_t>(vertices_.size()));
         }
         size_t paths() const { return begin_.size() - 1; }
-        std::span<const Vertex> path(size_t i) const {
-            return {vertices_.data() + begin_[i], vertices_.data() + begin_[i + 1]};
+        SubpathView path(size_t i) const {
+            const size_t first = begin_[i], n = begin_[i + 1] - first;
+            return SubpathView({vertices_.data() + first, n}, bsdfs_.empty() ? std::span<const BsdfParams>()
+                                                                             : std::span(bsdfs_.data() + first, n));
         }
         size_t vertices() const { return vertices_.size(); }
-        size_t bytes() const { return vertices_.capacity() * sizeof(Vertex) + begin_.capacity() * sizeof(uint32_t); }
+        size_t bytes() const {
+            return vertices_.capacity() * sizeof(Vertex) + bsdfs_.capacity() * sizeof(BsdfParams) +
+                   begin_.capacity() * sizeof(uint32_t);
+        }
 
     private:
         std::vector<Vertex> vertices_;
+        std::vector<BsdfParams> bsdfs_;   // one per vertex, or none
         std::vector<uint32_t> begin_{0};  // path i holds vertices_[begin_[i] .. begin_[i+1])
     };
 
@@ -54,7 +63,7 @@ public:
     const Chunk& chunk(size_t c) const { return chunks_[c]; }
 
     size_t paths() const { return paths_; }
-    std::span<const Vertex> path(size_t i) const { return chunks_[i / kPathsPerChunk].path(i % kPathsPerChunk); }
+    SubpathView path(size_t i) const { return chunks_[i / kPathsPerChunk].path(i % kPathsPerChunk); }
     size_t vertices() const;
     size_t bytes() const;
 

@@ -4,7 +4,7 @@
 
 namespace tripath {
 
-Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
+Connection merge(const Scene& scene, std::span<const Vertex> light, int s, const SubpathView& camera, int t,
                  const MisContext& mis) {
     Connection c;
     const Vertex& y = light[s - 1];
@@ -13,7 +13,7 @@ Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::
     const Vertex& zBefore = camera[t - 2];
     if (z.delta || y.delta || !(dot(y.ng, z.ng) > 0)) return c;
     const Segment incoming(y, yBefore), toCamera(z, zBefore);
-    const LocalScattering at(scene, z, incoming.towardB(), toCamera.towardB());
+    const LocalScattering at(scene, z, camera.bsdf(t - 1), incoming.towardB(), toCamera.towardB());
     c.unweighted = z.beta * rho(at.value(), traced(z, zBefore)) * y.beta * (1.0f / mis.constants.mergeEta);
     if (isBlack(c.unweighted)) return c;
     // The reference connection (s−1, t) joins y_{s−2} to z_{t−1}: z_{t−1}'s light-side pdf is the
@@ -24,7 +24,7 @@ Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::
     junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), zBefore);
     junction.lightEnd = incoming.toArea(at.pdfTowardLight(mis.constants.lightPaths), yBefore);
     if (s >= 3) junction.lightBeforeEnd = light[s - 3].pdfRev;
-    c.setWeight(mergeWeight(light, s, camera, t, junction, mis));
+    c.setWeight(mergeWeight(light, s, camera.vertices, t, junction, mis));
     return c;
 }
 

@@ -31,8 +31,9 @@
 namespace tripath {
 
 // Merges light[s−1] (with light[0..s−1) its light prefix, s ≥ 2) with camera[t−1] (t ≥ 2):
-// f/p of the merged path and its MIS weight among the enabled strategies (mis.h).
-Connection merge(const Scene& scene, std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
+// f/p of the merged path and its MIS weight among the enabled strategies (mis.h). The BSDF is
+// camera[t−1]'s, as its subpath keeps it (vertex.h); no light vertex's is read.
+Connection merge(const Scene& scene, std::span<const Vertex> light, int s, const SubpathView& camera, int t,
                  const MisContext& mis);
 
 }  // namespace tripath

@@ -26,9 +26,8 @@ bool walkSubpaths(const MultiplexedTarget& target, Strategy st, PrimarySamples& 
         const WalkSettings walk{.maxDepth = st.t - 1, .rrDepth = kNoRoulette};
         cameraSubpath(scene, CameraRay(raster), u, walk, WalkPdfs::All, target.pixels, paths.camera);
         if (static_cast<int>(paths.camera.size()) < st.t) return false;
-        recordRunningSums(paths.camera, false, target.mis);
     } else {
-        paths.camera.assign(1, sensorVertex(scene));
+        sensorSubpath(scene, paths.camera);
     }
     paths.light.clear();
     if (st.s >= 2) {
@@ -36,17 +35,18 @@ bool walkSubpaths(const MultiplexedTarget& target, Strategy st, PrimarySamples& 
         const WalkSettings walk{.maxDepth = st.s, .rrDepth = kNoRoulette};
         lightSubpath(scene, u, walk, WalkPdfs::All, paths.light);
         if (static_cast<int>(paths.light.size()) < st.s) return false;
-        recordRunningSums(paths.light, true, target.mis);
     }
     return true;
 }
 
 }  // namespace
 
+// No running sums (mis.h): a weight takes a subpath's sum only from beyond the vertices at walk
+// indices below max(1, depth − 1), whose roulette factors the other walk's length decides, and
+// the chains' roulette starts beyond every path (kNoRoulette). Each weight steps over its whole
+// path with or without them, so recording them would be work that nothing reads.
 MisContext multiplexedMisContext(MisHeuristic heuristic, double pixels) {
-    MisContext mis{heuristic, StrategySet{}, Roulette{kNoRoulette}, passConstants(pixels, 0.0f)};
-    mis.runningSums = canUseRunningSums(mis);
-    return mis;
+    return {heuristic, StrategySet{}, Roulette{kNoRoulette}, passConstants(pixels, 0.0f)};
 }
 
 PathSample evaluateTarget(const MultiplexedTarget& target, int k, PrimarySamples& u, TargetPaths& paths) {

@@ -22,16 +22,16 @@ inline constexpr Counter kMerges{Event::Merges};
 
 // Strategy (1, t): next-event estimation from a fresh emitter point.
 template <Sampler S>
-Connection connectNextEvent(const Scene& scene, S& rng, std::span<const Vertex> camera, int t, const MisContext& mis) {
+Connection connectNextEvent(const Scene& scene, S& rng, const SubpathView& camera, int t, const MisContext& mis) {
     const Vertex y0 = sampleEmitterVertex(scene, rng);
-    return connect(scene, std::span<const Vertex>(&y0, 1), 1, camera, t, mis);
+    return connect(scene, SubpathView(std::span<const Vertex>(&y0, 1)), 1, camera, t, mis);  // y0 emits: no BSDF
 }
 
 // Calls sink(strategy, connection) for each enabled (s, t) with t ≥ firstT, 1 ≤ k = s + t − 1 ≤
 // maxDepth and a non-zero contribution. (A camera subpath of the sensor alone gives the t = 1
 // strategies only, the splats of light tracing.)
 template <Sampler S, class Sink>
-void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, std::span<const Vertex> camera, int firstT, S& rng,
+void evaluateStrategies(const Scene& scene, const SubpathView& light, const SubpathView& camera, int firstT, S& rng,
                         int maxDepth, const MisContext& mis, Sink&& sink) {
     const int nl = static_cast<int>(light.size()), nc = static_cast<int>(camera.size());
     for (int t = firstT; t <= nc; ++t) {
@@ -50,7 +50,7 @@ void evaluateStrategies(const Scene& scene, std::span<const Vertex> light, std::
 // surface with a light vertex the search finds within its radius, with k = s + t − 2 ≤ maxDepth and
 // a non-zero contribution, in a fixed order.
 template <class Sink>
-void evaluateMerges(const Scene& scene, const LightVertexSearch& search, const Subpath& camera, int maxDepth,
+void evaluateMerges(const Scene& scene, const LightVertexSearch& search, const SubpathView& camera, int maxDepth,
                     const MisContext& mis, Sink&& sink) {
     // The camera vertices that merge, queried together so that the range search overlaps their
     // memory reads (LightVertexSearch::forEachWithin), as many at a time as it overlaps.

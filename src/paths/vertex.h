@@ -8,6 +8,8 @@
 // That excludes the vertex's own ρ (it depends on where the path goes next), and so, on a camera
 // subpath, the cosines of its last segment: they belong to the ρ or ε of the vertex itself.
 #pragma once
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "geometry/scene.h"
@@ -51,9 +53,54 @@ struct Vertex {
     Vec3 offsetNormal() const { return onSurface() ? ng : Vec3(0.0f); }
 };
 
-// A subpath: vertex 0 is the emitter (light subpath) or the sensor (camera subpath).
-using Subpath = std::vector<Vertex>;
-
 static_assert(sizeof(Vertex) == 104, "Vertex gained padding or a field: see its layout");
+
+// v's BSDF parameters as the scene gives them at its point (Scene::bsdfAt): its material itself,
+// or, where textures or vertex colours vary them, its parameters there, written to `scratch`;
+// null for a vertex without a material (the sensor, an emitter without a surface).
+inline const BsdfParams* bsdfAt(const Scene& scene, const Vertex& v, std::optional<BsdfParams>& scratch) {
+    return v.material ? &scene.bsdfAt(*v.material, v.triangle, v.bary, scratch) : nullptr;
+}
+
+// A subpath: vertex 0 is the emitter (light subpath) or the sensor (camera subpath).
+//
+// In a scene whose textures or vertex colours vary BSDF parameters over its surfaces
+// (Scene::variesBsdfs), each vertex's parameters are derived once, when its walk finds it, and
+// kept in `bsdfs`, indexed like the vertices: the walk's sampler, the pdfs it records, and every
+// connection and merge at the vertex read them there. Elsewhere `bsdfs` stays empty and a
+// vertex's parameters are its material's. Kept beside the vertices rather than in them, so that
+// a Vertex stays 104 bytes in every scene (the light store holds millions) and only the scenes
+// that vary pay: a BsdfParams, 32 bytes, per vertex.
+struct Subpath {
+    std::vector<Vertex> vertices;
+    std::vector<BsdfParams> bsdfs;  // one per vertex (a placeholder where it scatters nowhere), or none
+
+    size_t size() const { return vertices.size(); }
+    const Vertex& operator[](size_t i) const { return vertices[i]; }
+    Vertex& operator[](size_t i) { return vertices[i]; }
+    void clear() {
+        vertices.clear();
+        bsdfs.clear();
+    }
+};
+
+// A subpath, or a prefix of one, as the strategies read it (connect.h, merge.h). Passed by
+// reference: by value, GCC copies it through the stack, writing its fields one by one and reading
+// them back 16 bytes at a time, a store-forwarding stall (connect() took 1.09–1.46× the time).
+struct SubpathView {
+    std::span<const Vertex> vertices;
+    std::span<const BsdfParams> bsdfs;  // as Subpath::bsdfs
+
+    SubpathView() = default;
+    SubpathView(const Subpath& path) : vertices(path.vertices), bsdfs(path.bsdfs) {}  // implicit: a view of it
+    // Vertices with parameters kept in `b`; without, their materials' (a scene that varies none,
+    // or vertices that scatter nowhere: the sensor, an emitter point).
+    explicit SubpathView(std::span<const Vertex> v, std::span<const BsdfParams> b = {}) : vertices(v), bsdfs(b) {}
+    size_t size() const { return vertices.size(); }
+    const Vertex& operator[](size_t i) const { return vertices[i]; }
+    // Vertex i's BSDF parameters: those kept for it, else its material's (null without one).
+    const BsdfParams* bsdf(size_t i) const { return bsdfs.empty() ? vertices[i].material : &bsdfs[i]; }
+    SubpathView first(size_t n) const { return SubpathView(vertices.first(n), bsdfs.empty() ? bsdfs : bsdfs.first(n)); }
+};
 
 }  // namespace tripath

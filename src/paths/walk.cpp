@@ -57,6 +57,24 @@ Vertex surfaceVertex(const Scene& scene, const SurfacePoint& hit) {
     return s.f * shadingCorrection(v, n, towardLight);
 }
 
+// Keeps the BSDF parameters of surface vertex v, the path's last, derived here once for every use
+// (vertex.h: Subpath). Out of line: scenes that vary none never call it.
+[[gnu::noinline]] void keepBsdf(const Scene& scene, Subpath& path, const Vertex& v) {
+    std::optional<BsdfParams> varied;
+    path.bsdfs.push_back(*bsdfAt(scene, v, varied));
+}
+
+// Appends v to the path with, where the scene varies BSDF parameters, v's (a placeholder where it
+// scatters nowhere).
+[[gnu::always_inline]] inline void push(const Scene& scene, Subpath& path, const Vertex& v) {
+    path.vertices.push_back(v);
+    if (!scene.variesBsdfs()) return;
+    if (v.kind == Vertex::Kind::Surface)
+        keepBsdf(scene, path, v);
+    else
+        path.bsdfs.emplace_back();
+}
+
 // Where a camera walk's ray that leaves the scene ends: the environment, in the direction `dir`.
 Vertex environmentVertex(const Scene& scene, Vec3 dir) {
     Vertex v;
@@ -73,11 +91,12 @@ Vertex environmentVertex(const Scene& scene, Vec3 dir) {
 // flow, so v lies on `from`'s light side; a light walk goes with it. `lightPaths`: the pass's N_L,
 // which the sensor's pdf is over.
 void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode, double lightPaths) {
-    const Vertex& from = path.back();
-    Vertex* beforeFrom = path.size() > 1 ? &path[path.size() - 2] : nullptr;
+    const size_t last = path.size() - 1;
+    const Vertex& from = path[last];
+    Vertex* beforeFrom = last > 0 ? &path[last - 1] : nullptr;
     const Segment ahead(from, v), behind(from, beforeFrom);
     const bool cameraWalk = mode == TransportMode::Radiance;
-    const LocalScattering at(scene, from, cameraWalk ? ahead.towardB() : behind.towardB(),
+    const LocalScattering at(scene, from, SubpathView(path).bsdf(last), cameraWalk ? ahead.towardB() : behind.towardB(),
                              cameraWalk ? behind.towardB() : ahead.towardB());
     v.pdfFwd = ahead.toArea(cameraWalk ? at.pdfTowardLight(lightPaths) : at.pdfTowardCamera(), v);
     if (beforeFrom) {
@@ -99,7 +118,7 @@ void recordPdfs(const Scene& scene, Subpath& path, Vertex& v, TransportMode mode
 // vertex it reached, known only when a connection or an emitter decides it.
 // All cosines are of the rays the walk traced (kernels.h: traced).
 Spectrum stepFactor(const Subpath& path, const Vertex& v, Spectrum scatter, float pdf, TransportMode mode) {
-    const Vertex& from = path.back();
+    const Vertex& from = path.vertices.back();
     const Segment step(from, v, -v.arrival);
     Spectrum kernel;
     if (mode == TransportMode::Importance)
@@ -120,7 +139,7 @@ Spectrum stepFactor(const Subpath& path, const Vertex& v, Spectrum scatter, floa
     v.beta = beta * stepFactor(path, v, scatter, pdf, mode);
     if (!isFinite(v.beta) || isBlack(v.beta)) return false;
     if (pdfs == WalkPdfs::All || (pdfs == WalkPdfs::AtEmitters && v.emitter >= 0)) recordPdfs(scene, path, v, mode, lightPaths);
-    path.push_back(v);
+    push(scene, path, v);
     return true;
 }
 
@@ -146,7 +165,7 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
                 const WalkSettings& settings, WalkPdfs pdfs, double lightPaths, size_t maxVertices, Subpath& path,
                 const std::optional<SurfacePoint>* firstHit = nullptr) {
     while (path.size() < maxVertices) {
-        const Vertex& from = path.back();
+        const Vertex& from = path.vertices.back();
         const Vec3 origin = from.onSurface() ? offsetRayOrigin(from.p, from.ng, dir) : from.p;
         const auto hit = firstHit ? *firstHit : scene.intersect(origin, dir);
         firstHit = nullptr;
@@ -165,8 +184,7 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
         // the image a seed gives must not depend on the compiler.
         const Vec2 u = uniform2(rng);
         const float uc = rng.uniform();
-        std::optional<BsdfParams> varied;
-        const BsdfParams& bsdf = scene.bsdfAt(*v.material, v.triangle, v.bary, varied);
+        const BsdfParams& bsdf = *SubpathView(path).bsdf(path.size() - 1);
         const auto bs = sampleBsdf(bsdf, frame.toLocal(wo), u, uc, mode);
         if (!bs || !(bs->pdf > 0)) return;
         const Vec3 wi = frame.toWorld(bs->wi);
@@ -174,7 +192,7 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
         const Vec3 towardLight = mode == TransportMode::Radiance ? wi : wo;
         scatter = scattered(bsdf, v, n, *bs, wo, wi, towardLight, mode);
         pdf = bs->pdf;
-        beta = path.back().beta;
+        beta = path.vertices.back().beta;
         const float q = Roulette{settings.rrDepth}.continuation(v, static_cast<int>(path.size()) - 1);
         if (q < 1.0f) {
             if (!(rng.uniform() < q)) return;
@@ -221,11 +239,15 @@ Vertex sampleEmitterVertex(const Scene& scene, S& rng) {
     return y0;
 }
 
+void sensorSubpath(const Scene& scene, Subpath& path) {
+    path.clear();
+    push(scene, path, sensorVertex(scene));
+}
+
 template <Sampler S>
 void cameraSubpath(const Scene& scene, const CameraRay& ray, S& rng, const WalkSettings& settings, WalkPdfs pdfs,
                    double lightPaths, Subpath& path) {
-    path.clear();
-    path.push_back(sensorVertex(scene));
+    sensorSubpath(scene, path);
     const Camera& cam = scene.camera();
     const Vec3 dir = ray.hit ? ray.direction : cam.direction(ray.raster);
     // The pinhole draws a point of the pixel uniformly: W is the pixel's importance and the pdf the
@@ -239,8 +261,8 @@ template <Sampler S>
 void lightSubpath(const Scene& scene, S& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {
     path.clear();
     if (settings.maxDepth < 1) return;
-    path.push_back(sampleEmitterVertex(scene, rng));
-    Vertex& y0 = path.back();
+    push(scene, path, sampleEmitterVertex(scene, rng));
+    Vertex& y0 = path.vertices.back();
     const Emitters& emitters = scene.emitters();
     const float uc = rng.uniform();
     const Vec2 u = uniform2(rng);

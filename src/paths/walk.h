@@ -21,6 +21,9 @@ Vertex sensorVertex(const Scene& scene);
 template <Sampler S>
 Vertex sampleEmitterVertex(const Scene& scene, S& rng);
 
+// The camera subpath of the sensor alone (light tracing's, whose light subpaths join it).
+void sensorSubpath(const Scene& scene, Subpath& path);
+
 // A camera subpath's first ray: through raster position `raster`, and, when the render loop has
 // traced it already (with its neighbours, in one packet: Scene::intersect8), its direction and hit.
 struct CameraRay {
