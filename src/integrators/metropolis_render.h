@@ -1,6 +1,6 @@
-// mlt's render loop: Markov chains of multiplexed Metropolis light transport (paths/markov_chain.h)
-// over path lengths 1 … max-depth, in passes, reproducible whatever the number of threads and of
-// processes.
+// mlt's passes: Markov chains of multiplexed Metropolis light transport (paths/markov_chain.h)
+// over path lengths 1 … max-depth, rendered in the loop every method shares (render_loop.h),
+// reproducible whatever the number of threads and of processes.
 //
 // 1. Bootstrap. N samples (MetropolisSettings::bootstrap), spread evenly over the lengths, each a
 //    fresh point of primary sample space: b_k, the mean luminance of C_k over length k's samples,

@@ -1,5 +1,7 @@
-// The one render loop every integrator runs in: progressive passes of one sample per pixel,
-// parallel over tiles, reproducible whatever the number of threads and of processes.
+// A render's settings and result, and the passes of the methods that render camera samples
+// (every integrator but mlt): progressive passes of one sample per pixel, parallel over tiles,
+// reproducible whatever the number of threads and of processes. The loop over the passes, which
+// every method shares, is render_loop.h; mlt's passes are metropolis_render.h.
 //
 // Passes are grouped in canonical blocks of kPassesPerBlock, counted from the first pass. A block
 // is summed in double in pass order, then added exactly into the film's totals (film.h). A team of
