@@ -550,15 +550,7 @@ TEST_F(Textures, HolesInAMaskedEmitterEmitNothing) {
         s.setCamera(0.9f, 1);
         scenes.push_back(load(s));
     }
-    const std::vector<Block> blocks = blockGrid(kSize, kSize, 2, 2);
-    for (const char* integrator : {"pt", "lt"}) {
-        RenderRequest r = texelRequest(integrator);
-        r.spp = 64;
-        BlockAgreement agreement;
-        agreement.compare(blockRuns(*scenes[0], r, 16, 500, blocks), blockRuns(*scenes[1], r, 16, 600, blocks),
-                          std::string(integrator) + ": masked vs quarter");
-        agreement.expectNoBias();
-    }
+    expectLitAlikeByPtAndLt(*scenes[0], *scenes[1], texelRequest("pt"), "masked vs quarter");
 }
 
 // Images embedded in the buffer (a bufferView, as in a .glb) or in a data: URI read as a file's do.
