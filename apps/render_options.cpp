@@ -10,7 +10,6 @@
 
 #include "core/error.h"
 #include "geometry/embree_isa.h"
-#include "input_words.h"
 #include "processes.h"
 #include "requests/integrator_parameters.h"
 #include "stats_report.h"
