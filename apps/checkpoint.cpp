@@ -78,6 +78,9 @@ RenderResult renderResumable(const Scene& scene, const Integrator& integrator, R
         };
     }
     RenderResult r = finished ? std::move(*old) : render(scene, integrator, rs);
+    // Stopped before any pass (in mlt's bootstrap): nothing new to keep, and the checkpoint it
+    // would have continued, if any, stays as it was.
+    if (r.interruptedBeforeAnyPass) return r;
     if (isRankZero()) {
         const bool interrupted = rs.stop && rs.stop->load();
         std::error_code ignored;

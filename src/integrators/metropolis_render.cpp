@@ -5,8 +5,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "core/stats.h"
 #include "paths/markov_chain.h"
@@ -52,9 +54,16 @@ struct ChainRun {
     Rng chainStream(int chain, uint64_t step) const { return Rng(seed, uint64_t(chainDomain), streamIndex(run, uint64_t(chain), step)); }
 };
 
+// How many bootstrap samples a task takes between two looks at the stop request: a large
+// --bootstrap takes seconds, and a look costs nothing beside 64 samples' paths.
+constexpr uint64_t kSamplesPerStopCheck = 64;
+
 // The bootstrap: each rank evaluates its share of the N samples, in parallel, the team gathers
-// the luminances in sample order, and every rank lays the chains out from them.
-ChainLayout bootstrap(const ChainRun& cr, int64_t samples, int chains, Team& team) {
+// the luminances in sample order, and every rank lays the chains out from them. Nothing if a stop
+// request (on any rank) came first: the ranks then stop in it together, with no chain to start.
+std::optional<ChainLayout> bootstrap(const ChainRun& cr, int64_t samples, int chains, const std::atomic<bool>* stop,
+                                     Team& team) {
+    auto stopRequested = [stop] { return stop && stop->load(std::memory_order_relaxed); };
     ChainLayout layout;
     const int K = cr.maxDepth;
     const uint64_t perLength = (uint64_t(samples) + uint64_t(K) - 1) / uint64_t(K);
@@ -66,6 +75,7 @@ ChainLayout bootstrap(const ChainRun& cr, int64_t samples, int chains, Team& tea
         thread_local TargetPaths paths;
         enrolThread();
         for (uint64_t i = r.begin(); i < r.end(); ++i) {
+            if ((i - r.begin()) % kSamplesPerStopCheck == 0 && stopRequested()) return;
             const int k = static_cast<int>(i / perLength) + 1;
             Rng fresh = cr.bootstrapStream(k, i % perLength, perLength);
             MarkovChain sample(k);
@@ -74,6 +84,7 @@ ChainLayout bootstrap(const ChainRun& cr, int64_t samples, int chains, Team& tea
             mine[i - begin] = std::isfinite(l) ? l : -1.0f;  // -1: not finite, counted and taken as 0
         }
     });
+    if (team.any(stopRequested())) return std::nullopt;
     // Rank 0 gathers every rank's slice (in rank order: sample order) and hands the whole to all.
     std::string bytes(reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(float));
     const std::vector<std::string> slices = team.gather(bytes);
@@ -285,7 +296,15 @@ RenderResult renderMetropolis(const Scene& scene, const Integrator& integrator, 
     auto elapsed = [&] { return since(start) - callbackSeconds; };
 
     const int chains = static_cast<int>(std::min<double>(ms.chains, pixels));
-    ChainLayout layout = arena.execute([&] { return bootstrap(cr, ms.bootstrap, chains, team); });
+    std::optional<ChainLayout> bootstrapped =
+        arena.execute([&] { return bootstrap(cr, ms.bootstrap, chains, settings.stop, team); });
+    if (!bootstrapped) {
+        result.seconds = elapsed();
+        result.interrupted = result.interruptedBeforeAnyPass = true;
+        setTiming(false);
+        return result;
+    }
+    ChainLayout& layout = *bootstrapped;
     layout.stepsPerPass = layout.chains() > 0 ? static_cast<int>(std::ceil(pixels / layout.chains())) : 0;
     ChainRenderer renderer(cr, layout, team);
     std::string states = resume ? resume->metropolis.chainStates : std::string();
