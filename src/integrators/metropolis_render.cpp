@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <optional>
 
@@ -54,9 +55,16 @@ struct ChainRun {
     Rng chainStream(int chain, uint64_t step) const { return Rng(seed, uint64_t(chainDomain), streamIndex(run, uint64_t(chain), step)); }
 };
 
+// How many bootstrap samples a task takes between two looks at the stop request: a large
+// --bootstrap takes seconds, and a look costs nothing beside 64 samples' paths.
+constexpr uint64_t kSamplesPerStopCheck = 64;
+
 // The bootstrap: each rank evaluates its share of the N samples, in parallel, the team gathers
-// the luminances in sample order, and every rank lays the chains out from them.
-ChainLayout bootstrap(const ChainRun& cr, int64_t samples, int chains, Team& team) {
+// the luminances in sample order, and every rank lays the chains out from them. Nothing if a stop
+// request (on any rank) came first: the ranks then stop in it together, with no chain to start.
+std::optional<ChainLayout> bootstrap(const ChainRun& cr, int64_t samples, int chains, const std::atomic<bool>* stop,
+                                     Team& team) {
+    auto stopRequested = [stop] { return stop && stop->load(std::memory_order_relaxed); };
     ChainLayout layout;
     const int K = cr.maxDepth;
     const uint64_t perLength = (uint64_t(samples) + uint64_t(K) - 1) / uint64_t(K);
@@ -68,6 +76,7 @@ ChainLayout bootstrap(const ChainRun& cr, int64_t samples, int chains, Team& tea
         thread_local TargetPaths paths;
         enrolThread();
         for (uint64_t i = r.begin(); i < r.end(); ++i) {
+            if ((i - r.begin()) % kSamplesPerStopCheck == 0 && stopRequested()) return;
             const int k = static_cast<int>(i / perLength) + 1;
             Rng fresh = cr.bootstrapStream(k, i % perLength, perLength);
             MarkovChain sample(k);
@@ -76,6 +85,7 @@ ChainLayout bootstrap(const ChainRun& cr, int64_t samples, int chains, Team& tea
             mine[i - begin] = std::isfinite(l) ? l : -1.0f;  // -1: not finite, counted and taken as 0
         }
     });
+    if (team.any(stopRequested())) return std::nullopt;
     // Rank 0 gathers every rank's slice (in rank order: sample order) and hands the whole to all.
     std::string bytes(reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(float));
     const std::vector<std::string> slices = team.gather(bytes);
@@ -262,9 +272,12 @@ public:
           cr_(runOf(scene, integrator, settings, pixels_)),
           arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {}
 
-    void start(RenderResult& result) override {
+    bool start(RenderResult& result) override {
         const int chains = static_cast<int>(std::min<double>(ms_.chains, pixels_));
-        layout_ = arena_.execute([&] { return bootstrap(cr_, ms_.bootstrap, chains, team_); });
+        std::optional<ChainLayout> bootstrapped =
+            arena_.execute([&] { return bootstrap(cr_, ms_.bootstrap, chains, settings_.stop, team_); });
+        if (!bootstrapped) return false;
+        layout_ = std::move(*bootstrapped);
         layout_.stepsPerPass = layout_.chains() > 0 ? static_cast<int>(std::ceil(pixels_ / layout_.chains())) : 0;
         renderer_.emplace(cr_, layout_, team_);
         std::string states = settings_.resume ? settings_.resume->metropolis.chainStates : std::string();
@@ -276,6 +289,7 @@ public:
         if (team_.rank() == 0) result.droppedSamples += layout_.notFinite;
         result.metropolis.run = cr_.run;
         result.metropolis.bootstrapSamples = uint64_t(ms_.bootstrap);
+        return true;
     }
     std::pair<uint64_t, uint64_t> round(uint64_t round, uint64_t budget) const override {
         return {round, std::min(budget, round + 1)};

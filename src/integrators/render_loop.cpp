@@ -34,7 +34,12 @@ RenderResult runPasses(const RenderSettings& settings, PassSource& source, Rende
     auto elapsed = [&] { return since(start) - callbackSeconds; };
     auto stopRequested = [&] { return settings.stop && settings.stop->load(); };
     auto timeUpOrStopped = [&] { return (settings.seconds > 0 && elapsed() >= settings.seconds) || stopRequested(); };
-    source.start(result);
+    if (!source.start(result)) {
+        result.seconds = elapsed();
+        result.interrupted = result.interruptedBeforeAnyPass = true;
+        setTiming(false);
+        return result;
+    }
 
     double lastCheckpoint = 0;
     uint64_t local = 0;      // passes this rank rendered

@@ -20,8 +20,9 @@ namespace tripath {
 class PassSource {
 public:
     virtual ~PassSource() = default;
-    // Work done once before the first round, on the render's clock (mlt's bootstrap).
-    virtual void start(RenderResult&) {}
+    // Work done once before the first round, on the render's clock (mlt's bootstrap); false when
+    // a stop request ended it, on every rank alike, before there was any pass to render.
+    virtual bool start(RenderResult&) { return true; }
     // This rank's passes in round `round`, as offsets [begin, end) from the render's first pass,
     // clipped to `budget` passes (UINT64_MAX: no bound).
     virtual std::pair<uint64_t, uint64_t> round(uint64_t round, uint64_t budget) const = 0;
@@ -44,7 +45,8 @@ public:
 };
 
 // Renders with `source` into `result` (its film made, its budget set): the loop above. Rank 0's
-// result gains the resumed render (settings.resume).
+// result gains the resumed render (settings.resume), unless the render stopped in its source's
+// start (RenderResult::interruptedBeforeAnyPass).
 RenderResult runPasses(const RenderSettings& settings, PassSource& source, RenderResult result);
 
 }  // namespace tripath
