@@ -33,9 +33,4 @@ std::optional<std::string> nearestName(const std::string& word, const std::vecto
     return best;
 }
 
-std::string clipped(const std::string& text) {
-    constexpr size_t kShown = 40;
-    return text.size() > kShown ? text.substr(0, kShown) + "..." : text;
-}
-
 }  // namespace tripath::app

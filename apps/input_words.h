@@ -1,5 +1,5 @@
 // Words from the command line in error messages: the known name nearest to a typo, for "did you
-// mean …?", and a long argument cut to what identifies it, so that a message stays one short line.
+// mean …?" (a long argument is cut by clipped, core/error.h).
 #pragma once
 #include <optional>
 #include <string>
@@ -11,8 +11,5 @@ namespace tripath::app {
 // from `word`, if that is at most half the word's length (a word further from every name is no
 // typo of one); the first such name on a tie.
 std::optional<std::string> nearestName(const std::string& word, const std::vector<std::string>& names);
-
-// `text` itself, or its first 40 characters and "..." when it is longer.
-std::string clipped(const std::string& text);
 
 }  // namespace tripath::app

@@ -26,7 +26,7 @@ void requireCommand(const CLI::App& app, int argc, char** argv) {
     if (argc < 2) throw tripath::InputError("a command is required: " + list + " (`tripath --help` says what each does)");
     if (std::find(names.begin(), names.end(), argv[1]) != names.end()) return;
     const auto nearest = tripath::app::nearestName(argv[1], names);
-    throw tripath::InputError(fmt::format("unknown command '{}'{}; the commands are {}", tripath::app::clipped(argv[1]),
+    throw tripath::InputError(fmt::format("unknown command '{}'{}; the commands are {}", tripath::clipped(argv[1]),
                                           nearest ? " (did you mean '" + *nearest + "'?)" : "", list));
 }
 

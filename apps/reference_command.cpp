@@ -122,6 +122,7 @@ void run(const ReferenceCommand& c) {
     const RenderResult r = renderResumable(*scene, *integrator, rs, o, how);
     if (!isRankZero()) return;
     printSummary(label, r, o);
+    if (r.interruptedBeforeAnyPass) return;  // nothing to write, as the summary said
 
     Metadata meta = renderMetadata(o, *scene, *integrator, r, team().size());
     Image image = r.image();

@@ -135,6 +135,7 @@ void run(const RenderCommand& c) {
     const RenderResult r = renderResumable(*scene, *integrator, rs, o, how);
     if (!isRankZero()) return;
     printSummary(label, r, o);
+    if (r.interruptedBeforeAnyPass) return;  // nothing to write, as the summary said
     write(c, rs, renderMetadata(o, *scene, *integrator, r, team().size()), r);
     std::cerr << "wrote " << c.out << (c.png.empty() ? "" : " and " + c.png) << "\n";
 }

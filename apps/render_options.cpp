@@ -10,7 +10,6 @@
 
 #include "core/error.h"
 #include "geometry/embree_isa.h"
-#include "input_words.h"
 #include "processes.h"
 #include "requests/integrator_parameters.h"
 #include "stats_report.h"
@@ -183,6 +182,10 @@ std::function<void(int, double)> progressReporter(const RenderSettings& s, int w
 void printSummary(const std::string& label, const RenderResult& r, const RenderRequest& o) {
     const int width = o.width, height = o.height;
     if (isatty(STDERR_FILENO)) std::cerr << "\n";
+    if (r.interruptedBeforeAnyPass) {
+        std::cerr << label << ": interrupted in mlt's bootstrap, before its first pass: no image\n";
+        return;
+    }
     const std::string done = r.interrupted ? "interrupted " + interruptionText(r)
                                            : fmt::format("{} spp in {:.2f} s", r.passes, r.seconds);
     std::cerr << fmt::format("{}: {} ({:.2f} Msamples/s), {} NaN/Inf samples dropped, {} MIS weights guarded to 0\n", label,

@@ -216,4 +216,18 @@ private:
     std::vector<Comparison> comparisons_;
 };
 
+// pt and lt each render scenes `a` and `b`, which must be lit alike, in 16 runs of 64 samples per
+// pixel of `r` (its size), block by block over 2 × 2 blocks: one agreement per integrator.
+inline void expectLitAlikeByPtAndLt(const Scene& a, const Scene& b, RenderRequest r, const std::string& what) {
+    const std::vector<Block> blocks = blockGrid(r.width, r.height, 2, 2);
+    for (const char* integrator : {"pt", "lt"}) {
+        r.integrator = integrator;
+        r.spp = 64;
+        BlockAgreement agreement;
+        agreement.compare(blockRuns(a, r, 16, 500, blocks), blockRuns(b, r, 16, 600, blocks),
+                          std::string(integrator) + ": " + what);
+        agreement.expectNoBias();
+    }
+}
+
 }  // namespace tripath::test

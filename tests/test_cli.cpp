@@ -72,6 +72,14 @@ public:
         waitpid(pid_, nullptr, 0);
     }
     void signal(int number) const { ::kill(pid_, number); }
+    // Whether it has installed a handler for signal `number` (the SigCgt mask of /proc/PID/status):
+    // from then on that signal reaches the program instead of ending it.
+    bool catches(int number) const {
+        std::ifstream status("/proc/" + std::to_string(pid_) + "/status");
+        for (std::string line; std::getline(status, line);)
+            if (line.starts_with("SigCgt:")) return (std::stoull(line.substr(7), nullptr, 16) >> (number - 1)) & 1;
+        return false;
+    }
     // Its exit code once it ends within `seconds`; -1 if a signal ended it or it did not end.
     int exitCode(int seconds) {
         int status = 0;
@@ -235,6 +243,25 @@ TEST_F(Cli, AnInterruptedReferenceSaysSoAndFails) {
     EXPECT_NE(recorded.find(" s of 1000 s"), std::string::npos) << recorded;
     EXPECT_NE(slurp(path("err.txt")).find("reference bdpt cornell: interrupted " + progress), std::string::npos)
         << slurp(path("err.txt"));
+}
+
+// Ctrl-C during mlt's bootstrap (here the largest, 10^7 samples: 20 s on two busy cores) stops it
+// at once. It has no pass, so it writes no image (an all-black EXR would pass for a render) and no
+// checkpoint (the chains of a partial bootstrap are not those a resumed run redoes): one line says
+// so, and the exit code is the interrupted one. The signal is sent once the handler is installed,
+// just before the bootstrap starts. Catches a bootstrap that runs to its end before looking at the
+// signal (it then renders a pass and writes both, or outlasts the 20 s wait), and an interrupted
+// bootstrap that writes an image or a checkpoint.
+TEST_F(Cli, MltInterruptedInItsBootstrapWritesNothingAndSaysSo) {
+    Background job({"render", "--scene", "cornell", "--integrator", "mlt", "--bootstrap", "10000000", "--width", "8",
+                    "--height", "8", "--spp", "4", "--checkpoint", "0.01", "--out", path("out.exr")},
+                   path("err.txt"));
+    ASSERT_TRUE(waitFor([&] { return job.catches(SIGINT); }, 120)) << slurp(path("err.txt"));
+    job.signal(SIGINT);
+    EXPECT_EQ(job.exitCode(20), 128 + SIGINT) << slurp(path("err.txt"));
+    EXPECT_EQ(slurp(path("err.txt")), "mlt cornell: interrupted in mlt's bootstrap, before its first pass: no image\n");
+    EXPECT_FALSE(fs::exists(path("out.exr")));
+    EXPECT_FALSE(fs::exists(path("out.exr.checkpoint")));
 }
 
 TEST_F(Cli, StatsReportWhatTheRenderDidAndWhereTheTimeWent) {

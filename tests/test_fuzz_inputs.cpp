@@ -1,15 +1,17 @@
-// The fuzz target's entry point (fuzz/gltf_fuzzer.cpp, compiled into this suite without libFuzzer)
-// on every file it starts from and every crasher it found: the seed corpus of
-// scripts/fuzz-gltf.sh (scenes/*.gltf and fuzz/seeds/) and the fixed finds in tests/data/fuzz/
-// (README.md there says what each one did). The ordinary build compiles the target, so a change
-// of the interfaces it calls breaks this build, not the next fuzzing run; and each input goes
-// through exactly what the fuzzer runs: load, Scene, one vcm pass on a few pixels.
+// The fuzz targets' entry points (fuzz/targets.h: fuzz/gltf_fuzzer.cpp and
+// fuzz/environment_checkpoint_fuzzer.cpp, compiled into this suite without libFuzzer) on every
+// file they start from and every crasher they found: the seed corpora of scripts/fuzz-gltf.sh
+// (scenes/*.gltf and fuzz/seeds/gltf/; fuzz/seeds/environment-checkpoint/) and the fixed finds in
+// tests/data/fuzz/ (README.md there says what each one did). The ordinary build compiles the
+// targets, so a change of the interfaces they call breaks this build, not the next fuzzing run;
+// and each input goes through exactly what the fuzzer runs.
 //
-// The contract is the fuzzer's: the entry point returns normally (the input rendered or was
-// refused with an InputError). Any other exception fails the test with its input's name; a crash
-// takes down this test's process, which CTest runs on its own, and fails it.
+// The contract is the fuzzer's: the entry point returns normally (the input was used or refused
+// with an InputError). Any other exception fails the test with its input's name; a crash takes
+// down this test's process, which CTest runs on its own, and fails it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -17,10 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "io/gltf_loader.h"
-#include "geometry/scene.h"
-
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
+#include "targets.h"
 
 namespace tripath {
 namespace {
@@ -29,45 +28,78 @@ namespace fs = std::filesystem;
 
 const fs::path kSource = TRIPATH_SOURCE_DIR;
 
-std::vector<fs::path> gltfFiles(const fs::path& dir) {
+using EntryPoint = std::string (*)(const uint8_t*, size_t);
+
+// The regular files of `dir` whose extension is one of `extensions` (none if there is no `dir`).
+std::vector<fs::path> filesIn(const fs::path& dir, const std::vector<std::string>& extensions) {
     std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(dir)) {
-        const std::string ext = entry.path().extension().string();
-        if (entry.is_regular_file() && (ext == ".gltf" || ext == ".glb")) files.push_back(entry.path());
-    }
+    if (!fs::is_directory(dir)) return files;
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.is_regular_file() &&
+            std::find(extensions.begin(), extensions.end(), entry.path().extension().string()) != extensions.end())
+            files.push_back(entry.path());
     return files;
 }
 
-void feedToTheFuzzTarget(const fs::path& file) {
+const std::vector<std::string> kGltf{".gltf", ".glb"};
+const std::vector<std::string> kInput{".input"};  // the second target's: a byte choosing the reader, then the file
+const fs::path kEnvironmentCheckpointSeeds = kSource / "fuzz" / "seeds" / "environment-checkpoint";
+
+std::string bytesOf(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
-    ASSERT_TRUE(in) << file;
-    const std::vector<char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    EXPECT_NO_THROW(LLVMFuzzerTestOneInput(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()))
-        << file.filename();
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// The seeds are valid scenes whose buffers are inside the file (data URIs or a .glb's chunk), so
-// they load from wherever the entry point writes them and reach its sampling. That they build a
-// Scene is checked first: a seed the target refused would pass here without being sampled.
-TEST(Fuzz, EntryPointSamplesEverySeed) {
-    std::vector<fs::path> seeds = gltfFiles(kSource / "scenes");
-    const std::vector<fs::path> more = gltfFiles(kSource / "fuzz" / "seeds");
+// What the entry point answers `bytes`: "" when it used them, else the refusal. Any other exception
+// fails the test, naming the file.
+std::string feed(EntryPoint target, const std::string& bytes, const fs::path& file) {
+    std::string refusal;
+    EXPECT_NO_THROW(refusal = target(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())) << file.filename();
+    return refusal;
+}
+
+// Every seed is used, not refused: a seed the target refused would seed nothing past the refusal.
+// The glTF seeds' buffers are inside the file (data URIs or a .glb's chunk), so they load from
+// wherever the entry point writes them and reach its sampling; the second target's seeds are
+// environment maps that load and sample and checkpoints that resume.
+TEST(Fuzz, EntryPointsUseEverySeed) {
+    std::vector<fs::path> seeds = filesIn(kSource / "scenes", kGltf);
+    const std::vector<fs::path> more = filesIn(kSource / "fuzz" / "seeds" / "gltf", kGltf);
     seeds.insert(seeds.end(), more.begin(), more.end());
     ASSERT_GE(seeds.size(), 10u);
-    const auto silent = [](const std::string&) {};
-    for (const fs::path& seed : seeds) {
-        EXPECT_NO_THROW(Scene(loadGltf(seed.string(), silent), 4, 4, silent)) << seed.filename();
-        feedToTheFuzzTarget(seed);
-    }
-    RecordProperty("seeds", static_cast<int>(seeds.size()));
+    for (const fs::path& seed : seeds)
+        EXPECT_EQ(feed(fuzz::loadAndSampleGltf, bytesOf(seed), seed), "") << seed.filename();
+    const std::vector<fs::path> second = filesIn(kEnvironmentCheckpointSeeds, kInput);
+    ASSERT_GE(second.size(), 10u);
+    for (const fs::path& seed : second)
+        EXPECT_EQ(feed(fuzz::readEnvironmentOrCheckpoint, bytesOf(seed), seed), "") << seed.filename();
+    RecordProperty("seeds", static_cast<int>(seeds.size() + second.size()));
+}
+
+// The checkpoint target's fifth choice: a checkpoint whose totals were changed is refused by its
+// checksum as it is (choice 3), and passes the checksum, to be resumed, once the target rewrites
+// the checksum line (choice 4).
+TEST(Fuzz, TheRewrittenChecksumLetsAChangedCheckpointThrough) {
+    std::string bytes = bytesOf(kEnvironmentCheckpointSeeds / "checkpoint-mlt.input");
+    ASSERT_EQ(bytes[0] % 5, 3);
+    const size_t totals = bytes.find("\n\n");
+    ASSERT_NE(totals, std::string::npos);
+    bytes[totals + 2 + 8] ^= 1;  // a low bit of the first value's middle word
+    const fs::path name = "checkpoint-mlt.input, a bit flipped";
+    EXPECT_NE(feed(fuzz::readEnvironmentOrCheckpoint, bytes, name).find("do not match its checksum"), std::string::npos);
+    bytes[0] = 4;
+    EXPECT_EQ(feed(fuzz::readEnvironmentOrCheckpoint, bytes, name), "");
 }
 
 // Every saved find, fixed since: each crashed, hung or threw something else when it was found.
-TEST(Fuzz, EntryPointSurvivesEverySavedFind) {
-    const std::vector<fs::path> finds = gltfFiles(kSource / "tests" / "data" / "fuzz");
-    ASSERT_GE(finds.size(), 5u);
-    for (const fs::path& find : finds) feedToTheFuzzTarget(find);
-    RecordProperty("inputs", static_cast<int>(finds.size()));
+TEST(Fuzz, EntryPointsSurviveEverySavedFind) {
+    const fs::path finds = kSource / "tests" / "data" / "fuzz";
+    const std::vector<fs::path> gltf = filesIn(finds, kGltf);
+    ASSERT_GE(gltf.size(), 5u);
+    for (const fs::path& find : gltf) feed(fuzz::loadAndSampleGltf, bytesOf(find), find);
+    const std::vector<fs::path> second = filesIn(finds / "environment-checkpoint", kInput);
+    for (const fs::path& find : second) feed(fuzz::readEnvironmentOrCheckpoint, bytesOf(find), find);
+    RecordProperty("inputs", static_cast<int>(gltf.size() + second.size()));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Image I/O and error metrics. Everything runs on tiny images in a private
 // temporary directory, so the suite stays fast and leaves nothing behind.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -379,6 +380,83 @@ TEST_F(ImageIoTest, FileFarTooSmallForItsHeaderIsRefusedUnread) {
     EXPECT_LT(fs::file_size(constant), 1024u * 512 * 12 / 100);
     const Image back = readImage(constant);
     EXPECT_EQ(back.rgb, filled(1024, 512, 0.25f, 0.5f, 2.0f).rgb);
+}
+
+// Reading `file` (at most `maxPixels`), refused, in a child process (whose peak memory is its
+// own) costs less than 1 GB.
+void expectRefusedWithinAGigabyte(const std::string& file, std::size_t maxPixels = SIZE_MAX) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_EXIT(
+        {
+            try {
+                readImage(file, maxPixels);
+            } catch (const InputError&) {
+            }
+            rusage usage{};
+            getrusage(RUSAGE_SELF, &usage);
+            std::_Exit(usage.ru_maxrss < 1000 * 1024 ? 0 : 1);  // kilobytes
+        },
+        testing::ExitedWithCode(0), "")
+        << file;
+}
+
+// A 400-byte OpenEXR file whose header holds a string attribute claiming 1.9 GB: OpenEXR sizes the
+// string by that claim before reading it, so without a look at the header first the read costs
+// 1.9 GB of memory before it fails. It is refused from its header, naming the claim, and far
+// below that.
+TEST_F(ImageIoTest, ExrAttributeLongerThanTheFileIsRefusedUnread) {
+    constexpr int32_t kClaimed = 1900000000;
+    std::string bytes = exrHeaderOnly(8, 4, 0, 4);
+    bytes.insert(8, std::string("note\0string\0", 12) + std::string(reinterpret_cast<const char*>(&kClaimed), 4) + "x");
+    const std::string file = path("claims.exr");
+    std::ofstream(file, std::ios::binary) << bytes;
+    EXPECT_LT(fs::file_size(file), 1000u);
+    expectInputError([&] { readImage(file); }, file + "': its OpenEXR header claims 1900000");
+    expectRefusedWithinAGigabyte(file);
+}
+
+// OpenEXR decodes a whole chunk at a time, and reserves its buffer on opening the file: lines per
+// chunk × the data window's width, all channels. A 400-byte DWAA file (1 byte a chunk is all that
+// compression is held to) whose window is 2^28 pixels wide and 1 high, within the texels an
+// environment map may have, claims 32-line chunks of 51 GB of halves; the same window 10 million
+// pixels wide claims 1.96 GB. Each is refused unopened, naming the chunk, once the chunk outweighs
+// the largest image read (the pixels allowed, as RGB floats: 6.4 GB for a map, 48 MB for 4M
+// pixels), rather than reserve it (address space that counts where memory is not overcommitted,
+// and against the fuzzer's limit on an allocation) and fail on OpenEXR's own limit or on the
+// pixel count.
+TEST_F(ImageIoTest, ExrChunkLargerThanTheLargestImageIsRefusedUnread) {
+    constexpr size_t kMapTexels = size_t(32768) * 16384, kFewer = size_t(1) << 22;
+    const std::string wide = path("wide.exr"), strip = path("strip.exr");
+    std::ofstream(wide, std::ios::binary) << exrHeaderOnly(1 << 28, 1, 8, 1) + std::string(9, '\0');
+    std::ofstream(strip, std::ios::binary) << exrHeaderOnly(10223616, 1, 8, 1) + std::string(9, '\0');
+    EXPECT_LT(fs::file_size(wide), 1000u);
+    expectInputError([&] { readImage(wide, kMapTexels); }, wide + "': OpenEXR would decode it in chunks of 51539607552 bytes");
+    expectInputError([&] { readImage(strip, kFewer); }, strip + "': OpenEXR would decode it in chunks of 1962934272 bytes");
+}
+
+// A Radiance HDR file of `width` × `height` pixels of one value, each scan line run-length
+// encoded in runs of 127 pixels (the longest) and the rest: as small as such a file can be.
+std::string constantHdr(int width, int height) {
+    std::string line = {2, 2, char(width >> 8), char(width & 0xff)};
+    for (const char component : {char(128), char(64), char(32), char(129)})  // 128, 64, 32 × 2^(129 − 136)
+        for (int left = width; left > 0; left -= 127) line += {char(128 + std::min(left, 127)), component};
+    std::string file = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) + "\n";
+    for (int y = 0; y < height; ++y) file += line;
+    return file;
+}
+
+// A 60-byte Radiance HDR file claiming 16384 × 8192 pixels (1.6 GB as floats) is refused by its
+// size before anything is allocated, naming what it claims, and far below that; a constant image
+// run-length encoded as tightly as the format allows, exactly the bound, reads back.
+TEST_F(ImageIoTest, HdrFileFarTooSmallForItsHeaderIsRefusedUnread) {
+    const std::string huge = path("huge.hdr");
+    std::ofstream(huge, std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n\x02\x02\x40";
+    expectInputError([&] { readImage(huge); }, huge + "': its header claims 16384x8192 pixels, which take at least");
+    expectRefusedWithinAGigabyte(huge);
+    const std::string constant = path("constant.hdr");
+    std::ofstream(constant, std::ios::binary) << constantHdr(1024, 512);
+    const Image back = readImage(constant);
+    EXPECT_EQ(back.rgb, filled(1024, 512, 1.0f, 0.5f, 0.25f).rgb);
 }
 
 TEST_F(ImageIoTest, CheckWritable) {

@@ -218,15 +218,7 @@ TEST_F(VertexColours, HolesOfAMaskedEmitterEmitNothing) {
         s.setCamera(0.9f, 1);
         scenes.push_back(load(s));
     }
-    const std::vector<Block> blocks = blockGrid(kSize, kSize, 2, 2);
-    for (const char* integrator : {"pt", "lt"}) {
-        RenderRequest r = request(integrator);
-        r.spp = 64;
-        BlockAgreement agreement;
-        agreement.compare(blockRuns(*scenes[0], r, 16, 500, blocks), blockRuns(*scenes[1], r, 16, 600, blocks),
-                          std::string(integrator) + ": masked vs right half");
-        agreement.expectNoBias();
-    }
+    expectLitAlikeByPtAndLt(*scenes[0], *scenes[1], request("pt"), "masked vs right half");
 }
 
 // `tripath export` writes a scene's vertex colours back (COLOR_0, float VEC4): loaded again, every

@@ -27,6 +27,13 @@ inline std::string oneLine(const std::string& text) {
     return out;
 }
 
+// `text` itself, or its first 40 characters and "..." when it is longer: a word from the command
+// line or a value from a file, cut to what identifies it, so that a message stays one short line.
+inline std::string clipped(const std::string& text) {
+    constexpr size_t kShown = 40;
+    return text.size() > kShown ? text.substr(0, kShown) + "..." : text;
+}
+
 struct InputError : std::runtime_error {
     explicit InputError(const std::string& message) : std::runtime_error(oneLine(message)) {}
 };

@@ -1,6 +1,6 @@
 // 64-bit FNV-1a over bytes added piece by piece: a fast hash with no cryptographic strength, which
 // tells apart files and records that differ by accident or by an edit. A checkpoint's checksum
-// (apps/checkpoint.h) and the content of the files a scene was built from (SourceFile,
+// (requests/checkpoint_file.h) and the content of the files a scene was built from (SourceFile,
 // geometry/scene_desc.h) are this hash. About 1 GB/s: a byte a multiply.
 #pragma once
 #include <cstddef>

@@ -80,6 +80,8 @@ Reference renderReference(const CompareRequest& o, const Scene& scene) {
     narrate(o, rs, label);
     const RenderResult result = render(scene, *integrator, rs);  // by every rank together
     finished(o, label, result, r);
+    // Stopped in mlt's bootstrap, it has no pass, so no file: the compare ends interrupted.
+    if (result.interruptedBeforeAnyPass) return {};
     if (o.team->rank() == 0 && !file.empty()) {
         createDirectory(std::filesystem::path(file).parent_path().string());
         writeExr(file, result.image(), renderMetadata(r, scene, *integrator, result, o.team->size()));

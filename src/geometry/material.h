@@ -18,8 +18,8 @@ enum class MaterialType {
     Lambertian,  // f = albedo / π
     Mirror,      // ideal specular reflection, reflectance = albedo at every angle (no Fresnel)
     Dielectric,  // ideal smooth glass: Fresnel-weighted reflection and refraction, ior
-    // rough glass: GGX microfacet reflection and refraction (Walter et al. 2007), ior above 1,
-    // albedo tinting transmission
+    // rough glass: GGX microfacet reflection and refraction (Walter et al. 2007), ior (refracting
+    // with at least 1.001: dielectric.cpp), albedo tinting transmission
     RoughDielectric,
     Conductor,   // rough GGX microfacet metal (Cook-Torrance), F0 = albedo (Schlick Fresnel)
     // the Conductor's limit at roughness 0 (glTF's metallic 1, roughness 0): ideal specular

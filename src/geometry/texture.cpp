@@ -128,6 +128,20 @@ Vec2 TextureSlot::transformed(const TexCoords& uv) const {
 
 Texel TextureSlot::lookup(const TexCoords& uv) const { return texture->lookup(transformed(uv), colourSpace); }
 
+// The texture's axes on the surface are ∂P/∂u' and ∂P/∂v', the columns of ∂P/∂(u, v) · A⁻¹ with A
+// the transform's linear part; with y up the image on both sides, (x, y) → F A⁻¹ F (x, y),
+// F = diag(1, −1). A scale that is not uniform skews those axes: the lean keeps its length and
+// takes the direction.
+Vec2 TextureSlot::leanInMeshFrame(Vec2 lean) const {
+    const auto& m = transform;
+    if (m[0] == 1 && m[1] == 0 && m[3] == 0 && m[4] == 1) return lean;
+    const float det = m[0] * m[4] - m[1] * m[3];
+    const Vec2 turned{(m[4] * lean.x + m[1] * lean.y) / det, (m[3] * lean.x + m[0] * lean.y) / det};
+    const float before = std::hypot(lean.x, lean.y), after = std::hypot(turned.x, turned.y);
+    if (!(after > 0)) return lean;
+    return {turned.x * (before / after), turned.y * (before / after)};
+}
+
 BsdfParams MaterialTextures::at(const BsdfParams& factors, const TexCoords& uv) const {
     BsdfParams p = factors;
     if (baseColor) {
@@ -166,7 +180,8 @@ bool MaterialTextures::holeAt(const TexCoords& uv, float vertexAlpha) const {
 Vec3 MaterialTextures::tangentNormalAt(const TexCoords& uv) const {
     if (!normal) return {0, 0, 1};
     const Texel t = normal.lookup(uv);
-    return {(2 * t[0] - 1) * normalScale, (2 * t[1] - 1) * normalScale, 2 * t[2] - 1};
+    const Vec2 lean = normal.leanInMeshFrame({(2 * t[0] - 1) * normalScale, (2 * t[1] - 1) * normalScale});
+    return {lean.x, lean.y, 2 * t[2] - 1};
 }
 
 }  // namespace tripath

@@ -68,6 +68,10 @@ struct TextureSlot {
     Texel maxOver(const TexCoords corners[3]) const;
     // The coordinates this slot reads the texture at: its set of uv, transformed.
     Vec2 transformed(const TexCoords& uv) const;
+    // A normal texel's lean, (x, y) in the texture's tangent space (x toward +u', y up its image,
+    // toward −v'), in the mesh's (toward +u and −v): turned by the inverse of the transform's
+    // linear part, whose axes the texture's tangent space follows, its length kept.
+    Vec2 leanInMeshFrame(Vec2 lean) const;
 };
 
 // The vertex colour (COLOR_0) multiplies what these give, where a mesh has one: its RGB the base

@@ -5,15 +5,18 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <string_view>
 #include <system_error>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "image/exr_header.h"
 #include "image/least_file_size.h"
 
 namespace tripath {
@@ -87,31 +90,56 @@ void openAndWrite(OIIO::ImageOutput& out, const std::string& tmp, const std::str
         throw InputError(fmt::format("cannot write '{}': {}", path, oiioError(&out)));
 }
 
-// Refuses an OpenEXR or PNG file too small to hold the pixels its header claims
-// (least_file_size.h).
+// Refuses a PNG or Radiance HDR file too small to hold the pixels its header claims
+// (least_file_size.h); OpenEXR files are checked before they are opened (checkExrHeaders).
 void checkFileSize(const std::string& path, const OIIO::ImageInput& in) {
     const std::string_view format = in.format_name();
     const OIIO::ImageSpec& spec = in.spec();
     uint64_t least = 0;
-    std::string how;
-    if (format == "openexr") {
-        const ExrLayout layout{uint64_t(spec.width), uint64_t(spec.height), uint64_t(std::max(spec.tile_width, 0)),
-                               uint64_t(std::max(spec.tile_height, 0)), uint64_t(spec.pixel_bytes(true)),
-                               spec.get_string_attribute("compression")};
-        least = leastExrBytes(layout);
-        how = " (compression: " + layout.compression + ")";
-    } else if (format == "png") {
+    if (format == "png") {
         std::string start(29, '\0');
         std::ifstream file(path, std::ios::binary);
         file.read(start.data(), std::streamsize(start.size()));
         least = leastPngBytes(std::string_view(start.data(), size_t(file.gcount())));
+    } else if (format == "hdr") {
+        least = leastHdrBytes(uint64_t(spec.width), uint64_t(spec.height));
     }
     std::error_code ec;
     const uintmax_t size = fs::file_size(path, ec);
     if (!ec && size < least)
-        throw InputError(fmt::format("cannot read '{}': its header claims {}x{} pixels{}, which take at least {} "
-                                     "bytes, and the file has {}",
-                                     path, spec.width, spec.height, how, least, size));
+        throw InputError(fmt::format("cannot read '{}': its header claims {}x{} pixels, which take at least {} bytes, "
+                                     "and the file has {}",
+                                     path, spec.width, spec.height, least, size));
+}
+
+// Refuses, unopened, an OpenEXR file (known by its content, not its name: OpenImageIO tries every
+// reader on a file the one its name gives cannot open) shorter than what its headers claim or than
+// its parts' pixels need (least_file_size.h), or whose first part OpenEXR would decode in chunks
+// larger than the bytes of `maxPixels` RGB floats, the largest image the caller takes
+// (exr_header.h).
+void checkExrHeaders(const std::string& path, std::size_t maxPixels) {
+    std::ifstream file(path, std::ios::binary);
+    const std::optional<ExrHeaders> headers = readExrHeaders(file);
+    std::error_code ec;
+    const uintmax_t size = fs::file_size(path, ec);
+    if (!headers || ec) return;
+    if (size < headers->end)
+        throw InputError(fmt::format("cannot read '{}': its OpenEXR header claims {} bytes, and the file has {}", path,
+                                     headers->end, size));
+    if (headers->parts.empty()) return;
+    uint64_t least = headers->end;
+    for (const ExrLayout& part : headers->parts) least += std::min(leastExrBytes(part), UINT64_MAX - least);
+    const ExrLayout& first = headers->parts.front();
+    if (size < least)
+        throw InputError(fmt::format("cannot read '{}': its header claims {}x{} pixels (compression: {}), which take "
+                                     "at least {} bytes, and the file has {}",
+                                     path, first.width, first.height, first.compression, least, size));
+    const uint64_t chunk = exrChunkBytes(first);
+    const uint64_t budget = maxPixels > UINT64_MAX / 12 ? UINT64_MAX : 12 * uint64_t(maxPixels);
+    if (chunk > budget)
+        throw InputError(fmt::format("cannot read '{}': OpenEXR would decode it in chunks of {} bytes, more than the "
+                                     "{} of the largest image read here ({} pixels)",
+                                     path, chunk, budget, maxPixels));
 }
 
 Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::size_t maxPixels = SIZE_MAX) {
@@ -125,6 +153,7 @@ Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::siz
     // stored colour values untouched.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
+    checkExrHeaders(path, maxPixels);
     auto in = OIIO::ImageInput::open(path, &config);
     if (!in) throw InputError(fmt::format("cannot read '{}': {}", path, oiioError<OIIO::ImageInput>(nullptr)));
 

@@ -1,4 +1,4 @@
-// The fewest bytes an OpenEXR or PNG file can take (least_file_size.h).
+// The fewest bytes an OpenEXR, PNG or Radiance HDR file can take (least_file_size.h).
 #include "image/least_file_size.h"
 
 #include <algorithm>
@@ -17,15 +17,6 @@ uint32_t bigEndian32(const char* p) {
     return uint32_t(uint8_t(p[0])) << 24 | uint32_t(uint8_t(p[1])) << 16 | uint32_t(uint8_t(p[2])) << 8 | uint8_t(p[3]);
 }
 
-// Scan lines per chunk, by compression (OpenEXR's table); an unknown one as the most, which
-// bounds the file the least.
-uint64_t linesPerChunk(const std::string& compression) {
-    if (compression == "none" || compression == "rle" || compression == "zips") return 1;
-    if (compression == "zip" || compression == "pxr24") return 16;
-    if (compression == "piz" || compression == "b44" || compression == "b44a" || compression == "dwaa") return 32;
-    return 256;
-}
-
 // The largest ratio of raw to stored bytes, 0 where none is stated.
 uint64_t largestRatio(const std::string& compression) {
     if (compression == "none") return 1;
@@ -37,15 +28,28 @@ uint64_t largestRatio(const std::string& compression) {
 
 }  // namespace
 
+uint64_t exrLinesPerChunk(const std::string& compression) {
+    if (compression == "none" || compression == "rle" || compression == "zips") return 1;
+    if (compression == "zip" || compression == "pxr24") return 16;
+    if (compression == "piz" || compression == "b44" || compression == "b44a" || compression == "dwaa") return 32;
+    return 256;
+}
+
 uint64_t leastExrBytes(const ExrLayout& layout) {
     const bool tiled = layout.tileWidth > 0 && layout.tileHeight > 0;
     const uint64_t chunks = tiled ? ceilDiv(layout.width, layout.tileWidth) * ceilDiv(layout.height, layout.tileHeight)
-                                  : ceilDiv(layout.height, linesPerChunk(layout.compression));
+                                  : ceilDiv(layout.height, exrLinesPerChunk(layout.compression));
     const uint64_t perChunk = 8 + (tiled ? 20 : 8);
     const uint64_t ratio = largestRatio(layout.compression);
     const Wide raw = Wide(layout.width) * layout.height * layout.pixelBytes;
     const Wide data = ratio == 0 ? Wide(chunks) : std::max(Wide(chunks), raw / ratio);
     return saturated(Wide(chunks) * perChunk + data);
+}
+
+uint64_t leastHdrBytes(uint64_t width, uint64_t height) {
+    const uint64_t flat = 4 * width;
+    const uint64_t line = width >= 8 && width <= 0x7fff ? std::min(flat, 4 + 8 * ceilDiv(width, 127)) : flat;
+    return saturated(Wide(line) * height);
 }
 
 uint64_t leastPngBytes(std::string_view start) {

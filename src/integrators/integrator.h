@@ -9,6 +9,9 @@
 
 namespace tripath {
 
+struct RenderSettings;
+struct RenderResult;
+
 // Vertex merging's radius schedule (vcm, bpm, ppm): r_i = r_1 · i^((α−1)/2) at the i-th pass
 // (i = 1, 2, … over the whole render, a reference's continuation included), so that the radius
 // depends on the pass index alone, never on threads or timing.
@@ -71,6 +74,9 @@ public:
     virtual ~Integrator() = default;
     virtual std::string name() const = 0;
     virtual StrategySet strategies() const = 0;
+    // The render: the loop over passes (render_loop.h) with this method's passes. By default,
+    // passes of camera samples in tiles, each sample by sample() (render.cpp); mlt runs its chains.
+    virtual RenderResult render(const Scene& scene, const RenderSettings& settings) const;
     // One sample for pixel `pixel` whose camera ray is `ray` (its raster position already jittered
     // inside the pixel, and its hit found when the render loop traced it in a packet). By default:
     // a camera walk; the splats of the pass's light paths that fall to this pixel's sample
@@ -83,8 +89,8 @@ public:
     // Whether sample() traces the camera ray it is given (lt does not): the render loop then traces
     // neighbouring pixels' camera rays together.
     virtual bool tracesCameraRays() const { return true; }
-    // Whether it renders with Markov chains (mlt: integrators/metropolis_render.h) rather than in
-    // passes of camera samples; sample() is then never called.
+    // Whether it renders with Markov chains (mlt: integrators/metropolis_render.h, its render())
+    // rather than in passes of camera samples; sample() is then never called.
     virtual bool runsChains() const { return false; }
     const IntegratorSettings& settings() const { return settings_; }
 

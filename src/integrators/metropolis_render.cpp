@@ -5,10 +5,13 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <chrono>
+#include <array>
+#include <atomic>
 #include <cmath>
+#include <optional>
 
 #include "core/stats.h"
+#include "integrators/render_loop.h"
 #include "paths/markov_chain.h"
 
 namespace tripath {
@@ -52,9 +55,16 @@ struct ChainRun {
     Rng chainStream(int chain, uint64_t step) const { return Rng(seed, uint64_t(chainDomain), streamIndex(run, uint64_t(chain), step)); }
 };
 
+// How many bootstrap samples a task takes between two looks at the stop request: a large
+// --bootstrap takes seconds, and a look costs nothing beside 64 samples' paths.
+constexpr uint64_t kSamplesPerStopCheck = 64;
+
 // The bootstrap: each rank evaluates its share of the N samples, in parallel, the team gathers
-// the luminances in sample order, and every rank lays the chains out from them.
-ChainLayout bootstrap(const ChainRun& cr, int64_t samples, int chains, Team& team) {
+// the luminances in sample order, and every rank lays the chains out from them. Nothing if a stop
+// request (on any rank) came first: the ranks then stop in it together, with no chain to start.
+std::optional<ChainLayout> bootstrap(const ChainRun& cr, int64_t samples, int chains, const std::atomic<bool>* stop,
+                                     Team& team) {
+    auto stopRequested = [stop] { return stop && stop->load(std::memory_order_relaxed); };
     ChainLayout layout;
     const int K = cr.maxDepth;
     const uint64_t perLength = (uint64_t(samples) + uint64_t(K) - 1) / uint64_t(K);
@@ -66,6 +76,7 @@ ChainLayout bootstrap(const ChainRun& cr, int64_t samples, int chains, Team& tea
         thread_local TargetPaths paths;
         enrolThread();
         for (uint64_t i = r.begin(); i < r.end(); ++i) {
+            if ((i - r.begin()) % kSamplesPerStopCheck == 0 && stopRequested()) return;
             const int k = static_cast<int>(i / perLength) + 1;
             Rng fresh = cr.bootstrapStream(k, i % perLength, perLength);
             MarkovChain sample(k);
@@ -74,6 +85,7 @@ ChainLayout bootstrap(const ChainRun& cr, int64_t samples, int chains, Team& tea
             mine[i - begin] = std::isfinite(l) ? l : -1.0f;  // -1: not finite, counted and taken as 0
         }
     });
+    if (team.any(stopRequested())) return std::nullopt;
     // Rank 0 gathers every rank's slice (in rank order: sample order) and hands the whole to all.
     std::string bytes(reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(float));
     const std::vector<std::string> slices = team.gather(bytes);
@@ -249,110 +261,98 @@ private:
     std::vector<PassCounts> counts_;
 };
 
+// mlt's passes: every rank renders every pass, each with its share of the chains (chain i on
+// rank i mod ranks), so the team stops only together; the bootstrap comes first, on the clock.
+class ChainPasses final : public PassSource {
+public:
+    ChainPasses(const Scene& scene, const Integrator& integrator, const RenderSettings& settings)
+        : team_(settings.team ? *settings.team : solo()), settings_(settings),
+          ms_(integrator.settings().metropolis), pixels_(double(scene.camera().width()) * scene.camera().height()),
+          firstPass_(settings.resume ? settings.resume->nextPass : settings.firstPass),
+          cr_(runOf(scene, integrator, settings, pixels_)),
+          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {}
+
+    bool start(RenderResult& result) override {
+        const int chains = static_cast<int>(std::min<double>(ms_.chains, pixels_));
+        std::optional<ChainLayout> bootstrapped =
+            arena_.execute([&] { return bootstrap(cr_, ms_.bootstrap, chains, settings_.stop, team_); });
+        if (!bootstrapped) return false;
+        layout_ = std::move(*bootstrapped);
+        layout_.stepsPerPass = layout_.chains() > 0 ? static_cast<int>(std::ceil(pixels_ / layout_.chains())) : 0;
+        renderer_.emplace(cr_, layout_, team_);
+        std::string states = settings_.resume ? settings_.resume->metropolis.chainStates : std::string();
+        team_.broadcast(states);
+        if (settings_.resume)
+            renderer_->resume(states);
+        else
+            arena_.execute([&] { renderer_->start(); });
+        if (team_.rank() == 0) result.droppedSamples += layout_.notFinite;
+        result.metropolis.run = cr_.run;
+        result.metropolis.bootstrapSamples = uint64_t(ms_.bootstrap);
+        return true;
+    }
+    std::pair<uint64_t, uint64_t> round(uint64_t round, uint64_t budget) const override {
+        return {round, std::min(budget, round + 1)};
+    }
+    // Without chains (the bootstrap found no light at any length) a pass is empty and the image
+    // black: one pass says so, whatever the time budget.
+    bool budgetDone(uint64_t round, uint64_t budget) const override {
+        return round + 1 >= budget || (layout_.chains() == 0 && settings_.seconds > 0);
+    }
+    bool stopsAlone() const override { return false; }
+    void run(uint64_t, RenderResult& result) override {
+        arena_.execute([&] { renderer_->pass(result.film, result); });
+    }
+    int passesDone(uint64_t local) const override { return static_cast<int>(local); }
+    void gather(RenderResult& into, Film& mine, uint64_t local, uint64_t, const RenderResult& counts) override {
+        into.passes = static_cast<int>(local);
+        into.nextPass = firstPass_ + local;
+        std::array<uint64_t, 2> sums{counts.droppedSamples, counts.guardedWeights};
+        team_.sum(sums);
+        into.droppedSamples = sums[0];
+        into.guardedWeights = sums[1];
+        into.metropolis.run = cr_.run;
+        into.metropolis.bootstrapSamples = uint64_t(ms_.bootstrap);
+        into.metropolis.lengths = renderer_->lengths(team_);
+        into.metropolis.chainStates = renderer_->states(team_);
+        team_.reduce(team_.rank() == 0 ? into.film : mine);
+    }
+
+private:
+    // The chains' run: a fresh render's first pass, or the resumed render's run.
+    static ChainRun runOf(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, double pixels) {
+        const auto [bootstrapDomain, chainDomain] = metropolisDomains(settings.domain);
+        return {scene,
+                {&scene, multiplexedMisContext(integrator.settings().mis, pixels), pixels},
+                settings.seed,
+                settings.resume ? settings.resume->metropolis.run : settings.firstPass,
+                bootstrapDomain,
+                chainDomain,
+                integrator.settings().metropolis.largeStep,
+                integrator.settings().walk.maxDepth};
+    }
+    Team& team_;
+    const RenderSettings& settings_;
+    const MetropolisSettings& ms_;
+    const double pixels_;
+    const uint64_t firstPass_;
+    const ChainRun cr_;
+    tbb::task_arena arena_;
+    ChainLayout layout_;
+    std::optional<ChainRenderer> renderer_;
+};
+
 }  // namespace
 
 RenderResult renderMetropolis(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
     const Camera& cam = scene.camera();
-    Team& team = settings.team ? *settings.team : solo();
-    const MetropolisSettings& ms = integrator.settings().metropolis;
-    const double pixels = double(cam.width()) * cam.height();
-    const RenderResult* resume = settings.resume;
-    const auto [bootstrapDomain, chainDomain] = metropolisDomains(settings.domain);
-    const uint64_t firstPass = resume ? resume->nextPass : settings.firstPass;
-    const ChainRun cr{scene,
-                      {&scene, multiplexedMisContext(integrator.settings().mis, pixels), pixels},
-                      settings.seed,
-                      resume ? resume->metropolis.run : settings.firstPass,
-                      bootstrapDomain,
-                      chainDomain,
-                      ms.largeStep,
-                      integrator.settings().walk.maxDepth};
     FilmLayers layers = settings.layers;
     layers.strategies = integrator.strategies();
     RenderResult result{.film = Film(cam.width(), cam.height(), layers),
                         .budgetPasses = settings.spp,
                         .budgetSeconds = settings.seconds};
-    result.metropolis.run = cr.run;
-    result.metropolis.bootstrapSamples = uint64_t(ms.bootstrap);
-    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
-    setTiming(settings.timing);
-    enrolThread();
-    const StatsSnapshot statsBefore = statsSnapshot();
-    team.any(false);  // start together
-    const auto start = std::chrono::steady_clock::now();
-    double callbackSeconds = 0;
-    auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-    auto elapsed = [&] { return since(start) - callbackSeconds; };
-
-    const int chains = static_cast<int>(std::min<double>(ms.chains, pixels));
-    ChainLayout layout = arena.execute([&] { return bootstrap(cr, ms.bootstrap, chains, team); });
-    layout.stepsPerPass = layout.chains() > 0 ? static_cast<int>(std::ceil(pixels / layout.chains())) : 0;
-    ChainRenderer renderer(cr, layout, team);
-    std::string states = resume ? resume->metropolis.chainStates : std::string();
-    team.broadcast(states);
-    if (resume)
-        renderer.resume(states);
-    else
-        arena.execute([&] { renderer.start(); });
-    if (team.rank() == 0) result.droppedSamples += layout.notFinite;
-
-    const uint64_t budget = settings.spp > 0 ? uint64_t(settings.spp) : UINT64_MAX;
-    auto timeUpOrStopped = [&] {
-        return (settings.seconds > 0 && elapsed() >= settings.seconds) || (settings.stop && settings.stop->load());
-    };
-    // The team's totals so far: rank 0's film gains the others' (into `into`), counts and states.
-    auto gather = [&](RenderResult& into, Film& mine, uint64_t passes) {
-        into.passes = static_cast<int>(passes);
-        into.nextPass = firstPass + passes;
-        std::array<uint64_t, 2> sums{result.droppedSamples, result.guardedWeights};
-        team.sum(sums);
-        into.droppedSamples = sums[0];
-        into.guardedWeights = sums[1];
-        into.metropolis.run = cr.run;
-        into.metropolis.bootstrapSamples = uint64_t(ms.bootstrap);
-        into.metropolis.lengths = renderer.lengths(team);
-        into.metropolis.chainStates = renderer.states(team);
-        team.reduce(team.rank() == 0 ? into.film : mine);
-    };
-    double lastCheckpoint = 0;
-    uint64_t local = 0;
-    while (local < budget) {
-        arena.execute([&] { renderer.pass(result.film, result); });
-        ++local;
-        result.seconds = elapsed();
-        if (settings.progress) settings.progress(int(local), result.seconds);
-        if (settings.onPass) {
-            const auto t0 = std::chrono::steady_clock::now();
-            settings.onPass(result.film, int(local), result.seconds);
-            callbackSeconds += since(t0);
-        }
-        // Without chains (the bootstrap found no light at any length) a pass is empty and the
-        // image black: one pass says so, whatever the time budget.
-        const bool nothingToDo = layout.chains() == 0 && settings.seconds > 0;
-        if (local >= budget || nothingToDo || team.any(timeUpOrStopped())) break;
-        if (settings.checkpointSeconds > 0 && team.any(elapsed() - lastCheckpoint >= settings.checkpointSeconds)) {
-            const auto t0 = std::chrono::steady_clock::now();
-            RenderResult sofar{.film = team.rank() == 0 ? result.film : Film(0, 0), .seconds = result.seconds};
-            gather(sofar, result.film, local);
-            if (team.rank() == 0 && settings.onCheckpoint) settings.onCheckpoint(addResumed(sofar, resume));
-            callbackSeconds += since(t0);
-            lastCheckpoint = elapsed();
-        }
-    }
-    result.seconds = elapsed();
-    std::array<uint64_t, 2> maxima{static_cast<uint64_t>(result.seconds * 1e6), settings.stop && settings.stop->load()};
-    team.max(maxima);
-    result.seconds = maxima[0] / 1e6;
-    result.interrupted = maxima[1] != 0;
-    const auto reduceStart = std::chrono::steady_clock::now();
-    gather(result, result.film, local);
-    result.reduceSeconds = since(reduceStart);
-    if (team.rank() == 0) addResumed(result, resume);
-    result.stats = statsSnapshot() - statsBefore;
-    team.sum(result.stats.events);
-    team.sum(result.stats.phaseSamples);
-    setTiming(false);
-    return result;
+    ChainPasses passes(scene, integrator, settings);
+    return runPasses(settings, passes, std::move(result));
 }
 
 }  // namespace tripath

@@ -1,10 +1,13 @@
-// mlt's render loop: Markov chains of multiplexed Metropolis light transport (paths/markov_chain.h)
-// over path lengths 1 … max-depth, in passes, reproducible whatever the number of threads and of
-// processes.
+// mlt's passes: Markov chains of multiplexed Metropolis light transport (paths/markov_chain.h)
+// over path lengths 1 … max-depth, rendered in the loop every method shares (render_loop.h),
+// reproducible whatever the number of threads and of processes.
 //
 // 1. Bootstrap. N samples (MetropolisSettings::bootstrap), spread evenly over the lengths, each a
 //    fresh point of primary sample space: b_k, the mean luminance of C_k over length k's samples,
-//    estimates E[L(C_k)], the brightness of the length-k image.
+//    estimates E[L(C_k)], the brightness of the length-k image. A stop request (RenderSettings::stop)
+//    during it ends the render at once, before any pass: a partial bootstrap would give other b_k
+//    and chains than a resumed render redoes, so there is nothing to write or checkpoint
+//    (RenderResult::interruptedBeforeAnyPass).
 // 2. Chains. The render's C chains (MetropolisSettings::chains, at most one per pixel) are shared
 //    among the lengths in proportion to b_k (Hachisuka et al. 2014, §4), at least one for each
 //    length with b_k > 0. Chain i of length k starts at a bootstrap sample of that length drawn in

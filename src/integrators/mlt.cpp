@@ -12,11 +12,11 @@
 // 1024, at most one per pixel), --large-step (the probability of a proposal that draws a fresh
 // point; default 0.3). --spp counts steps per pixel: a pass takes about one step per pixel,
 // spread over the chains; --rr-depth and --light-paths do not apply (the chains' walks play no
-// roulette, and every proposal makes one path). The render loop is integrators/metropolis_render.h;
+// roulette, and every proposal makes one path). Its passes are integrators/metropolis_render.h;
 // the design, docs/design.md §1.2.
 #include <stdexcept>
 
-#include "integrators/integrator.h"
+#include "integrators/metropolis_render.h"
 
 namespace tripath {
 
@@ -27,6 +27,9 @@ public:
     StrategySet strategies() const override { return {}; }
     bool tracesCameraRays() const override { return false; }
     bool runsChains() const override { return true; }
+    RenderResult render(const Scene& scene, const RenderSettings& settings) const override {
+        return renderMetropolis(scene, *this, settings);
+    }
     void sample(const Scene&, const Pass&, int, const CameraRay&, Rng&, PathBuffers&, ContributionSink&) const override {
         throw std::logic_error("mlt renders with chains (metropolis_render.h), not pixel samples");
     }

@@ -7,14 +7,13 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <optional>
 #include <tuple>
 
 #include "core/error.h"
 #include "core/stats.h"
 #include "integrators/light_phase.h"
-#include "integrators/metropolis_render.h"
+#include "integrators/render_loop.h"
 
 namespace tripath {
 
@@ -168,21 +167,6 @@ private:
     std::vector<TileOutput> outputs_;
 };
 
-// What the team's ranks add up at the end (and at checkpoints): every rank's own counts, and
-// whether any was asked to stop.
-void addUpOverTeam(Team& team, RenderResult& r, int localPasses, uint64_t localNext, bool stopped) {
-    std::array<uint64_t, 3> sums{uint64_t(localPasses), r.droppedSamples, r.guardedWeights};
-    team.sum(sums);
-    std::array<uint64_t, 3> maxima{localNext, static_cast<uint64_t>(r.seconds * 1e6), stopped};
-    team.max(maxima);
-    r.passes = static_cast<int>(sums[0]);
-    r.droppedSamples = sums[1];
-    r.guardedWeights = sums[2];
-    r.nextPass = maxima[0];
-    r.seconds = maxima[1] / 1e6;
-    r.interrupted = maxima[2] != 0;
-}
-
 // The order one process logs dropped samples in: by pass, then tile (PassRenderer::run collects
 // the tiles' logs in tile order), then pixel (renderTile walks a tile's rows in order); a sample
 // that dropped twice is logged twice, and a stable sort keeps such twins together.
@@ -218,6 +202,45 @@ void gatherDroppedLog(Team& team, const Camera& cam, std::vector<DroppedSample>&
     if (log.size() > kDroppedLogSize) log.resize(kDroppedLogSize);
 }
 
+// The fixed methods' passes: canonical blocks of kPassesPerBlock, dealt to the ranks in rounds,
+// rank r rendering block j·N + r in round j (render.h).
+class TilePasses final : public PassSource {
+public:
+    TilePasses(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, uint64_t firstPass)
+        : renderer_(scene, integrator, settings), camera_(scene.camera()), team_(settings.team ? *settings.team : solo()),
+          firstPass_(firstPass) {}
+    std::pair<uint64_t, uint64_t> round(uint64_t round, uint64_t budget) const override {
+        const uint64_t begin = (round * ranks() + uint64_t(team_.rank())) * kPassesPerBlock;
+        return {std::min(budget, begin), std::min(budget, begin + kPassesPerBlock)};
+    }
+    bool budgetDone(uint64_t round, uint64_t budget) const override { return (round + 1) * ranks() * kPassesPerBlock >= budget; }
+    bool stopsAlone() const override { return true; }
+    void run(uint64_t offset, RenderResult& result) override { renderer_.run(firstPass_ + offset, result); }
+    void endRound(Film& film) override { renderer_.endBlock(film); }
+    int passesDone(uint64_t local) const override { return static_cast<int>(local * ranks()); }
+    void gather(RenderResult& into, Film& mine, uint64_t local, uint64_t localNext, const RenderResult& counts) override {
+        std::array<uint64_t, 3> sums{local, counts.droppedSamples, counts.guardedWeights};
+        team_.sum(sums);
+        std::array<uint64_t, 1> next{firstPass_ + localNext};
+        team_.max(next);
+        std::vector<DroppedSample> log = counts.droppedLog;
+        gatherDroppedLog(team_, camera_, log);
+        into.passes = static_cast<int>(sums[0]);
+        into.droppedSamples = sums[1];
+        into.guardedWeights = sums[2];
+        into.nextPass = next[0];
+        into.droppedLog = std::move(log);
+        team_.reduce(team_.rank() == 0 ? into.film : mine);
+    }
+
+private:
+    uint64_t ranks() const { return uint64_t(team_.size()); }
+    PassRenderer renderer_;
+    const Camera& camera_;
+    Team& team_;
+    const uint64_t firstPass_;
+};
+
 }  // namespace
 
 RenderResult& addResumed(RenderResult& r, const RenderResult* resume) {
@@ -232,87 +255,19 @@ RenderResult& addResumed(RenderResult& r, const RenderResult* resume) {
     return r;
 }
 
-RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
-    if (integrator.runsChains()) return renderMetropolis(scene, integrator, settings);
+RenderResult Integrator::render(const Scene& scene, const RenderSettings& settings) const {
     const Camera& cam = scene.camera();
-    Team& team = settings.team ? *settings.team : solo();
     FilmLayers layers = settings.layers;
-    layers.strategies = integrator.strategies();
+    layers.strategies = strategies();
     RenderResult result{.film = Film(cam.width(), cam.height(), layers),
                         .budgetPasses = settings.spp,
                         .budgetSeconds = settings.seconds};
-    const RenderResult* resume = settings.resume;
-    const uint64_t firstPass = resume ? resume->nextPass : settings.firstPass;
-    PassRenderer passes(scene, integrator, settings);
-    setTiming(settings.timing);
-    enrolThread();
-    const StatsSnapshot statsBefore = statsSnapshot();
-    team.any(false);  // start together: --time counts from the same moment on every rank
-    const auto start = std::chrono::steady_clock::now();
-    double callbackSeconds = 0;  // spent in onPass and onCheckpoint: the caller's time, not the render's
-    auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-    auto elapsed = [&] { return since(start) - callbackSeconds; };
-    auto timeUpOrStopped = [&] {
-        return (settings.seconds > 0 && elapsed() >= settings.seconds) || (settings.stop && settings.stop->load());
-    };
-    double lastCheckpoint = 0;
+    TilePasses passes(scene, *this, settings, settings.resume ? settings.resume->nextPass : settings.firstPass);
+    return runPasses(settings, passes, std::move(result));
+}
 
-    int local = 0;                  // passes this rank rendered
-    uint64_t localNext = firstPass; // one past the highest pass index this rank used
-    const uint64_t budget = settings.spp > 0 ? uint64_t(settings.spp) : UINT64_MAX;
-    const uint64_t ranks = uint64_t(team.size());
-    for (uint64_t round = 0;; ++round) {
-        // This rank's block of the round, clipped to the budget.
-        const uint64_t block = round * ranks + uint64_t(team.rank());
-        const uint64_t begin = block * kPassesPerBlock;
-        const uint64_t end = std::min(budget, begin + kPassesPerBlock);
-        bool halted = false;  // by the clock or by a stop request, before the block's end
-        for (uint64_t p = begin; p < end; ++p) {
-            if (local > 0 && timeUpOrStopped()) {
-                halted = true;
-                break;
-            }
-            passes.run(firstPass + p, result);
-            ++local;
-            localNext = firstPass + p + 1;
-            result.seconds = elapsed();
-            if (settings.progress) settings.progress(int(local * ranks), result.seconds);
-            if (settings.onPass) {
-                const auto t0 = std::chrono::steady_clock::now();
-                settings.onPass(result.film, local, result.seconds);
-                callbackSeconds += since(t0);
-            }
-        }
-        passes.endBlock(result.film);
-        const bool budgetDone = (round + 1) * ranks * kPassesPerBlock >= budget;
-        if (team.any(halted || timeUpOrStopped()) || budgetDone) break;
-        if (settings.checkpointSeconds > 0 && team.any(elapsed() - lastCheckpoint >= settings.checkpointSeconds)) {
-            const auto t0 = std::chrono::steady_clock::now();
-            // Rank 0 reduces into a copy (its own film must keep only its own passes); the others
-            // only send theirs.
-            RenderResult sofar{.film = team.rank() == 0 ? result.film : Film(0, 0),
-                               .seconds = result.seconds,
-                               .droppedSamples = result.droppedSamples,
-                               .guardedWeights = result.guardedWeights};
-            addUpOverTeam(team, sofar, local, localNext, false);  // every block up to here is done: nextPass ends a round
-            team.reduce(team.rank() == 0 ? sofar.film : result.film);
-            if (team.rank() == 0 && settings.onCheckpoint) settings.onCheckpoint(addResumed(sofar, resume));
-            callbackSeconds += since(t0);
-            lastCheckpoint = elapsed();
-        }
-    }
-    result.seconds = elapsed();
-    addUpOverTeam(team, result, local, localNext, settings.stop && settings.stop->load());
-    gatherDroppedLog(team, cam, result.droppedLog);
-    const auto reduceStart = std::chrono::steady_clock::now();
-    team.reduce(result.film);
-    result.reduceSeconds = since(reduceStart);
-    if (team.rank() == 0) addResumed(result, resume);
-    result.stats = statsSnapshot() - statsBefore;
-    team.sum(result.stats.events);  // counts over the whole team, like the passes
-    team.sum(result.stats.phaseSamples);
-    setTiming(false);
-    return result;
+RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
+    return integrator.render(scene, settings);
 }
 
 std::string interruptionText(const RenderResult& r) {

@@ -1,5 +1,7 @@
-// The one render loop every integrator runs in: progressive passes of one sample per pixel,
-// parallel over tiles, reproducible whatever the number of threads and of processes.
+// A render's settings and result, and the passes of the methods that render camera samples
+// (every integrator but mlt): progressive passes of one sample per pixel, parallel over tiles,
+// reproducible whatever the number of threads and of processes. The loop over the passes, which
+// every method shares, is render_loop.h; mlt's passes are metropolis_render.h.
 //
 // Passes are grouped in canonical blocks of kPassesPerBlock, counted from the first pass. A block
 // is summed in double in pass order, then added exactly into the film's totals (film.h). A team of
@@ -62,6 +64,7 @@ struct RenderSettings {
     std::function<void(const Film&, int passes, double seconds)> onPass;
     // Set from elsewhere (a signal handler) to stop at the next pass boundary: every rank stops at
     // its next pass, so the passes used need not be contiguous then (RenderResult::nextPass).
+    // mlt looks at it in its bootstrap too, and stops there before any pass.
     const std::atomic<bool>* stop = nullptr;
     // The processes sharing the render; nullptr: this one alone.
     Team* team = nullptr;
@@ -107,6 +110,10 @@ struct RenderResult {
     int budgetPasses = 0;
     double budgetSeconds = 0;
     bool interrupted = false;
+    // Whether the stop request came before this run rendered any pass, which only mlt allows (it
+    // stops in its bootstrap; the other loops finish their first pass): the result then holds
+    // nothing, not even the render it resumed, and has no image to write nor state to checkpoint.
+    bool interruptedBeforeAnyPass = false;
     MetropolisReport metropolis{};  // mlt only
     Image image() const { return film.image(passes); }
 };

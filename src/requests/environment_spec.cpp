@@ -36,7 +36,7 @@ bool validRadiance(Spectrum c) { return isFinite(c) && c.x >= 0 && c.y >= 0 && c
 
 }  // namespace
 
-EnvironmentDesc loadEnvironment(const std::string& spec, float scale, const WarningSink& warn) {
+EnvironmentDesc loadEnvironment(const std::string& spec, float scale, const WarningSink& warn, size_t maxTexels) {
     if (!std::isfinite(scale) || scale < 0)
         throw InputError(fmt::format("the environment scale {} is not a finite non-negative number", scale));
     EnvironmentDesc d;
@@ -50,7 +50,7 @@ EnvironmentDesc loadEnvironment(const std::string& spec, float scale, const Warn
         d.texels = {*c * scale};
         return d;
     }
-    const Image map = readImage(spec, kMaxEnvironmentTexels);
+    const Image map = readImage(spec, maxTexels);
     if (map.width != 2 * map.height)
         warn(fmt::format("environment '{}' is {}x{}, not twice as wide as high: it is stretched over the sphere",
                          gltf::excerpt(spec), map.width, map.height));

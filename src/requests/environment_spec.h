@@ -15,9 +15,11 @@ namespace tripath {
 inline constexpr size_t kMaxEnvironmentTexels = size_t(32768) * 16384;
 
 // The map or constant `spec` names, times `scale`. InputError, one line, for a file that cannot be
-// read or is too large, a non-finite or negative texel or constant, or a scale that is not a
-// finite non-negative number; a warning for a map that is not twice as wide as it is high. Its hash
-// is of the texels or the constant as read, before the scale.
-EnvironmentDesc loadEnvironment(const std::string& spec, float scale, const WarningSink& warn = printWarning);
+// read or is too large (more than `maxTexels`: the fuzz target, whose memory is bounded, takes
+// fewer), a non-finite or negative texel or constant, or a scale that is not a finite non-negative
+// number; a warning for a map that is not twice as wide as it is high. Its hash is of the texels or
+// the constant as read, before the scale.
+EnvironmentDesc loadEnvironment(const std::string& spec, float scale, const WarningSink& warn = printWarning,
+                                size_t maxTexels = kMaxEnvironmentTexels);
 
 }  // namespace tripath
