@@ -251,6 +251,16 @@ private:
 
 }  // namespace
 
+MetropolisMemory metropolisMemory(double pixels, const MetropolisSettings& settings, int maxDepth) {
+    const double chains = std::min<double>(settings.chains, pixels);
+    // The bootstrap's bytes per sample: the rank's luminances, the bytes they are sent as (which
+    // then hold the concatenation) and the gathered slices, 4 each, and the layout's running sum.
+    constexpr uint64_t kBootstrapBytes = 3 * sizeof(float) + sizeof(double);
+    return {static_cast<uint64_t>(chains) * MarkovChain::bytesFor(maxDepth),
+            static_cast<uint64_t>(2 * std::ceil(pixels / chains) * chains) * sizeof(ChainSplat),
+            uint64_t(settings.bootstrap) * kBootstrapBytes};
+}
+
 RenderResult renderMetropolis(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
     const Camera& cam = scene.camera();
     Team& team = settings.team ? *settings.team : solo();
@@ -269,9 +279,11 @@ RenderResult renderMetropolis(const Scene& scene, const Integrator& integrator, 
                       integrator.settings().walk.maxDepth};
     FilmLayers layers = settings.layers;
     layers.strategies = integrator.strategies();
+    MemoryEstimate memory = admitMemory(scene, integrator, settings);
     RenderResult result{.film = Film(cam.width(), cam.height(), layers),
                         .budgetPasses = settings.spp,
-                        .budgetSeconds = settings.seconds};
+                        .budgetSeconds = settings.seconds,
+                        .memory = std::move(memory)};
     result.metropolis.run = cr.run;
     result.metropolis.bootstrapSamples = uint64_t(ms.bootstrap);
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
@@ -333,6 +345,7 @@ RenderResult renderMetropolis(const Scene& scene, const Integrator& integrator, 
         if (settings.checkpointSeconds > 0 && team.any(elapsed() - lastCheckpoint >= settings.checkpointSeconds)) {
             const auto t0 = std::chrono::steady_clock::now();
             RenderResult sofar{.film = team.rank() == 0 ? result.film : Film(0, 0), .seconds = result.seconds};
+            sofar.memory = result.memory;
             gather(sofar, result.film, local);
             if (team.rank() == 0 && settings.onCheckpoint) settings.onCheckpoint(addResumed(sofar, resume));
             callbackSeconds += since(t0);

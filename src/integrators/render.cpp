@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <tuple>
 
@@ -232,15 +233,26 @@ RenderResult& addResumed(RenderResult& r, const RenderResult* resume) {
     return r;
 }
 
+MemoryEstimate admitMemory(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
+    MemoryEstimate estimate = estimateMemory(scene, integrator, settings);
+    if (settings.checkMemory)
+        together(settings.team ? *settings.team : solo(), [&] { settings.checkMemory(estimate); });
+    return estimate;
+}
+
+uint64_t pendingSplatBytes(double splats) { return static_cast<uint64_t>(std::ceil(splats)) * sizeof(Splat); }
+
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
     if (integrator.runsChains()) return renderMetropolis(scene, integrator, settings);
     const Camera& cam = scene.camera();
     Team& team = settings.team ? *settings.team : solo();
     FilmLayers layers = settings.layers;
     layers.strategies = integrator.strategies();
+    MemoryEstimate memory = admitMemory(scene, integrator, settings);
     RenderResult result{.film = Film(cam.width(), cam.height(), layers),
                         .budgetPasses = settings.spp,
-                        .budgetSeconds = settings.seconds};
+                        .budgetSeconds = settings.seconds,
+                        .memory = std::move(memory)};
     const RenderResult* resume = settings.resume;
     const uint64_t firstPass = resume ? resume->nextPass : settings.firstPass;
     PassRenderer passes(scene, integrator, settings);
@@ -294,6 +306,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                                .seconds = result.seconds,
                                .droppedSamples = result.droppedSamples,
                                .guardedWeights = result.guardedWeights};
+            sofar.memory = result.memory;
             addUpOverTeam(team, sofar, local, localNext, false);  // every block up to here is done: nextPass ends a round
             team.reduce(team.rank() == 0 ? sofar.film : result.film);
             if (team.rank() == 0 && settings.onCheckpoint) settings.onCheckpoint(addResumed(sofar, resume));
