@@ -38,17 +38,16 @@ RenderResult renderResumable(const Scene& scene, const Integrator& integrator, R
     const std::string path = checkpointPath(how.out);
     FilmLayers layers = rs.layers;
     layers.strategies = integrator.strategies();
-    const Film shape(o.width, o.height, layers);
     // Rank 0 reads the checkpoint (the others may not see its folder) and tells them its counts.
     std::optional<RenderResult> old;
     together([&] {
-        if (isRankZero()) old = readCheckpoint(path, how.settings, shape);
+        if (isRankZero()) old = readCheckpoint(path, how.settings, o.width, o.height, layers);
     });
     std::array<uint64_t, 5> counts{old ? 1u : 0u, old ? uint64_t(old->passes) : 0, old ? old->nextPass : 0,
                                    old ? uint64_t(old->seconds * 1e6) : 0, old ? old->metropolis.run : 0};
     team().max(counts);
     if (counts[0] && !old) {
-        old = RenderResult{shape, int(counts[1]), counts[2], counts[3] / 1e6};
+        old = RenderResult{Film(o.width, o.height, layers), int(counts[1]), counts[2], counts[3] / 1e6};
         old->metropolis.run = counts[4];  // mlt's chain states travel from rank 0 inside the render
     }
     bool finished = false;  // the checkpoint already holds the whole budget

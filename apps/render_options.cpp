@@ -12,6 +12,7 @@
 #include "geometry/embree_isa.h"
 #include "processes.h"
 #include "requests/integrator_parameters.h"
+#include "requests/memory_check.h"
 #include "stats_report.h"
 
 namespace tripath::app {
@@ -140,6 +141,14 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                    "the same settings and --out continues from it (a --spp render then ends bit-identical to an "
                    "uninterrupted one). Also written when the render is interrupted; 0: none")
         ->capture_default_str();
+    cmd.add_option_function<std::string>(
+        "--memory-limit",
+        [&o](const std::string& v) { o.memoryLimit = parseMemoryLimit(v, Spelling::CommandLine), o.memoryLimitGiven = true; },
+        "The memory a render may take, e.g. 8G or 512M (K, M, G, T: powers of 1024). Before it allocates its film "
+        "and light paths, a render whose memory estimate (film, light paths, splats, scene; docs/memory.md) exceeds "
+        "this is refused, naming what to lower. Default: what the machine can give the process (MemAvailable, or "
+        "a cgroup's limit less its use). Give more than the machine has to render anyway (swap)")
+        ->type_name("SIZE");
     cmd.add_flag("--stats", o.stats,
                  "At the end, print what the render did (rays, BSDF calls, connections, splats, merges: in total, per "
                  "camera sample and per second) and where its CPU time went among the render loop's phases (the light "

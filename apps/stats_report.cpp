@@ -1,8 +1,11 @@
 #include "stats_report.h"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
 
 #include <cmath>
+
+#include "core/byte_size.h"
 
 namespace tripath::app {
 
@@ -21,6 +24,10 @@ std::string statsReport(const RenderResult& r, uint64_t pixels) {
     const double rays = double(s[Event::ClosestHitRays] + s[Event::ShadowRays]);
     out += fmt::format("  rays of both kinds: {:.4g} per sample, {:.4g} M per second\n", samples > 0 ? rays / samples : 0.0,
                        rays / seconds / 1e6);
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    out += fmt::format("  memory: estimated {} ({}); the process's peak resident memory so far {}\n",
+                       bytesText(r.memory.total()), r.memory.breakdown(), bytesText(uint64_t(usage.ru_maxrss) * 1024));
     uint64_t working = 0;
     for (int i = 0; i < kPhaseCount; ++i)
         if (static_cast<Phase>(i) != Phase::Idle) working += s.phaseSamples[i];

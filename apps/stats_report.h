@@ -8,8 +8,9 @@
 namespace tripath::app {
 
 // Every event counter in total, per camera sample (passes × pixels) and per second of the render;
-// the rays of both kinds per second; and, if the phases were sampled, each one's share of the CPU
-// time spent in them, with its sampling error. Several lines, each ending in a newline.
+// the rays of both kinds per second; the render's memory estimate by part beside the process's
+// peak resident memory so far; and, if the phases were sampled, each one's share of the CPU time
+// spent in them, with its sampling error. Several lines, each ending in a newline.
 std::string statsReport(const RenderResult& r, uint64_t pixels);
 
 }  // namespace tripath::app

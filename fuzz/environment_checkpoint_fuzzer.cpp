@@ -138,7 +138,7 @@ void resumeCheckpoint(const std::string& file) {
     static const Scene scene(builtinScene("cornell"), kSize, kSize, silent);
     const Metadata settings = ownSettings(file);
     const std::optional<RenderResult> saved =
-        readCheckpoint(writeInput("input.checkpoint", file), settings, Film(kSize, kSize));
+        readCheckpoint(writeInput("input.checkpoint", file), settings, kSize, kSize, FilmLayers{});
     IntegratorSettings is;
     is.walk.maxDepth = 3;
     is.metropolis.bootstrap = 300;

@@ -117,7 +117,7 @@ py::dict compareScene(const py::object& sceneArgument, double seconds, const std
                       std::optional<double> referenceSeconds, const std::string& out, int width, int height, uint64_t seed,
                       int maxDepth, const std::string& mis, int threads, std::optional<std::array<int, 4>> crop,
                       const std::string& theme, bool labels, const std::vector<std::string>& formats,
-                      const Progress& progress, bool verbose, const py::kwargs& options) {
+                      const Progress& progress, bool verbose, const py::object& memoryLimit, const py::kwargs& options) {
     const SceneArgument argument(sceneArgument);
     PyScene& scene = *argument;
     evaluation::CompareRequest r;
@@ -125,6 +125,8 @@ py::dict compareScene(const py::object& sceneArgument, double seconds, const std
                          seed, maxDepth, mis, threads, options);
     r.render.seconds = seconds;
     r.render.timeGiven = true;
+    setMemoryLimit(r.render, memoryLimit);
+    r.spelling = Spelling::Python;
     r.methods = integrators;
     r.runs = runs;
     if (py::isinstance<py::str>(reference)) r.referencePath = reference.cast<std::string>();
@@ -169,7 +171,7 @@ py::list benchmarkScenes(const std::vector<std::string>& scenes, double seconds,
                          double biasLevel, const std::optional<std::string>& baseline, int width, int height, uint64_t seed, int maxDepth,
                          const std::string& mis, int threads, const std::optional<std::string>& environment,
                          std::optional<float> environmentScale, const Progress& progress, bool verbose,
-                         const py::kwargs& options) {
+                         const py::object& memoryLimit, const py::kwargs& options) {
     evaluation::BenchmarkRequest b;
     RenderRequest where;
     if (environment) where.environment = *environment, where.environmentGiven = true;
@@ -178,6 +180,8 @@ py::list benchmarkScenes(const std::vector<std::string>& scenes, double seconds,
                          threads, options);
     b.render.seconds = seconds;
     b.render.timeGiven = true;
+    setMemoryLimit(b.render, memoryLimit);
+    b.spelling = Spelling::Python;
     b.scenes = scenes;
     b.methods = integrators;
     b.runs = runs;
@@ -224,6 +228,7 @@ void defineEvaluation(py::module_& m) {
           py::arg("height") = 512, py::arg("seed") = 1, py::arg("max_depth") = 16, py::arg("mis") = "power",
           py::arg("threads") = 0, py::arg("crop") = py::none(), py::arg("theme") = "dark", py::arg("labels") = true,
           py::arg("formats") = std::vector<std::string>{}, py::arg("progress") = py::none(), py::arg("verbose") = false,
+          py::arg("memory_limit") = py::none(),
           "Renders scene (as for render()) with each of integrators for the same wall-clock time (seconds each; "
           "runs independent runs with seeds seed, seed+1, ...) and measures their error against a reference at "
           "checkpoints spaced logarithmically in time, as `tripath compare` does. reference: an EXR path, an array "
@@ -236,13 +241,16 @@ void defineEvaluation(py::module_& m) {
           "rays_per_s), checkpoints (the rows of error.csv), runs (per run: counters), images (run 0's image per "
           "integrator), reference, reference_description, report (out's index.html or None). progress(label, "
           "passes, seconds) is called after each pass of each render; verbose prints what the command line prints. "
-          "Ctrl-C raises KeyboardInterrupt at the next pass. Keyword options as for render().");
+          "Ctrl-C raises KeyboardInterrupt at the next pass. A comparison whose memory estimate (its largest render, "
+          "the images it keeps, the report) exceeds memory_limit raises ValueError before its first render, as "
+          "for render(). Keyword options as for render().");
     m.def("benchmark", &benchmarkScenes, py::arg("scenes"), py::arg("seconds"), py::arg("out"),
           py::arg("integrators") = benchmarked, py::arg("runs") = 4, py::arg("reference_integrator") = "vcm",
           py::arg("reference_seconds") = py::none(), py::arg("bias_reference") = "bdpt",
           py::arg("bias_level") = 0.01, py::arg("baseline") = py::none(), py::arg("width") = 512, py::arg("height") = 512, py::arg("seed") = 1,
           py::arg("max_depth") = 16, py::arg("mis") = "power", py::arg("threads") = 0, py::arg("environment") = py::none(),
           py::arg("environment_scale") = py::none(), py::arg("progress") = py::none(), py::arg("verbose") = false,
+          py::arg("memory_limit") = py::none(),
           "Every integrator on every scene (built-in names or glTF files, each under environment if given, as load() "
           "takes it) for seconds each, runs independent runs "
           "(at least 2), against a reference per scene cached in out/references (rendered with reference_integrator "
@@ -250,8 +258,8 @@ void defineEvaluation(py::module_& m) {
           "goes to out. Returns the rows of results.csv as a list of dicts: scene, integrator, relmse, relmse_sd, "
           "relmse_without_tail, mse, mae, hdr_flip, spp, seconds, inefficiency, speedup (against baseline, default "
           "the first integrator), biased_blocks, blocks, rays_per_s, counters, and the rest of compare()'s summary "
-          "row (tail_share, relmse_x_spp, efficiency, time_to_best). progress, verbose, Ctrl-C and keyword options "
-          "as for compare().");
+          "row (tail_share, relmse_x_spp, efficiency, time_to_best). progress, verbose, Ctrl-C, memory_limit and "
+          "keyword options as for compare().");
 }
 
 }  // namespace tripath::python

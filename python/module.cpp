@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "requests/integrator_parameters.h"
+#include "requests/memory_check.h"
 #include "image/exposure.h"
 #include "evaluation/flip.h"
 #include "evaluation/metrics.h"
@@ -55,6 +56,15 @@ std::unique_ptr<PyScene> loadPyScene(const std::string& nameOrPath, bool allowEx
     auto scene = std::make_unique<PyScene>(where, warnings);
     warnings.raise();
     return scene;
+}
+
+void setMemoryLimit(RenderRequest& r, const py::object& limit) {
+    if (limit.is_none()) return;
+    if (!py::isinstance<py::int_>(limit) && !py::isinstance<py::str>(limit))
+        throw py::type_error("memory_limit must be a number of bytes or a size such as '8G', not " +
+                             std::string(py::str(py::type::of(limit).attr("__name__"))));
+    r.memoryLimit = parseMemoryLimit(std::string(py::str(limit)), Spelling::Python);
+    r.memoryLimitGiven = true;
 }
 
 SceneArgument::SceneArgument(const py::object& scene) {
@@ -157,7 +167,7 @@ py::dict renderScene(const py::object& sceneArgument, const std::string& integra
                      std::optional<double> seconds, int width, int height, uint64_t seed, int maxDepth,
                      const std::string& mis, int threads,
                      bool depthImages, int strategyImages, const std::function<void(int, double)>& progress,
-                     const py::kwargs& options) {
+                     const py::object& memoryLimit, const py::kwargs& options) {
     const SceneArgument argument(sceneArgument);
     PyScene& scene = *argument;
     RenderRequest request =
@@ -166,13 +176,14 @@ py::dict renderScene(const py::object& sceneArgument, const std::string& integra
     if (seconds) request.seconds = *seconds, request.timeGiven = true;
     request.depthImages = depthImages;
     request.strategyImages = strategyImages;
+    setMemoryLimit(request, memoryLimit);
     if (request.sppGiven && request.timeGiven) throw InputError("spp and seconds exclude each other: give one");
     validate(request, Spelling::Python);
 
     const std::shared_ptr<const Scene> shared = scene.at(width, height);
     const Scene& built = *shared;
     const auto method = makeIntegrator(request.integrator, integratorSettings(request));
-    RenderSettings settings = renderSettings(request);
+    RenderSettings settings = renderSettings(request, Spelling::Python);
     Watch watch;
     settings.stop = &watch.stop;
     settings.progress = [&](int passes, double elapsed) {
@@ -288,14 +299,17 @@ PYBIND11_MODULE(tripath, m) {
         "{(s, t, 'connect' | 'merge'): {'weighted', 'unweighted'}} for k <= K; " +
         describe(integratorParameter("strategy-images")) +
         "), spp, seconds, interrupted, dropped_samples, guarded_weights, counters (rays, BSDF calls, ...), metadata "
-        "(as the EXR's). progress(passes, seconds) is called after each pass. The same settings give the same image "
-        "as `tripath render`, whatever the thread count. Ctrl-C stops at the next pass and returns what is done "
-        "(interrupted = True). " +
+        "(as the EXR's, tripath:memory-estimate among them). progress(passes, seconds) is called after each pass. The "
+        "same settings give the same image as `tripath render`, whatever the thread count. Ctrl-C stops at the next "
+        "pass and returns what is done (interrupted = True). A render whose memory estimate (film, light paths, "
+        "scene) exceeds memory_limit (bytes, or a size such as '8G'; default: what the machine can give the process) "
+        "raises ValueError before it starts, as `tripath render --memory-limit` refuses it. " +
         keywordOptionsDoc();
     m.def("render", &renderScene, py::arg("scene"), py::arg("integrator") = "bdpt", py::arg("spp") = py::none(),
           py::arg("seconds") = py::none(), py::arg("width") = 512, py::arg("height") = 512, py::arg("seed") = 1,
           py::arg("max_depth") = 16, py::arg("mis") = "power", py::arg("threads") = 0, py::arg("depth_images") = false,
-          py::arg("strategy_images") = 0, py::arg("progress") = py::none(), renderDoc.c_str());
+          py::arg("strategy_images") = 0, py::arg("progress") = py::none(), py::arg("memory_limit") = py::none(),
+          renderDoc.c_str());
 
     m.def("read_exr", &readExrFile, py::arg("path"),
           "Reads an EXR as (float32 array height x width x 3, {'tripath:...': value} metadata)");

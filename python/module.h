@@ -115,6 +115,11 @@ private:
     std::optional<py::error_already_set> failure_;
 };
 
+// The memory_limit keyword of render(), compare() and benchmark(): None (what the machine has), a
+// number of bytes or a size such as "8G" (requests/memory_check.h), into `r`; ValueError for
+// another value, TypeError for another type.
+void setMemoryLimit(RenderRequest& r, const py::object& limit);
+
 // An H×W×3 float32 array that owns `image`'s pixels (moved, not copied).
 py::array_t<float> toArray(Image image);
 using ArrayIn = py::array_t<float, py::array::c_style | py::array::forcecast>;

@@ -274,11 +274,60 @@ TEST_F(Cli, StatsReportWhatTheRenderDidAndWhereTheTimeWent) {
     EXPECT_EQ(plain.err.find("closest-hit rays"), std::string::npos) << "without --stats, no report:\n" << plain.err;
 }
 
-TEST_F(Cli, HugeResolutionsAreRefused) {
-    expectRefused(render("--width 100000 " + out()), "--width");
-    expectRefused(render("--height 100000 " + out()), "--height");
-    // Each side within limits, but 16384² pixels would need a film of 6 GiB.
-    expectRefused(render("--width 16384 --height 16384 " + out()), "--width");
+// A comparison is held to its budget as a whole, before its first render: pt at 512² fits 250 MiB
+// (173 MiB), but not with the images the comparison keeps and the report it draws. Fails if the
+// comparison's own check is missing: each render would pass its own and the report be written.
+TEST_F(Cli, ACompareOverItsMemoryLimitIsRefusedBeforeItsFirstRender) {
+    const Outcome reference = run(render("--width 512 --height 512 --spp 1 --seed 99 --integrator pt " + out()));
+    ASSERT_EQ(reference.exitCode, 0) << reference.err;
+    const std::string compare = "compare --scene cornell --integrators pt --width 512 --height 512 --time 1 --reference '" +
+                                path("out.exr") + "' --out '" + path("c") + "' ";
+    const Outcome o = run(compare + "--memory-limit 250M");
+    EXPECT_EQ(o.exitCode, 1) << o.err;
+    ASSERT_EQ(o.errLines().size(), 1u) << o.err;
+    EXPECT_NE(o.err.find("needs an estimated"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("report"), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(path("c")));
+    EXPECT_EQ(run(compare + "--memory-limit 1G").exitCode, 0);
+}
+
+// --help's limits are the limits: each side from 1 to 16384 renders, 0 and 16385 are refused. Fails
+// if the help and the check disagree at either end, as they did when 16384² was refused as a size.
+TEST_F(Cli, TheImageSidesHelpsLimitsAreTheLimits) {
+    const Outcome help = run("render --help");
+    for (const char* flag : {"--width INT:INT in [1, 16384]", "--height INT:INT in [1, 16384]"})
+        EXPECT_NE(help.out.find(flag), std::string::npos) << flag << " missing from:\n" << help.out;
+    for (const char* sides : {"--width 16384 --height 1", "--width 1 --height 16384", "--width 1 --height 1"}) {
+        const Outcome o = run(render(std::string(sides) + " --spp 1 --integrator pt " + out()));
+        EXPECT_EQ(o.exitCode, 0) << sides << "\n" << o.err;
+        fs::remove(path("out.exr"));
+    }
+    expectRefused(render("--width 16385 " + out()), "--width must be between 1 and 16384 (got 16385)");
+    expectRefused(render("--height 16385 " + out()), "--height must be between 1 and 16384 (got 16385)");
+    expectRefused(render("--width 0 " + out()), "--width must be between 1 and 16384 (got 0)");
+    expectRefused(render("--height 0 " + out()), "--height must be between 1 and 16384 (got 0)");
+    // 16384² is a size like any other: whether it fits is the memory estimate's to say.
+    expectRefused(render("--integrator pt --width 16384 --height 16384 --memory-limit 1G " + out()),
+                  "the render needs an estimated");
+}
+
+// A render whose estimate exceeds --memory-limit is refused in one line naming the estimate, the
+// limit and what to lower, before any pass (a million passes would time the test out); with the
+// limit raised it renders. Fails if the check is missing or comes after the rendering.
+TEST_F(Cli, ARenderOverItsMemoryLimitIsRefusedBeforeRendering) {
+    expectRefused(render("--memory-limit 8X " + out()), "--memory-limit must be a size above 0 such as 8G, 512M or 1.5T (got '8X')");
+    expectRefused(render("--memory-limit 0 " + out()), "--memory-limit must be a size above 0");
+    expectRefused(render("--integrator vcm --width 64 --height 64 --spp 1000000 --memory-limit 100M " + out()),
+                  "needs an estimated");
+    const std::string line = run(render("--integrator vcm --width 64 --height 64 --spp 1000000 --memory-limit 100M " +
+                                        out())).errLines().at(0);
+    for (const char* part : {"(process 140 MiB, ", "but --memory-limit is 100 MiB: the process and its scene alone take 140 MiB"})
+        EXPECT_NE(line.find(part), std::string::npos) << part << " missing from: " << line;
+    const Outcome o = run(render("--integrator vcm --width 64 --height 64 --spp 1 --memory-limit 64G " + out()));
+    EXPECT_EQ(o.exitCode, 0) << o.err;
+    Metadata meta;
+    readExr(path("out.exr"), &meta);
+    EXPECT_GT(std::stoull(metaValue(meta, "tripath:memory-estimate")), uint64_t(140) << 20);
 }
 
 // A PNG file whose header (signature, IHDR with its CRC, IEND) claims width × height 8-bit RGB
@@ -455,7 +504,7 @@ TEST_F(Cli, IntegersBeyondTheirTypeGiveTheRange) {
     expectRefused(render(tiny + "--rr-depth 99999999999 " + out()), "--rr-depth must be between 0 and 1024");
     expectRefused(render(tiny + "--threads 99999999999 " + out()), "--threads must be between 0 and 4096");
     expectRefused(render(tiny + "--integrator vcm --light-paths 99999999999999999999 " + out()),
-                  "--light-paths must be between 1 and 67108864");
+                  "--light-paths must be between 1 and 268435456");
     expectRefused(render(tiny + "--strategy-images 99999999999 " + out()), "--strategy-images must be between 0 and 16");
     expectRefused(render(tiny + "--seed -1 " + out()), "--seed must be between 0 and 18446744073709551615 (got -1)");
     expectRefused(render(tiny + "--seed 99999999999999999999 " + out()), "--seed must be between 0 and");

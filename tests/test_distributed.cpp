@@ -69,8 +69,9 @@ Rendered load(const std::string& file) {
     return r;
 }
 
-// Bit for bit in every pixel, and equal in every metadata key but the time taken and the number
-// of ranks (tripath:ranks), which must say `ranks`.
+// Bit for bit in every pixel, and equal in every metadata key but the time taken, the memory
+// estimate (a resumed or checkpointed render holds more films) and the number of ranks
+// (tripath:ranks), which must say `ranks`.
 void expectSameRender(const Rendered& a, const Rendered& b, int ranks, const std::string& what) {
     ASSERT_EQ(a.image.rgb.size(), b.image.rgb.size()) << what;
     size_t differing = 0;
@@ -80,7 +81,7 @@ void expectSameRender(const Rendered& a, const Rendered& b, int ranks, const std
     auto strip = [](Metadata m, int* r) {
         std::erase_if(m, [&](const auto& kv) {
             if (kv.first == "tripath:ranks") *r = std::stoi(kv.second);
-            return kv.first == "tripath:seconds" || kv.first == "tripath:ranks";
+            return kv.first == "tripath:seconds" || kv.first == "tripath:memory-estimate" || kv.first == "tripath:ranks";
         });
         return m;
     };

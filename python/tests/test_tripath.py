@@ -73,6 +73,26 @@ def test_bad_input_is_a_value_error_with_the_command_lines_message(tmp_path, cor
         tripath.render(cornell, "vcm", light_paths=0)
 
 
+def test_a_render_over_its_memory_limit_is_a_value_error_before_it_starts(cornell):
+    # As `tripath render --memory-limit`: the estimate, the limit and what to lower, in Python's
+    # spelling, before any pass (progress is never called); with the limit raised it renders and
+    # records its estimate. Fails if the keyword is not read or the check not made.
+    passes = []
+    with pytest.raises(ValueError, match=r"^the render needs an estimated .* but memory_limit is 64.0 MiB: .*"
+                                         r"or raise memory_limit$"):
+        tripath.render(cornell, "vcm", spp=100, width=64, height=64, memory_limit="64M",
+                       progress=lambda p, s: passes.append(p))
+    assert passes == []
+    r = tripath.render(cornell, "vcm", spp=1, width=64, height=64, memory_limit=64 << 30)
+    assert int(r["metadata"]["tripath:memory-estimate"]) > 140 << 20
+    with pytest.raises(ValueError, match=r"^memory_limit must be a size above 0 such as 8G, 512M or 1.5T \(got '8X'\)$"):
+        tripath.render(cornell, "pt", memory_limit="8X")
+    with pytest.raises(ValueError, match="^memory_limit must be a size above 0"):
+        tripath.render(cornell, "pt", memory_limit=0)
+    with pytest.raises(TypeError, match="^memory_limit must be a number of bytes or a size"):
+        tripath.render(cornell, "pt", memory_limit=1.5)
+
+
 FUZZ_FINDS = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "fuzz"
 
 

@@ -60,6 +60,8 @@ public:
     size_t sample(float u, float& within) const;
     float probability(size_t i) const { return static_cast<float>(cdf_[i + 1] - cdf_[i]); }
     double total() const { return total_; }
+    // The memory its table takes.
+    size_t bytes() const { return cdf_.capacity() * sizeof(double); }
 
 private:
     std::vector<double> cdf_;

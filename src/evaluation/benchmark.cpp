@@ -108,6 +108,7 @@ CompareRequest sceneRequest(const BenchmarkRequest& b, const std::string& scene)
     co.stop = b.stop;
     co.team = b.team;
     co.narrator = b.narrator;
+    co.spelling = b.spelling;
     return co;
 }
 

@@ -28,6 +28,7 @@ struct BenchmarkRequest {
     const std::atomic<bool>* stop = nullptr;  // set (Ctrl-C): the scene under way is left out, no more start
     Team* team = &solo();
     Narrator narrator;
+    Spelling spelling = Spelling::CommandLine;  // how messages name parameters (a refused comparison's)
 };
 
 // One method on one scene: means over its runs.

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "image/exposure.h"
 #include "image/font.h"
+#include "requests/memory_check.h"
 
 namespace tripath::evaluation {
 
@@ -114,6 +115,7 @@ void validate(const CompareRequest& r, Spelling spelling) {
 }
 
 Comparison compare(const CompareRequest& r, const Scene& scene, bool everyImage) {
+    together(*r.team, [&] { requireMemory(comparisonMemory(r, scene, everyImage), memoryLimit(r.render), r.spelling); });
     Comparison c;
     c.reference = shareReference(r, scene);
     std::vector<RunOutput> outputs = runEverywhere(r, scene, c.reference.image, everyImage);

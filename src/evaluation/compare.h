@@ -63,6 +63,7 @@ struct CompareRequest {
     std::string outDir;                // the report's directory; empty: no files at all
     Team* team = &solo();              // the processes the runs are dealt out to
     Narrator narrator;
+    Spelling spelling = Spelling::CommandLine;  // how messages name parameters (a refused render's)
 };
 
 // Without a reference, one is rendered for this many times the per-run budget. Its own noise then
@@ -158,7 +159,19 @@ struct Comparison {
 // run 0's (the benchmark's bias test needs them).
 Comparison compare(const CompareRequest& r, const Scene& scene, bool everyImage = false);
 
+// compare_memory.cpp: what a comparison holds at its peak: the process and the scene, its largest
+// render (memory_estimate.h: the reference's when it renders one, each method's), the images it
+// keeps (the reference's and each method's run 0, every run's with `everyImage`) and, with an
+// output directory, what the report takes as it draws the side-by-side sheet, the error maps and
+// the crops. compare() refuses a comparison that exceeds its budget (memory_check.h) before the
+// first render.
+MemoryEstimate comparisonMemory(const CompareRequest& r, const Scene& scene, bool everyImage);
+
 // compare_run.cpp
+// The requests of a comparison's renders: its reference's (when it renders one) and a method's
+// run `index` (seed + index).
+RenderRequest referenceRequest(const CompareRequest& o);
+RenderRequest runRequest(const CompareRequest& o, const std::string& method, int index);
 Reference obtainReference(const CompareRequest& o, const Scene& scene);
 // The reference at o.referencePath, checked against the request and its loaded `scene`: its size,
 // scene files and depth limit (when it records them), and that it shares no samples with a run.

@@ -59,10 +59,7 @@ void finished(const CompareRequest& o, const std::string& label, const RenderRes
 }
 
 Reference renderReference(const CompareRequest& o, const Scene& scene) {
-    RenderRequest r = o.render;
-    r.integrator = o.referenceIntegrator;
-    r.seconds = o.referenceSeconds > 0 ? o.referenceSeconds : kReferenceBudget * o.render.seconds;
-    r.domain = StreamDomain::Reference;  // the reference streams: independent of every run
+    const RenderRequest r = referenceRequest(o);
     const std::string file = !o.referenceOut.empty() ? o.referenceOut
                              : o.outDir.empty()      ? std::string()
                                                      : (std::filesystem::path(o.outDir) / "reference.exr").string();
@@ -73,7 +70,7 @@ Reference renderReference(const CompareRequest& o, const Scene& scene) {
                                 r.integrator, kReferenceBudget, formatSeconds(o.render.seconds), formatSeconds(r.seconds),
                                 r.seed, file.empty() ? "" : " into " + file, kReferenceBudget, r.integrator));
     const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
-    RenderSettings rs = renderSettings(r);
+    RenderSettings rs = renderSettings(r, o.spelling);
     rs.team = o.team;  // every rank renders the reference together
     rs.stop = o.stop;
     const std::string label = "reference " + r.integrator + " " + r.scene;
@@ -91,6 +88,21 @@ Reference renderReference(const CompareRequest& o, const Scene& scene) {
 
 }  // namespace
 
+RenderRequest referenceRequest(const CompareRequest& o) {
+    RenderRequest r = o.render;
+    r.integrator = o.referenceIntegrator;
+    r.seconds = o.referenceSeconds > 0 ? o.referenceSeconds : kReferenceBudget * o.render.seconds;
+    r.domain = StreamDomain::Reference;  // the reference streams: independent of every run
+    return r;
+}
+
+RenderRequest runRequest(const CompareRequest& o, const std::string& method, int index) {
+    RenderRequest r = o.render;
+    r.integrator = method;
+    r.seed = o.render.seed + uint64_t(index);
+    return r;
+}
+
 Reference obtainReference(const CompareRequest& o, const Scene& scene) {
     if (!o.referencePath.empty()) return readGivenReference(o, scene);
     if (!o.referenceImage.rgb.empty()) return {o.referenceImage, "given image", ""};
@@ -99,12 +111,10 @@ Reference obtainReference(const CompareRequest& o, const Scene& scene) {
 
 RunOutput runMethod(const CompareRequest& o, const Scene& scene, const std::string& method, int index,
                     const Image& reference) {
-    RenderRequest ro = o.render;
-    ro.integrator = method;
-    ro.seed = o.render.seed + uint64_t(index);
+    const RenderRequest ro = runRequest(o, method, index);
     Run run{method, index, ro.seed, {}};
     const auto integrator = makeIntegrator(method, integratorSettings(ro));
-    RenderSettings rs = renderSettings(ro);
+    RenderSettings rs = renderSettings(ro, o.spelling);
     rs.team = &solo();  // a run is timed alone on its rank: compare_ranks.cpp deals the runs out
     rs.stop = o.stop;
     const std::string label = fmt::format("{} run {}/{}", method, index + 1, o.runs);

@@ -80,6 +80,8 @@ public:
     int emitterOfTriangle(uint32_t triangle) const { return byTriangle_[triangle]; }
     // Index of the environment emitter, or -1: what a ray that leaves the scene reaches.
     int environment() const { return environment_; }
+    // Its map, null without one.
+    const Environment* environmentMap() const { return environmentMap_.get(); }
 
     // Samples an emitter by power, then a point on it uniformly by area, or a direction from the
     // environment's map. u in [0,1)², uc in [0,1).

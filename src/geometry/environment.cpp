@@ -67,4 +67,10 @@ float Environment::pdf(Vec3 d) const {
     return float(double(rows_.probability(size_t(r))) * columns_[size_t(r)].probability(size_t(c)) / texelSolidAngle(r));
 }
 
+size_t Environment::bytes() const {
+    size_t n = texels_.capacity() * sizeof(Spectrum) + cosTheta_.capacity() * sizeof(float) + rows_.bytes();
+    for (const Distribution1D& row : columns_) n += sizeof(row) + row.bytes();
+    return n;
+}
+
 }  // namespace tripath

@@ -44,6 +44,8 @@ public:
     // The map's (u, v) of a direction, each in [0, 1], and the unit direction of a (u, v).
     static Vec2 uvOf(Vec3 d);
     static Vec3 directionOf(Vec2 uv);
+    // The memory its texels and sampling tables take.
+    size_t bytes() const;
 
 private:
     int texelOf(Vec3 d) const;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -181,6 +182,21 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
     cameraDesc_ = cam;
     camera_ = Camera(cam, width, height);
     buildBvh();
+}
+
+Scene::Memory Scene::memory() const {
+    Memory m;
+    m.triangles = triangles_.size() * kBytesPerTriangle;
+    std::set<const TextureImage*> images;
+    for (const Material& material : materials_) {
+        if (!material.textures) continue;
+        const MaterialTextures& t = *material.textures;
+        for (const TextureSlot* slot : {&t.baseColor, &t.metallicRoughness, &t.normal, &t.emissive})
+            if (*slot && images.insert(slot->texture->image().get()).second) m.textures += slot->texture->image()->bytes();
+    }
+    m.textures += surfaceTextures_->bytes();
+    if (const Environment* map = emitters_.environmentMap()) m.environment = map->bytes();
+    return m;
 }
 
 Scene::Scene(const Scene& base, int width, int height)

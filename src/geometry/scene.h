@@ -66,6 +66,22 @@ public:
     Vec3 boundsMin() const { return lo_; }
     Vec3 boundsMax() const { return hi_; }
 
+    // The memory the scene holds, in the parts a render's memory estimate reports
+    // (integrators/memory_estimate.h).
+    struct Memory {
+        uint64_t triangles = 0;    // kBytesPerTriangle for each of triangles()
+        uint64_t textures = 0;     // the texture images, each once however many materials read it, and
+                                   // the triangles' texture coordinates and vertex colours
+        uint64_t environment = 0;  // the environment map and its sampling tables
+    };
+    Memory memory() const;
+    // What a triangle costs, all told: its Triangle (92 bytes), Embree's vertex and index buffers
+    // (48), its share of the BVH and the emitters' index of it (4). Measured as the resident memory
+    // a built scene adds: 187 to 209 bytes on scenes of 3600 to 1.04 million triangles (cornell
+    // tessellated, BrainStem, ReciprocatingSaw, MetalRoughSpheresNoTextures), 287 on one of many
+    // small meshes (2CylinderEngine's 65311 triangles).
+    static constexpr uint64_t kBytesPerTriangle = 210;
+
     // Closest hit along origin + t·dir for t in (0, tMax).
     std::optional<SurfacePoint> intersect(Vec3 origin, Vec3 dir, float tMax = 3.0e38f) const;
     // The closest hits of up to 8 rays from one origin (a pinhole's rays through neighbouring

@@ -70,6 +70,11 @@ public:
     }
     bool anyMasks() const;
     bool anyColours() const { return !colours_.empty(); }
+    // The memory its per-triangle records take (the texture images are the materials').
+    size_t bytes() const {
+        return ranges_.capacity() * sizeof(Range) + texCoords_.capacity() * sizeof(TriangleTexCoords) +
+               colours_.capacity() * sizeof(TriangleColours);
+    }
 
 private:
     static constexpr size_t kNone = ~size_t(0);

@@ -7,15 +7,24 @@
 
 namespace tripath {
 
-Film::Film(int width, int height, FilmLayers layers)
-    : width_(width), height_(height), layers_(layers), main_(3 * size_t(width) * height) {
-    depth_.assign(std::max(0, layers.depthImages), main_);
+std::vector<Strategy> Film::strategyOrder(const FilmLayers& layers) {
+    std::vector<Strategy> order;
     for (int k = 1; k <= layers.strategyLength; ++k) {
         for (int s = 0; s <= k; ++s)  // connections: t ≥ 1
-            if (layers.strategies.enabled(s, k + 1 - s)) order_.push_back({s, k + 1 - s});
+            if (layers.strategies.enabled(s, k + 1 - s)) order.push_back({s, k + 1 - s});
         if (layers.strategies.merges())
-            for (int s = 2; s <= k; ++s) order_.push_back({s, k + 2 - s, true});  // merges: s, t ≥ 2
+            for (int s = 2; s <= k; ++s) order.push_back({s, k + 2 - s, true});  // merges: s, t ≥ 2
     }
+    return order;
+}
+
+size_t Film::images(const FilmLayers& layers) {
+    return 1 + size_t(std::max(0, layers.depthImages)) + 2 * strategyOrder(layers).size();
+}
+
+Film::Film(int width, int height, FilmLayers layers)
+    : width_(width), height_(height), layers_(layers), main_(3 * size_t(width) * height), order_(strategyOrder(layers)) {
+    depth_.assign(std::max(0, layers.depthImages), main_);
     for (const Strategy& st : order_) strategy_.emplace(st, std::make_pair(main_, main_));
 }
 

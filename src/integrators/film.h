@@ -28,6 +28,13 @@ class Film {
 public:
     Film(int width, int height, FilmLayers layers = {});
 
+    // The memory a pixel of one image takes: the block's three doubles and three exact totals.
+    static constexpr size_t kBytesPerPixel = 3 * (sizeof(double) + sizeof(Fixed192));
+    // How many images a film of these layers keeps: the main one, one per depth layer and two
+    // (weighted and unweighted) per strategy layer. A film of w × h pixels takes
+    // images × w × h × kBytesPerPixel bytes.
+    static size_t images(const FilmLayers& layers);
+
     int width() const { return width_; }
     int height() const { return height_; }
     // Adds a contribution of a strategy to a pixel. Not thread-safe for the same pixel: the
@@ -57,6 +64,8 @@ public:
     std::vector<Strategy> strategies() const;
 
 private:
+    // The strategies that get layers, in the order of strategies().
+    static std::vector<Strategy> strategyOrder(const FilmLayers& layers);
     struct Sums {
         std::vector<double> block;
         ExactSums total;

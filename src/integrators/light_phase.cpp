@@ -3,6 +3,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/stats.h"
 
 namespace tripath {
@@ -10,6 +13,39 @@ namespace tripath {
 namespace {
 constexpr Counter kLightVertices{Event::LightVertices};
 }  // namespace
+
+LightPathSurvey LightPhase::survey(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
+                                   StreamDomain cameraDomain) {
+    LightPathSurvey out;
+    if (!integrator.hasLightPhase()) return out;
+    const uint64_t paths = static_cast<uint64_t>(integrator.lightPaths(scene));
+    const uint64_t traced = std::min<uint64_t>(paths, kSurveyPaths);
+    const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
+    const WalkPdfs pdfs = integrator.strategies().lightWalkPdfs();
+    const bool splats = integrator.strategies().minT <= 1;
+    Subpath path;
+    for (uint64_t j = 0; j < traced; ++j) {
+        Rng rng(seed, domain, index * paths + j * paths / traced);
+        lightSubpath(scene, rng, integrator.settings().walk, pdfs, path);
+        out.vertices += double(path.size());
+        for (size_t i = 0; i < path.size(); ++i) {
+            const bool interiorDelta = i >= 1 && path[i].delta;
+            out.mergeable += i >= 1 && !interiorDelta;
+            out.splats += splats && !interiorDelta && !path[i].atInfinity;
+        }
+    }
+    for (double* v : {&out.vertices, &out.mergeable, &out.splats}) *v /= double(traced);
+    return out;
+}
+
+uint64_t LightPhase::bytes(double paths, const LightPathSurvey& survey, bool merges) {
+    uint64_t n = LightStore::bytesFor(paths, paths * survey.vertices);
+    if (merges) {
+        const auto entries = static_cast<size_t>(std::ceil(paths * survey.mergeable));
+        n += entries * sizeof(LightVertexSearch::Entry) + LightVertexSearch::bytesFor(entries);
+    }
+    return n;
+}
 
 Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
                      StreamDomain cameraDomain) {

@@ -15,8 +15,26 @@
 
 namespace tripath {
 
+// What a pass's light subpaths hold, per light path on average: their vertices (all stored), the
+// mergeable ones (indexed for the merge search when the integrator merges) and those that may
+// splat into the image (t = 1, when the integrator joins light vertices to the sensor).
+struct LightPathSurvey {
+    double vertices = 0, mergeable = 0, splats = 0;
+};
+
 class LightPhase {
 public:
+    // The averages of LightPathSurvey over up to kSurveyPaths of pass `index`'s light paths, spread
+    // evenly over them and traced exactly as run() traces them (its streams): what a pass will
+    // store, known before the store is allocated. Zero without a light phase.
+    static constexpr int kSurveyPaths = 4096;
+    static LightPathSurvey survey(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
+                                  StreamDomain cameraDomain);
+    // The memory a pass of `paths` light paths of these averages takes at its peak, while the
+    // merge search is built (integrator.h's Pass: the store, the chunks' mergeable lists and the
+    // grid with its temporaries, when `merges`).
+    static uint64_t bytes(double paths, const LightPathSurvey& survey, bool merges);
+
     // Traces pass `index` for `integrator` (nothing if it has no light phase), in parallel in the
     // calling thread's TBB arena, and returns what the pass's camera samples share. The Pass
     // points into this object: it stays valid until the next run. One LightPhase serves one

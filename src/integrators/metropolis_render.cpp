@@ -344,13 +344,25 @@ private:
 
 }  // namespace
 
+MetropolisMemory metropolisMemory(double pixels, const MetropolisSettings& settings, int maxDepth) {
+    const double chains = std::min<double>(settings.chains, pixels);
+    // The bootstrap's bytes per sample: the rank's luminances, the bytes they are sent as (which
+    // then hold the concatenation) and the gathered slices, 4 each, and the layout's running sum.
+    constexpr uint64_t kBootstrapBytes = 3 * sizeof(float) + sizeof(double);
+    return {static_cast<uint64_t>(chains) * MarkovChain::bytesFor(maxDepth),
+            static_cast<uint64_t>(2 * std::ceil(pixels / chains) * chains) * sizeof(ChainSplat),
+            uint64_t(settings.bootstrap) * kBootstrapBytes};
+}
+
 RenderResult renderMetropolis(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
     const Camera& cam = scene.camera();
     FilmLayers layers = settings.layers;
     layers.strategies = integrator.strategies();
+    MemoryEstimate memory = admitMemory(scene, integrator, settings);
     RenderResult result{.film = Film(cam.width(), cam.height(), layers),
                         .budgetPasses = settings.spp,
-                        .budgetSeconds = settings.seconds};
+                        .budgetSeconds = settings.seconds,
+                        .memory = std::move(memory)};
     ChainPasses passes(scene, integrator, settings);
     return runPasses(settings, passes, std::move(result));
 }

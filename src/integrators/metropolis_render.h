@@ -44,4 +44,12 @@ namespace tripath {
 
 RenderResult renderMetropolis(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
 
+// What the loop holds besides its film, for an image of `pixels` pixels, at most: the chains' states
+// (each taken over paths of `maxDepth` segments, the longest), their splats of one pass (a step per
+// pixel, two splats a step) and the bootstrap's luminances as they are gathered.
+struct MetropolisMemory {
+    uint64_t chains = 0, splats = 0, bootstrap = 0;
+};
+MetropolisMemory metropolisMemory(double pixels, const MetropolisSettings& settings, int maxDepth);
+
 }  // namespace tripath

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <tuple>
 
@@ -255,13 +256,24 @@ RenderResult& addResumed(RenderResult& r, const RenderResult* resume) {
     return r;
 }
 
+MemoryEstimate admitMemory(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
+    MemoryEstimate estimate = estimateMemory(scene, integrator, settings);
+    if (settings.checkMemory)
+        together(settings.team ? *settings.team : solo(), [&] { settings.checkMemory(estimate); });
+    return estimate;
+}
+
+uint64_t pendingSplatBytes(double splats) { return static_cast<uint64_t>(std::ceil(splats)) * sizeof(Splat); }
+
 RenderResult Integrator::render(const Scene& scene, const RenderSettings& settings) const {
     const Camera& cam = scene.camera();
     FilmLayers layers = settings.layers;
     layers.strategies = strategies();
+    MemoryEstimate memory = admitMemory(scene, *this, settings);
     RenderResult result{.film = Film(cam.width(), cam.height(), layers),
                         .budgetPasses = settings.spp,
-                        .budgetSeconds = settings.seconds};
+                        .budgetSeconds = settings.seconds,
+                        .memory = std::move(memory)};
     TilePasses passes(scene, *this, settings, settings.resume ? settings.resume->nextPass : settings.firstPass);
     return runPasses(settings, passes, std::move(result));
 }

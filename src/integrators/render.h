@@ -19,6 +19,7 @@
 #include "core/stats.h"
 #include "integrators/film.h"
 #include "integrators/integrator.h"
+#include "integrators/memory_estimate.h"
 #include "integrators/team.h"
 
 namespace tripath {
@@ -42,7 +43,7 @@ constexpr size_t kDroppedLogSize = 16;
 // The largest first pass a render may be given or a saved render may claim to have reached (a
 // checkpoint's next-pass, a reference's tripath:next-pass): a pass's random streams are numbered
 // pass × pixels + pixel and pass × light paths + path, which stay below 2^64 for every pass up to
-// 2^35 even at 16384² pixels (2^28) and the most light paths (2^26), so no stream is used twice.
+// 2^35 even at 16384² pixels and as many light paths (2^28 each), so no stream is used twice.
 constexpr uint64_t kMaxFirstPass = uint64_t(1) << 35;
 
 struct RenderSettings {
@@ -75,6 +76,10 @@ struct RenderSettings {
     // render so far (reduced over the team) through onCheckpoint.
     double checkpointSeconds = 0;
     std::function<void(const RenderResult&)> onCheckpoint;
+    // Called with the render's memory estimate (memory_estimate.h) before the film and the light
+    // paths are allocated, on every rank together: it throws InputError to refuse the render, and
+    // every rank then throws the lowest failing rank's (team.h, together). May be empty.
+    std::function<void(const MemoryEstimate&)> checkMemory;
 };
 
 // What mlt's chains did (integrators/metropolis_render.h), per path length k = 1 … max-depth
@@ -115,6 +120,7 @@ struct RenderResult {
     // nothing, not even the render it resumed, and has no image to write nor state to checkpoint.
     bool interruptedBeforeAnyPass = false;
     MetropolisReport metropolis{};  // mlt only
+    MemoryEstimate memory{};        // what the render was estimated to need before it started
     Image image() const { return film.image(passes); }
 };
 
@@ -127,6 +133,14 @@ std::string interruptionText(const RenderResult& r);
 RenderResult& addResumed(RenderResult& r, const RenderResult* resume);
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
+
+// The render's memory estimate, passed through settings.checkMemory (if set) on every rank of its
+// team together: what render() and renderMetropolis() call before they allocate anything large.
+MemoryEstimate admitMemory(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
+
+// The memory `splats` light-tracing splats (t = 1 connections) take while they wait for the end of
+// their pass, when they are added to the film in tile order.
+uint64_t pendingSplatBytes(double splats);
 
 // Renders camera sample (pass, pixel) of a render with these settings again, exactly as render()
 // did (after the light phase of its pass, when the integrator has one), and hands each of its

@@ -70,7 +70,8 @@ RenderResult runPasses(const RenderSettings& settings, PassSource& source, Rende
             const auto t0 = std::chrono::steady_clock::now();
             // Rank 0 reduces into a copy (its own film must keep only its own passes); the others
             // only send theirs.
-            RenderResult sofar{.film = team.rank() == 0 ? result.film : Film(0, 0), .seconds = result.seconds};
+            RenderResult sofar{
+                .film = team.rank() == 0 ? result.film : Film(0, 0), .seconds = result.seconds, .memory = result.memory};
             agreeOnTimeAndStop(team, sofar, false);
             source.gather(sofar, result.film, local, localNext, result);
             if (team.rank() == 0 && settings.onCheckpoint) settings.onCheckpoint(addResumed(sofar, resume));

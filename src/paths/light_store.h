@@ -11,6 +11,7 @@
 // defines at its junction apart (mis.h), so all threads can share the store.
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -66,6 +67,10 @@ public:
     SubpathView path(size_t i) const { return chunks_[i / kPathsPerChunk].path(i % kPathsPerChunk); }
     size_t vertices() const;
     size_t bytes() const;
+    // What a store of `paths` light paths and `vertices` vertices in all takes.
+    static uint64_t bytesFor(double paths, double vertices) {
+        return static_cast<uint64_t>(std::ceil(vertices * sizeof(Vertex) + paths * sizeof(uint32_t)));
+    }
 
 private:
     std::vector<Chunk> chunks_;
@@ -91,6 +96,8 @@ public:
     LightVertexSearch(std::span<const std::vector<Entry>> chunks, float radius);
     float radius() const { return grid_.radius(); }
     size_t bytes() const { return grid_.bytes(); }
+    // What building one over `entries` mergeable vertices takes at its peak.
+    static uint64_t bytesFor(size_t entries) { return PointGrid<Candidate>::buildBytes(entries); }
     // Calls f(i, prefix, s) for each mergeable light vertex within the radius of each query point
     // qs[i], query by query in the order given, each in a fixed order: `prefix` is its light
     // subpath up to and including it, which is y_{s−1} of that prefix. The vertices found, scattered

@@ -64,6 +64,13 @@ public:
 
     float radius() const { return radius_; }
     size_t bytes() const { return begin_.capacity() * sizeof(uint32_t) + sorted_.capacity() * sizeof(Entry); }
+    // What the constructor takes at its peak for n entries: the grid (a bound and its bucket per
+    // entry) and its temporaries (each entry's bucket, each bucket's next slot).
+    static size_t buildBytes(size_t n) {
+        if (n == 0) return 0;
+        const size_t buckets = std::bit_ceil(n);
+        return n * (sizeof(Entry) + sizeof(uint32_t)) + (2 * buckets + 1) * sizeof(uint32_t);
+    }
 
     // Calls f(payload) for every point within distance r of p (|q − p|² ≤ r²), in a fixed order.
     template <class F>

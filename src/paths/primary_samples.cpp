@@ -61,6 +61,8 @@ float PrimarySamples::uniform() {
     return c.value;
 }
 
+size_t PrimarySamples::bytesFor(size_t coordinates) { return coordinates * sizeof(Coordinate); }
+
 void PrimarySamples::write(std::string& out) const {
     putBytes(out, proposal_);
     putBytes(out, lastLargeStep_);

@@ -66,6 +66,9 @@ public:
     void write(std::string& out) const;
     void read(std::string_view& in);
 
+    // The memory `coordinates` coordinates take.
+    static size_t bytesFor(size_t coordinates);
+
 private:
     struct Coordinate {
         float value = 0, backup = 0;

@@ -27,11 +27,11 @@ static_assert(std::endian::native == std::endian::little, "checkpoints store the
 // other ranks in microseconds, as a 64-bit integer. 1e9 s is 31 years.
 constexpr double kMaxSeconds = 1e9;
 
-size_t wordCount(const Film& film) {
-    size_t n = 0;
-    for (const ExactSums* t : film.totals()) n += t->words().size();
-    return n;
+// The words of a film's exact totals: three per value, three values per pixel of each image.
+size_t wordCount(int width, int height, const FilmLayers& layers) {
+    return Film::images(layers) * 9 * size_t(width) * size_t(height);
 }
+size_t wordCount(const Film& film) { return wordCount(film.width(), film.height(), film.layers()); }
 
 }  // namespace
 
@@ -54,7 +54,8 @@ void writeCheckpoint(const std::string& path, const Metadata& settings, const Re
     });
 }
 
-std::optional<RenderResult> readCheckpoint(const std::string& path, const Metadata& settings, const Film& shape) {
+std::optional<RenderResult> readCheckpoint(const std::string& path, const Metadata& settings, int width, int height,
+                                           const FilmLayers& layers) {
     auto bad = [&](const std::string& why) { return InputError(fmt::format("checkpoint '{}': {}", path, why)); };
     std::error_code ec;
     const std::filesystem::file_type type = std::filesystem::status(path, ec).type();
@@ -103,7 +104,7 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
         if (!parsed) throw bad(fmt::format("{} is '{}', not a whole number from 0 to {}", key, clipped(value), max));
         return *parsed;
     };
-    RenderResult r{shape};
+    RenderResult r{Film(width, height, layers)};
     r.passes = int(number("passes", INT_MAX));
     r.nextPass = number("next-pass", kMaxFirstPass);
     if (uint64_t(r.passes) > r.nextPass)
@@ -116,13 +117,14 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
     r.droppedSamples = number("dropped-samples", UINT64_MAX);
     r.guardedWeights = number("guarded-weights", UINT64_MAX);
     r.metropolis.run = number("chain-run", UINT64_MAX);
-    if (number("values", UINT64_MAX) != wordCount(shape)) throw bad("its film has another size or other layers");
+    const size_t words = wordCount(width, height, layers);
+    if (number("values", UINT64_MAX) != words) throw bad("its film has another size or other layers");
     // The chains' states are what follows the totals: their size is checked against the file's
     // before anything is allocated for them.
     const uint64_t chainBytes = number("chain-bytes", UINT64_MAX);
     const uint64_t fileSize = std::filesystem::file_size(path, ec);
     if (ec) throw bad("cannot read it (" + ec.message() + ")");
-    const uint64_t totalsEnd = uint64_t(std::streamoff(f.tellg())) + wordCount(shape) * sizeof(uint64_t);
+    const uint64_t totalsEnd = uint64_t(std::streamoff(f.tellg())) + words * sizeof(uint64_t);
     if (fileSize < totalsEnd) throw bad("cut short");
     if (fileSize - totalsEnd != chainBytes)
         throw bad(fmt::format("its header gives chain-bytes={}, but {} bytes follow its totals", chainBytes,

@@ -24,13 +24,14 @@ namespace tripath {
 
 void writeCheckpoint(const std::string& path, const Metadata& settings, const RenderResult& r);
 
-// The render saved at `path`, into a film shaped like `shape` (its size and layers); nullopt if
+// The render saved at `path`, into a film of that size and those layers; nullopt if
 // there is no such file. Throws InputError (one line naming the file) if it is not a regular file
 // (a FIFO would block), not a checkpoint or of another format version, was made with other
 // settings (naming the first that differs; of the scene, the first file whose content differs),
 // has a header number that is not entirely a number in its range (next-pass at most
 // kMaxFirstPass, seconds finite, from 0 to 1e9), a size other than its header gives, or contents
 // that fail its checksum.
-std::optional<RenderResult> readCheckpoint(const std::string& path, const Metadata& settings, const Film& shape);
+std::optional<RenderResult> readCheckpoint(const std::string& path, const Metadata& settings, int width, int height,
+                                           const FilmLayers& layers);
 
 }  // namespace tripath

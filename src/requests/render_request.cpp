@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "requests/environment_spec.h"
 #include "requests/integrator_parameters.h"
+#include "requests/memory_check.h"
 #include "requests/scene_identity.h"
 #include "scenes/scene_source.h"
 #include "paths/kernels.h"
@@ -61,11 +62,6 @@ void validateValues(const RenderRequest& r, Spelling spelling) {
     };
     check(true, "width", r.width, kSizeRange);
     check(true, "height", r.height, kSizeRange);
-    // The film keeps 96 bytes a pixel (the block's double RGB and the exact 192-bit totals) plus the
-    // output image: 8192² is ~6.7 GiB.
-    if (double(r.width) * r.height > 8192.0 * 8192.0)
-        fail(fmt::format("{}/{} may make at most 8192x8192 pixels (got {}x{})", name("width"), name("height"), r.width,
-                         r.height));
     check(r.sppGiven, "spp", r.spp, kSppRange);
     if (r.timeGiven && !(r.seconds > 0 && r.seconds <= 1e7))
         fail(fmt::format("{} must be a number of seconds above 0 and at most 1e7 (got {})",
@@ -131,7 +127,7 @@ IntegratorSettings integratorSettings(const RenderRequest& r) {
     return s;
 }
 
-RenderSettings renderSettings(const RenderRequest& r) {
+RenderSettings renderSettings(const RenderRequest& r, Spelling spelling) {
     RenderSettings s;
     s.seconds = r.seconds;
     s.spp = r.spp > 0 ? r.spp : (r.seconds > 0 ? 0 : 16);
@@ -141,6 +137,7 @@ RenderSettings renderSettings(const RenderRequest& r) {
     s.timing = r.stats;
     if (r.depthImages) s.layers.depthImages = r.maxDepth;
     s.layers.strategyLength = r.strategyImages;
+    s.checkMemory = [limit = memoryLimit(r), spelling](const MemoryEstimate& e) { requireMemory(e, limit, spelling); };
     return s;
 }
 
@@ -198,6 +195,7 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
         m.push_back({"tripath:mlt-chains-per-length", fmt::format("{}", fmt::join(chains, " "))});
         m.push_back({"tripath:mlt-acceptance", fmt::format("{}", fmt::join(acceptance, " "))});
     }
+    if (result.memory.total() > 0) m.push_back({"tripath:memory-estimate", std::to_string(result.memory.total())});
     if (result.interrupted) m.push_back({"tripath:interrupted", interruptionText(result)});
     return m;
 }

@@ -16,9 +16,12 @@
 
 namespace tripath {
 
-// The most light paths a pass may trace: as many as the largest image has pixels (each stored
-// light path takes some 350 bytes).
-inline constexpr int64_t kMaxLightPaths = int64_t(8192) * 8192;
+// The largest image side: --help's limit and validate()'s. Whether a size fits in memory is the
+// memory estimate's to say (memory_check.h), not a fixed cap on the pixels.
+inline constexpr int kMaxImageSide = 16384;
+// The most light paths a pass may trace: as many as the largest image has pixels, the default
+// (one per pixel) at that size. What they take is again the memory estimate's to check.
+inline constexpr int64_t kMaxLightPaths = int64_t(kMaxImageSide) * kMaxImageSide;
 
 struct RenderRequest {
     std::string scene;                    // a built-in's name or a .gltf/.glb file
@@ -43,6 +46,8 @@ struct RenderRequest {
     bool bootstrapGiven = false, chainsGiven = false, largeStepGiven = false;
     uint64_t seed = 1;
     int threads = 0;                      // 0: all cores
+    uint64_t memoryLimit = 0;             // bytes the render may take, when memoryLimitGiven (else what the machine has)
+    bool memoryLimitGiven = false;
     bool stats = false;                   // run the phase timers (the counts are always kept)
     bool depthImages = false;             // a film layer per path length k = 1..maxDepth
     int strategyImages = 0;               // > 0: weighted and unweighted layers per strategy with k ≤ this
@@ -59,7 +64,7 @@ struct IntRange {
     uint64_t max;
     const char* note = "";  // said after the range: ", 0 for none"
 };
-inline constexpr IntRange kSizeRange{1, 16384}, kSppRange{1, 1000000}, kMaxDepthRange{1, 1024},
+inline constexpr IntRange kSizeRange{1, uint64_t(kMaxImageSide)}, kSppRange{1, 1000000}, kMaxDepthRange{1, 1024},
     kRrDepthRange{0, 1024, ", 0 for the integrator's default"}, kThreadsRange{0, 4096, ", 0 for all cores"},
     kLightPathsRange{1, kMaxLightPaths}, kStrategyImagesRange{0, 16, ", 0 for none"}, kSeedRange{0, UINT64_MAX},
     kBootstrapRange{1, 10000000}, kChainsRange{1, 1 << 20};  // the bootstrap keeps 20 bytes a sample
@@ -90,8 +95,10 @@ void requireUsed(const RenderRequest& r, const std::vector<std::string>& integra
 int rouletteDepth(const RenderRequest& r, const std::string& integrator);
 IntegratorSettings integratorSettings(const RenderRequest& r);
 // Budget, seed, threads, timing, streams and layers as the render loop takes them (16 passes
-// when neither spp nor seconds is given); one process: a team is the caller's to add.
-RenderSettings renderSettings(const RenderRequest& r);
+// when neither spp nor seconds is given), and the memory check of the request's budget, whose
+// refusal spells the flags to lower as `spelling` does (memory_check.h); one process: a team is
+// the caller's to add.
+RenderSettings renderSettings(const RenderRequest& r, Spelling spelling = Spelling::CommandLine);
 // The scene at the request's image size, its sources (Scene::sources) the scene's then the
 // environment's, by its file name; InputError for an unknown name or a bad file.
 std::unique_ptr<Scene> loadScene(const RenderRequest& r, const WarningSink& warn = printWarning);
@@ -105,7 +112,8 @@ const char* streamsName(StreamDomain d);
 // cache) starts from these.
 Metadata convergenceSettings(const RenderRequest& r, const Scene& scene, const std::string& integrator);
 // The EXR metadata describing a finished render by `ranks` processes: the settings, tripath:scene
-// and tripath:environment as the request names them, the counts; tripath:interrupted too
+// and tripath:environment as the request names them, the counts, tripath:memory-estimate (the
+// bytes the render was estimated to need: memory_estimate.h); tripath:interrupted too
 // (interruptionText, render.h) when a stop request ended it.
 Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator, const RenderResult& result,
                         int ranks = 1);
