@@ -60,11 +60,12 @@ TEST(Memory, ThePathTracersEstimateGrowsByTheFilmAndTheImageOut) {
 }
 
 // With no more light paths than it traces, the survey sees every path of the pass: its mean
-// vertices and mergeable vertices times the path count are what the pass's store holds, counted
-// path by path. Fails if the survey traced other paths than the pass (other streams, another
-// walk) or counted its vertices otherwise than the merge search takes them.
+// vertices, BSDF parameters and mergeable vertices times the path count are what the pass's store
+// holds, counted path by path (sky's textured ground keeps parameters beside its vertices).
+// Fails if the survey traced other paths than the pass (other streams, another walk), counted its
+// vertices otherwise than the merge search takes them, or missed the kept parameters.
 TEST(Memory, TheSurveyCountsWhatThePassStores) {
-    for (const char* scene : {"cornell", "cornell-spheres"}) {
+    for (const char* scene : {"cornell", "cornell-spheres", "sky"}) {
         RenderRequest r = test::smallRequest();
         r.integrator = "vcm";
         r.lightPaths = 3000;
@@ -75,12 +76,15 @@ TEST(Memory, TheSurveyCountsWhatThePassStores) {
         const LightPathSurvey survey = LightPhase::survey(built, *integrator, pass, seed, StreamDomain::CameraSample);
         LightPhase phase;
         phase.run(built, *integrator, pass, seed, StreamDomain::CameraSample);
-        size_t mergeable = 0;
+        size_t mergeable = 0, bsdfs = 0;
         for (size_t i = 0; i < phase.store().paths(); ++i) {
-            const std::span<const Vertex> path = phase.store().path(i);
+            const SubpathView path = phase.store().path(i);
             for (size_t j = 1; j < path.size(); ++j) mergeable += !path[j].delta;
+            bsdfs += path.bsdfs.size();
         }
         EXPECT_NEAR(survey.vertices * 3000, double(phase.store().vertices()), 1e-6) << scene;
+        EXPECT_NEAR(survey.bsdfs * 3000, double(bsdfs), 1e-6) << scene;
+        if (std::string(scene) == "sky") EXPECT_GT(bsdfs, 0u);
         EXPECT_NEAR(survey.mergeable * 3000, double(mergeable), 1e-6) << scene;
     }
 }

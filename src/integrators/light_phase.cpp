@@ -28,18 +28,19 @@ LightPathSurvey LightPhase::survey(const Scene& scene, const Integrator& integra
         Rng rng(seed, domain, index * paths + j * paths / traced);
         lightSubpath(scene, rng, integrator.settings().walk, pdfs, path);
         out.vertices += double(path.size());
+        out.bsdfs += double(path.bsdfs.size());
         for (size_t i = 0; i < path.size(); ++i) {
             const bool interiorDelta = i >= 1 && path[i].delta;
             out.mergeable += i >= 1 && !interiorDelta;
             out.splats += splats && !interiorDelta && !path[i].atInfinity;
         }
     }
-    for (double* v : {&out.vertices, &out.mergeable, &out.splats}) *v /= double(traced);
+    for (double* v : {&out.vertices, &out.bsdfs, &out.mergeable, &out.splats}) *v /= double(traced);
     return out;
 }
 
 uint64_t LightPhase::bytes(double paths, const LightPathSurvey& survey, bool merges) {
-    uint64_t n = LightStore::bytesFor(paths, paths * survey.vertices);
+    uint64_t n = LightStore::bytesFor(paths, paths * survey.vertices, paths * survey.bsdfs);
     if (merges) {
         const auto entries = static_cast<size_t>(std::ceil(paths * survey.mergeable));
         n += entries * sizeof(LightVertexSearch::Entry) + LightVertexSearch::bytesFor(entries);

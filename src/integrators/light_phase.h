@@ -16,10 +16,11 @@
 namespace tripath {
 
 // What a pass's light subpaths hold, per light path on average: their vertices (all stored), the
-// mergeable ones (indexed for the merge search when the integrator merges) and those that may
+// BSDF parameters kept beside them (where the scene's textures or vertex colours vary them), the
+// mergeable vertices (indexed for the merge search when the integrator merges) and those that may
 // splat into the image (t = 1, when the integrator joins light vertices to the sensor).
 struct LightPathSurvey {
-    double vertices = 0, mergeable = 0, splats = 0;
+    double vertices = 0, bsdfs = 0, mergeable = 0, splats = 0;
 };
 
 class LightPhase {

@@ -67,9 +67,11 @@ public:
     SubpathView path(size_t i) const { return chunks_[i / kPathsPerChunk].path(i % kPathsPerChunk); }
     size_t vertices() const;
     size_t bytes() const;
-    // What a store of `paths` light paths and `vertices` vertices in all takes.
-    static uint64_t bytesFor(double paths, double vertices) {
-        return static_cast<uint64_t>(std::ceil(vertices * sizeof(Vertex) + paths * sizeof(uint32_t)));
+    // What a store of `paths` light paths, `vertices` vertices and `bsdfs` BSDF parameters in all
+    // (kept beside vertices where textures or vertex colours vary them) takes.
+    static uint64_t bytesFor(double paths, double vertices, double bsdfs) {
+        return static_cast<uint64_t>(
+            std::ceil(vertices * sizeof(Vertex) + bsdfs * sizeof(BsdfParams) + paths * sizeof(uint32_t)));
     }
 
 private:
