@@ -77,7 +77,7 @@ TEST(Memory, TheSurveyCountsWhatThePassStores) {
         phase.run(built, *integrator, pass, seed, StreamDomain::CameraSample);
         size_t mergeable = 0;
         for (size_t i = 0; i < phase.store().paths(); ++i) {
-            const std::span<const Vertex> path = phase.store().path(i);
+            const SubpathView path = phase.store().path(i);
             for (size_t j = 1; j < path.size(); ++j) mergeable += !path[j].delta;
         }
         EXPECT_NEAR(survey.vertices * 3000, double(phase.store().vertices()), 1e-6) << scene;
