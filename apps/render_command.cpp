@@ -104,12 +104,15 @@ void replay(const RenderCommand& c) {
     const RenderOptions& o = c.options;
     validateRenderOptions(o);
     const auto [pass, pixel] = parseReplay(c.replay, o.width, o.height);
-    const auto scene = loadScene(o);
     const auto integrator = makeIntegrator(o.integrator, integratorSettings(o));
+    const PixelSampleIntegrator* samples = integrator->pixelSamples();
+    if (!samples)
+        throw InputError(fmt::format("--replay renders a pixel's sample again; {} has no pixel samples", o.integrator));
+    const auto scene = loadScene(o);
     std::cout << fmt::format("{} {}, seed {}: pass {}, {} {} (x {}, y {})\n", o.integrator, o.scene, o.seed, pass,
                              o.integrator == "lt" ? "light path" : "pixel", pixel, pixel % o.width, pixel / o.width);
     PrintingSink sink;
-    replaySample(*scene, *integrator, renderSettings(o), pass, pixel, sink);  // one process replays
+    replaySample(*scene, *samples, renderSettings(o), pass, pixel, sink);  // one process replays
     sink.summarize();
 }
 

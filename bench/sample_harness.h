@@ -9,7 +9,7 @@ namespace tripath::bench {
 enum class SampleKind {
     CameraSubpath,  // cameraSubpath() alone
     LightSubpath,   // lightSubpath() alone
-    PT,             // Integrator::sample of pt, lt, bdpt: subpaths, every enabled strategy, MIS
+    PT,             // PixelSampleIntegrator::sample of pt, lt, bdpt: subpaths, every enabled strategy, MIS
     LT,
     BDPT,
 };

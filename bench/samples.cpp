@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "bench_scenes.h"
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 #include "sample_harness.h"
 
 namespace tripath::bench {
@@ -57,17 +57,18 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
     std::unique_ptr<Integrator> integrator;
     if (spec.kind == SampleKind::PT || spec.kind == SampleKind::LT || spec.kind == SampleKind::BDPT)
         integrator = makeIntegrator(sampleKindName(spec.kind), settings);
+    const PixelSampleIntegrator* method = integrator ? integrator->pixelSamples() : nullptr;
 
     tbb::enumerable_thread_specific<Worker> workers;
     // lt and bdpt read the light paths of their pass: a light phase for the block's pixels, traced
     // from the render's light-path streams, runs before the block's camera samples (timed with them).
-    const bool lightPhase = integrator && integrator->hasLightPhase();
+    const bool lightPhase = method && method->hasLightPhase();
     std::vector<Subpath> lightPaths(lightPhase ? kBlockPixels : 0);
     LightStore store;
     const uint64_t pixels = uint64_t(kWidth) * kHeight;
     Pass pass;
     pass.mis.constants = passConstants(double(pixels), 0.0f);  // N_L: one light path per pixel, as rendered
-    if (integrator) pass.mis = integrator->misContext(pass.mis.constants);
+    if (method) pass.mis = method->misContext(pass.mis.constants);
     tbb::task_arena& arena = arenaFor(spec.threads);
     uint64_t iteration = 0;
 
@@ -87,7 +88,7 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
                 if (w.paths.light.size() > 0) w.sink.sum += w.paths.light.vertices.back().beta.x;
                 break;
             default:
-                integrator->sample(scene, pass, blockPixel, raster, rng, w.paths, w.sink);
+                method->sample(scene, pass, blockPixel, raster, rng, w.paths, w.sink);
                 if (lightPhase) w.vertices += traced(lightPaths[blockPixel]);
                 break;
         }
@@ -109,7 +110,7 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
                     for (int i = r.begin(); i < r.end(); ++i) {
                         const int pixel = (by + i / kBlock) * kWidth + bx + i % kBlock;
                         Rng rng(kSeed, static_cast<uint64_t>(StreamDomain::LightPath), passIndex * pixels + pixel);
-                        lightSubpath(scene, rng, settings.walk, integrator->strategies().lightWalkPdfs(), lightPaths[i]);
+                        lightSubpath(scene, rng, settings.walk, method->strategies().lightWalkPdfs(), lightPaths[i]);
                     }
                     w.rays += threadRayCounts() - before;
                 });

@@ -18,7 +18,7 @@
 #include "io/gltf_loader.h"
 #include "core/rng.h"
 #include "geometry/scene.h"
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 #include "integrators/light_phase.h"
 #include "input_file.h"
 #include "targets.h"
@@ -44,15 +44,16 @@ std::string loadAndSampleGltf(const uint8_t* data, size_t size) {
         // A handful of paths: geometry that passes validation must also be safe to sample.
         IntegratorSettings settings;
         settings.walk.maxDepth = 4;
-        const auto vcm = makeIntegrator("vcm", settings);
+        const auto integrator = makeIntegrator("vcm", settings);
+        const PixelSampleIntegrator& vcm = *integrator->pixelSamples();
         LightPhase lightPhase;
-        const Pass pass = lightPhase.run(scene, *vcm, 0, 1, StreamDomain::Test);
+        const Pass pass = lightPhase.run(scene, vcm, 0, 1, StreamDomain::Test);
         PathBuffers paths;
         NullSink sink;
         for (int i = 0; i < kSize; ++i) {  // the diagonal's pixels
             Rng rng(1, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(i));
             const Vec2 raster{0.5f + float(i), 0.5f + float(i)};
-            vcm->sample(scene, pass, i * (kSize + 1), raster, rng, paths, sink);
+            vcm.sample(scene, pass, i * (kSize + 1), raster, rng, paths, sink);
         }
     } catch (const InputError& e) {
         return e.what();  // the expected answer to bad input

@@ -389,6 +389,7 @@ TEST_F(Cli, AbsurdBudgetsAreRefused) {
     expectRefused(render("--width 8 --height 8 --replay 3,64 " + out()), "--replay");
     expectRefused(render("--width 8 --height 8 --replay -1,2 " + out()), "--replay");
     expectRefused(render("--width 8 --height 8 --replay 1,2x " + out()), "--replay");
+    expectRefused(render("--integrator mlt --width 8 --height 8 --replay 1,2 " + out()), "mlt has no pixel samples");
     expectRefused(render("--checkpoint nan " + out()), "--checkpoint");
 }
 

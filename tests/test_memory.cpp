@@ -73,9 +73,10 @@ TEST(Memory, TheSurveyCountsWhatThePassStores) {
         const Scene built(builtinScene(scene), 16, 16);
         const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
         const uint64_t pass = 5, seed = 7;
-        const LightPathSurvey survey = LightPhase::survey(built, *integrator, pass, seed, StreamDomain::CameraSample);
+        const PixelSampleIntegrator& samples = *integrator->pixelSamples();
+        const LightPathSurvey survey = LightPhase::survey(built, samples, pass, seed, StreamDomain::CameraSample);
         LightPhase phase;
-        phase.run(built, *integrator, pass, seed, StreamDomain::CameraSample);
+        phase.run(built, samples, pass, seed, StreamDomain::CameraSample);
         size_t mergeable = 0, bsdfs = 0;
         for (size_t i = 0; i < phase.store().paths(); ++i) {
             const SubpathView path = phase.store().path(i);

@@ -11,7 +11,7 @@
 #include "scenes/builtin_scenes.h"
 #include "paths/point_grid.h"
 #include "core/rng.h"
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 #include "integrators/light_phase.h"
 #include "support.h"
 
@@ -184,7 +184,7 @@ TEST(PointGrid, EmptyFindsNothing) {
 
 float defaultRadius(const std::string& scene, int size) {
     const Scene s(builtinScene(scene), size, size);
-    return makeIntegrator("vcm", IntegratorSettings{})->firstMergeRadius(s);
+    return makeIntegrator("vcm", IntegratorSettings{})->pixelSamples()->firstMergeRadius(s);
 }
 
 // The default first-pass radius is a number of pixel widths on what the camera sees: half the
@@ -226,7 +226,8 @@ TEST(MergeRadius, APassCarriesItsLightPathsRadiusAndEta) {
             is.merge.radius = 0.1f;
             is.merge.alpha = 0.5f;
             LightPhase phase;
-            const PassConstants c = phase.run(scene, *makeIntegrator(name, is), 3, 1, StreamDomain::Test).mis.constants;
+            const auto integrator = makeIntegrator(name, is);
+            const PassConstants c = phase.run(scene, *integrator->pixelSamples(), 3, 1, StreamDomain::Test).mis.constants;
             const double lightPaths = given ? 300.0 : 1024.0, radius = name == "vcm" ? 0.1 / std::sqrt(2.0) : 0.0;
             const std::string what = name + (given ? " with 300 light paths" : "");
             EXPECT_EQ(c.lightPaths, lightPaths) << what;

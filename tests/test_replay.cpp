@@ -40,7 +40,7 @@ TEST(Replay, ASampleRendersAgainAsTheFilmSawIt) {
     int lit = 0;  // pixels with light, so that the equality is not 0 == 0
     for (int pixel : {0, 37, 130, 255}) {
         SumSink sink;
-        replaySample(scene, *pt, rs, 5, pixel, sink);
+        replaySample(scene, *pt->pixelSamples(), rs, 5, pixel, sink);
         lit += sink.sum[0] > 0;
         for (int c = 0; c < 3; ++c) EXPECT_EQ(float(sink.sum[c]), image.rgb[3 * pixel + c]) << "pixel " << pixel << " channel " << c;
     }
@@ -100,10 +100,10 @@ TEST(Replay, AVcmSampleRendersAgainWithTheLightPathsOfItsPass) {
 
     LayerSink::Layers replayed;
     for (const Strategy& st : result.film.strategies()) replayed[st].assign(3 * kSize * kSize, 0.0);
-    LayerSink sink(replayed, scene.camera(), vcm->lightPaths(scene));
+    LayerSink sink(replayed, scene.camera(), vcm->pixelSamples()->lightPaths(scene));
     for (int pixel = 0; pixel < kSize * kSize; ++pixel) {
         sink.setPixel(pixel);
-        replaySample(scene, *vcm, rs, 5, pixel, sink);
+        replaySample(scene, *vcm->pixelSamples(), rs, 5, pixel, sink);
     }
     // Values lit by merges, by connections with s ≥ 2 and by splats (489, 1437 and 936 here).
     int merged = 0, connected = 0, splatted = 0;

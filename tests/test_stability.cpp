@@ -28,7 +28,7 @@
 #include "io/gltf_writer.h"
 #include "core/rng.h"
 #include "geometry/scene.h"
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 #include "integrators/light_phase.h"
 #include "integrators/render.h"
 #include "support.h"
@@ -149,17 +149,18 @@ TEST(FailureScenes, EverySampleIsFinite) {
             is.walk.maxDepth = kMaxDepth;
             is.merge.radiusFactor = 0.05f;  // large, so that merges happen at this size
             const auto integrator = makeIntegrator(integratorName, is);
+            const PixelSampleIntegrator& samples = *integrator->pixelSamples();
             PathBuffers paths;
             LightPhase lightPhase;
             CheckingSink sink(scene.camera());
             size_t vertices = 0;
             for (int p = 0; p < kSamples; ++p) {
-                const Pass pass = lightPhase.run(scene, *integrator, p, 7, StreamDomain::Test);
+                const Pass pass = lightPhase.run(scene, samples, p, 7, StreamDomain::Test);
                 vertices += lightPhase.store().vertices();
                 for (int pixel = 0; pixel < kSize * kSize; ++pixel) {
                     Rng rng(7, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(p * kSize * kSize + pixel));
                     const Vec2 raster{(pixel % kSize) + rng.uniform(), (pixel / kSize) + rng.uniform()};
-                    integrator->sample(scene, pass, pixel, raster, rng, paths, sink);
+                    samples.sample(scene, pass, pixel, raster, rng, paths, sink);
                     vertices += paths.camera.size();
                 }
             }

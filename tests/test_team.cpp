@@ -48,9 +48,9 @@ TEST(Team, RanksThatAreThreadsGiveTheOneProcessImage) {
 // Drops a NaN sample at two pixels of every pass: pixel 20 (x = 20, so the second 16-pixel tile
 // of a 32-pixel row) and pixel 32 + pass mod 4 (row 1, the first tile). One process logs a pass's
 // drops in tile order, so the second comes first although its pixel index is larger.
-class NanAtTwoPixels final : public Integrator {
+class NanAtTwoPixels final : public PixelSampleIntegrator {
 public:
-    NanAtTwoPixels() : Integrator({}) {}
+    NanAtTwoPixels() : PixelSampleIntegrator({}) {}
     std::string name() const override { return "nan-at-two-pixels"; }
     StrategySet strategies() const override { return {.maxS = 1, .minT = 2}; }  // pt's
     bool tracesCameraRays() const override { return false; }

@@ -6,13 +6,13 @@
 // (N_L per pass, one per pixel by default: pixel i's sample connects with light path i mod N_L and
 // joins light paths i, i + P, … to the sensor). With a pinhole
 // and a point light, specular-diffuse-specular paths have no strategy at all and stay black.
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 
 namespace tripath {
 
-class BidirectionalPathTracer final : public Integrator {
+class BidirectionalPathTracer final : public PixelSampleIntegrator {
 public:
-    using Integrator::Integrator;
+    using PixelSampleIntegrator::PixelSampleIntegrator;
     std::string name() const override { return "bdpt"; }
     StrategySet strategies() const override { return {}; }
 };

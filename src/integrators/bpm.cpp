@@ -7,13 +7,13 @@
 // --radius-factor, --alpha, --light-paths (N_L, one per pixel by default). Biased for a fixed
 // radius; consistent for α < 1. Direct light comes from merges alone, so it is noisier than any
 // method with next-event estimation.
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 
 namespace tripath {
 
-class BidirectionalPhotonMapping final : public Integrator {
+class BidirectionalPhotonMapping final : public PixelSampleIntegrator {
 public:
-    using Integrator::Integrator;
+    using PixelSampleIntegrator::PixelSampleIntegrator;
     std::string name() const override { return "bpm"; }
     StrategySet strategies() const override { return {.maxS = 0, .minT = 2, .merging = StrategySet::Merging::EveryVertex}; }
 };

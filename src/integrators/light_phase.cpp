@@ -14,8 +14,8 @@ namespace {
 constexpr Counter kLightVertices{Event::LightVertices};
 }  // namespace
 
-LightPathSurvey LightPhase::survey(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
-                                   StreamDomain cameraDomain) {
+LightPathSurvey LightPhase::survey(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index,
+                                   uint64_t seed, StreamDomain cameraDomain) {
     LightPathSurvey out;
     if (!integrator.hasLightPhase()) return out;
     const uint64_t paths = static_cast<uint64_t>(integrator.lightPaths(scene));
@@ -48,7 +48,7 @@ uint64_t LightPhase::bytes(double paths, const LightPathSurvey& survey, bool mer
     return n;
 }
 
-Pass LightPhase::run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
+Pass LightPhase::run(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index, uint64_t seed,
                      StreamDomain cameraDomain) {
     Pass pass;
     pass.index = index;

@@ -1,7 +1,7 @@
 // The light phase of a pass: before any camera sample, trace the pass's N_L light subpaths
-// (Integrator::lightPaths: one per pixel, or --light-paths), store them, and index their vertices
-// for merging (docs/design.md §1.1). It also makes the pass's constants (paths/pass_constants.h): N_L,
-// the merge radius of the pass's index, and η.
+// (PixelSampleIntegrator::lightPaths: one per pixel, or --light-paths), store them, and index
+// their vertices for merging (docs/design.md §1.1). It also makes the pass's constants
+// (paths/pass_constants.h): N_L, the merge radius of the pass's index, and η.
 //
 // Light path i of pass p draws from its own stream (seed, light-path domain, p · N_L + i), and the
 // paths are traced in the store's fixed chunks, one task per chunk, so the store -- and every
@@ -11,7 +11,7 @@
 #include <optional>
 #include <vector>
 
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 
 namespace tripath {
 
@@ -29,18 +29,19 @@ public:
     // evenly over them and traced exactly as run() traces them (its streams): what a pass will
     // store, known before the store is allocated. Zero without a light phase.
     static constexpr int kSurveyPaths = 4096;
-    static LightPathSurvey survey(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed,
-                                  StreamDomain cameraDomain);
+    static LightPathSurvey survey(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index,
+                                  uint64_t seed, StreamDomain cameraDomain);
     // The memory a pass of `paths` light paths of these averages takes at its peak, while the
-    // merge search is built (integrator.h's Pass: the store, the chunks' mergeable lists and the
-    // grid with its temporaries, when `merges`).
+    // merge search is built (pixel_sample_integrator.h's Pass: the store, the chunks' mergeable
+    // lists and the grid with its temporaries, when `merges`).
     static uint64_t bytes(double paths, const LightPathSurvey& survey, bool merges);
 
     // Traces pass `index` for `integrator` (nothing if it has no light phase), in parallel in the
     // calling thread's TBB arena, and returns what the pass's camera samples share. The Pass
     // points into this object: it stays valid until the next run. One LightPhase serves one
     // render (one scene and integrator): the first pass's radius is found once and kept.
-    Pass run(const Scene& scene, const Integrator& integrator, uint64_t index, uint64_t seed, StreamDomain cameraDomain);
+    Pass run(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index, uint64_t seed,
+             StreamDomain cameraDomain);
 
     const LightStore& store() const { return store_; }
 

@@ -6,13 +6,13 @@
 // (default 2), --light-paths (--mis has nothing to weigh: one strategy per path length). Cannot see
 // emitters or paths through delta surfaces next to the sensor (a mirror seen directly is black),
 // as it must.
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 
 namespace tripath {
 
-class LightTracer final : public Integrator {
+class LightTracer final : public PixelSampleIntegrator {
 public:
-    using Integrator::Integrator;
+    using PixelSampleIntegrator::PixelSampleIntegrator;
     std::string name() const override { return "lt"; }
     StrategySet strategies() const override { return {.maxT = 1}; }
     bool tracesCameraRays() const override { return false; }

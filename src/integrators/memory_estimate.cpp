@@ -38,6 +38,35 @@ std::vector<MemoryPart> sceneMemory(const Scene& scene) {
             {"environment", m.environment, {}}};
 }
 
+namespace {
+
+// What a loop of Markov chains holds: the chains, their splats of one pass and the bootstrap
+// (metropolisMemory).
+std::vector<MemoryPart> chainMemory(double pixels, const MetropolisSettings& chains, int maxDepth) {
+    using enum MemoryPart::Phase;
+    const MetropolisMemory m = metropolisMemory(pixels, chains, maxDepth);
+    return {{"chains", m.chains, {"chains", "max-depth"}, Rendering},
+            {"splats", m.splats, {"width/height"}, Rendering},
+            {"bootstrap", m.bootstrap, {"bootstrap"}, Rendering}};
+}
+
+// What a light phase holds: a pass's light paths (with the merge search when the method merges)
+// and their splats waiting for the end of the pass, from a survey of the first pass's light paths.
+std::vector<MemoryPart> lightPhaseMemory(const Scene& scene, const PixelSampleIntegrator& integrator,
+                                         const RenderSettings& settings) {
+    using enum MemoryPart::Phase;
+    const uint64_t first = settings.resume ? settings.resume->nextPass : settings.firstPass;
+    const LightPathSurvey survey = LightPhase::survey(scene, integrator, first, settings.seed, settings.domain);
+    const double paths = integrator.lightPaths(scene);
+    // One light path per pixel unless --light-paths says otherwise.
+    std::vector<std::string> fewer{"light-paths"};
+    if (!integrator.settings().lightPaths) fewer.insert(fewer.begin(), "width/height");
+    return {{"light paths", LightPhase::bytes(paths, survey, integrator.strategies().merges()), fewer, Rendering},
+            {"splats", pendingSplatBytes(paths * survey.splats), fewer, Rendering}};
+}
+
+}  // namespace
+
 std::vector<MemoryPart> renderMemory(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
     using enum MemoryPart::Phase;
     const Camera& cam = scene.camera();
@@ -51,21 +80,12 @@ std::vector<MemoryPart> renderMemory(const Scene& scene, const Integrator& integ
     std::vector<MemoryPart> parts{
         {"film", static_cast<uint64_t>(films * Film::images(layers) * Film::kBytesPerPixel * pixels), film, Throughout},
         {"image out", static_cast<uint64_t>(kOutputBytesPerPixel * pixels), {"width/height"}, Writing}};
-    if (integrator.runsChains()) {
-        const MetropolisMemory m = metropolisMemory(pixels, integrator.settings().metropolis, integrator.settings().walk.maxDepth);
-        parts.push_back({"chains", m.chains, {"chains", "max-depth"}, Rendering});
-        parts.push_back({"splats", m.splats, {"width/height"}, Rendering});
-        parts.push_back({"bootstrap", m.bootstrap, {"bootstrap"}, Rendering});
-    } else if (integrator.hasLightPhase()) {
-        const uint64_t first = settings.resume ? settings.resume->nextPass : settings.firstPass;
-        const LightPathSurvey survey = LightPhase::survey(scene, integrator, first, settings.seed, settings.domain);
-        const double paths = integrator.lightPaths(scene);
-        // One light path per pixel unless --light-paths says otherwise.
-        std::vector<std::string> fewer{"light-paths"};
-        if (!integrator.settings().lightPaths) fewer.insert(fewer.begin(), "width/height");
-        parts.push_back({"light paths", LightPhase::bytes(paths, survey, integrator.strategies().merges()), fewer, Rendering});
-        parts.push_back({"splats", pendingSplatBytes(paths * survey.splats), fewer, Rendering});
-    }
+    std::vector<MemoryPart> loop;
+    if (const MetropolisSettings* chains = integrator.markovChains())
+        loop = chainMemory(pixels, *chains, integrator.settings().walk.maxDepth);
+    else if (const PixelSampleIntegrator* samples = integrator.pixelSamples(); samples && samples->hasLightPhase())
+        loop = lightPhaseMemory(scene, *samples, settings);
+    parts.insert(parts.end(), loop.begin(), loop.end());
     return parts;
 }
 

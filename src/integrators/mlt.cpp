@@ -14,8 +14,6 @@
 // spread over the chains; --rr-depth and --light-paths do not apply (the chains' walks play no
 // roulette, and every proposal makes one path). Its passes are integrators/metropolis_render.h;
 // the design, docs/design.md §1.2.
-#include <stdexcept>
-
 #include "integrators/metropolis_render.h"
 
 namespace tripath {
@@ -25,14 +23,11 @@ public:
     using Integrator::Integrator;
     std::string name() const override { return "mlt"; }
     StrategySet strategies() const override { return {}; }
-    bool tracesCameraRays() const override { return false; }
-    bool runsChains() const override { return true; }
     RenderResult render(const Scene& scene, const RenderSettings& settings) const override {
         return renderMetropolis(scene, *this, settings);
     }
-    void sample(const Scene&, const Pass&, int, const CameraRay&, Rng&, PathBuffers&, ContributionSink&) const override {
-        throw std::logic_error("mlt renders with chains (metropolis_render.h), not pixel samples");
-    }
+    bool playsRoulette() const override { return false; }
+    const MetropolisSettings* markovChains() const override { return &settings().metropolis; }
 };
 
 std::unique_ptr<Integrator> makeMetropolis(const IntegratorSettings& s) {

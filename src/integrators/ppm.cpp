@@ -8,13 +8,13 @@
 // --max-depth, --rr-depth (default 2), --radius or --radius-factor, --alpha, --light-paths. Biased
 // for a fixed radius; consistent for α < 1. All indirect light comes from the density estimate,
 // blur included.
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 
 namespace tripath {
 
-class ProgressivePhotonMapping final : public Integrator {
+class ProgressivePhotonMapping final : public PixelSampleIntegrator {
 public:
-    explicit ProgressivePhotonMapping(IntegratorSettings s) : Integrator(firstHit(s)) {}
+    explicit ProgressivePhotonMapping(IntegratorSettings s) : PixelSampleIntegrator(firstHit(s)) {}
     std::string name() const override { return "ppm"; }
     StrategySet strategies() const override { return {.maxS = 0, .minT = 2, .merging = StrategySet::Merging::FirstNonDelta}; }
 

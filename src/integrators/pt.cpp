@@ -6,13 +6,13 @@
 // is light tracing's. Parameters: --max-depth, --rr-depth (default 3), --mis. Cannot sample
 // paths that reach a point light by way of a delta surface (point-light caustics): those stay
 // black, as they must.
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 
 namespace tripath {
 
-class PathTracer final : public Integrator {
+class PathTracer final : public PixelSampleIntegrator {
 public:
-    using Integrator::Integrator;
+    using PixelSampleIntegrator::PixelSampleIntegrator;
     std::string name() const override { return "pt"; }
     StrategySet strategies() const override { return {.maxS = 1, .minT = 2}; }
 };

@@ -11,7 +11,6 @@
 #include <optional>
 #include <tuple>
 
-#include "core/error.h"
 #include "core/stats.h"
 #include "integrators/light_phase.h"
 #include "integrators/render_loop.h"
@@ -83,7 +82,7 @@ Vec2 jitteredRaster(Rng& rng, int pixel, int width) {
     return {pixel % width + jx, pixel / width + jy};
 }
 
-void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pass, Film& film, int tile,
+void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, const Pass& pass, Film& film, int tile,
                 uint64_t seed, StreamDomain domain, TileOutput& out) {
     const Camera& cam = scene.camera();
     const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
@@ -123,7 +122,7 @@ void renderTile(const Scene& scene, const Integrator& integrator, const Pass& pa
 // One pass: the light phase, the tiles in parallel, then the splats in tile order.
 class PassRenderer {
 public:
-    PassRenderer(const Scene& scene, const Integrator& integrator, const RenderSettings& settings)
+    PassRenderer(const Scene& scene, const PixelSampleIntegrator& integrator, const RenderSettings& settings)
         : scene_(scene), integrator_(integrator), settings_(settings),
           arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {
         const Camera& cam = scene.camera();
@@ -160,7 +159,7 @@ public:
 
 private:
     const Scene& scene_;
-    const Integrator& integrator_;
+    const PixelSampleIntegrator& integrator_;
     const RenderSettings& settings_;
     tbb::task_arena arena_;
     LightPhase lightPhase_;
@@ -207,7 +206,8 @@ void gatherDroppedLog(Team& team, const Camera& cam, std::vector<DroppedSample>&
 // rank r rendering block j·N + r in round j (render.h).
 class TilePasses final : public PassSource {
 public:
-    TilePasses(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, uint64_t firstPass)
+    TilePasses(const Scene& scene, const PixelSampleIntegrator& integrator, const RenderSettings& settings,
+               uint64_t firstPass)
         : renderer_(scene, integrator, settings), camera_(scene.camera()), team_(settings.team ? *settings.team : solo()),
           firstPass_(firstPass) {}
     std::pair<uint64_t, uint64_t> round(uint64_t round, uint64_t budget) const override {
@@ -265,7 +265,7 @@ MemoryEstimate admitMemory(const Scene& scene, const Integrator& integrator, con
 
 uint64_t pendingSplatBytes(double splats) { return static_cast<uint64_t>(std::ceil(splats)) * sizeof(Splat); }
 
-RenderResult Integrator::render(const Scene& scene, const RenderSettings& settings) const {
+RenderResult PixelSampleIntegrator::render(const Scene& scene, const RenderSettings& settings) const {
     const Camera& cam = scene.camera();
     FilmLayers layers = settings.layers;
     layers.strategies = strategies();
@@ -287,9 +287,8 @@ std::string interruptionText(const RenderResult& r) {
     return fmt::format("after {} of {} passes, {:.2f} s", r.passes, r.budgetPasses, r.seconds);
 }
 
-void replaySample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, uint64_t pass, int pixel,
-                  ContributionSink& sink) {
-    if (integrator.runsChains()) throw InputError("--replay renders a pixel's sample again; mlt's chains have no pixel samples");
+void replaySample(const Scene& scene, const PixelSampleIntegrator& integrator, const RenderSettings& settings, uint64_t pass,
+                  int pixel, ContributionSink& sink) {
     const Camera& cam = scene.camera();
     LightPhase lightPhase;
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);

@@ -1,5 +1,5 @@
 // A render's settings and result, and the passes of the methods that render camera samples
-// (every integrator but mlt): progressive passes of one sample per pixel, parallel over tiles,
+// (PixelSampleIntegrator): progressive passes of one sample per pixel, parallel over tiles,
 // reproducible whatever the number of threads and of processes. The loop over the passes, which
 // every method shares, is render_loop.h; mlt's passes are metropolis_render.h.
 //
@@ -18,8 +18,8 @@
 #include "core/rng.h"
 #include "core/stats.h"
 #include "integrators/film.h"
-#include "integrators/integrator.h"
 #include "integrators/memory_estimate.h"
+#include "integrators/pixel_sample_integrator.h"
 #include "integrators/team.h"
 
 namespace tripath {
@@ -33,7 +33,7 @@ struct RenderResult;
 
 // A pixel's sample that made a NaN or infinite contribution, which the film dropped: enough to
 // render that one sample again with replaySample. A render keeps the first few. For lt the sample
-// is the pixel's share of the pass's light paths (Integrator::splatLightPaths).
+// is the pixel's share of the pass's light paths (PixelSampleIntegrator::splatLightPaths).
 struct DroppedSample {
     uint64_t pass = 0;
     int pixel = 0;  // y · width + x of the sample (lt too: its light paths are pixel, pixel + P, …)
@@ -146,7 +146,7 @@ uint64_t pendingSplatBytes(double splats);
 // did (after the light phase of its pass, when the integrator has one), and hands each of its
 // contributions to `sink`, finite or not: `tripath render --replay`. For lt, the pixel's sample
 // is its light paths pixel, pixel + P, … below N_L (P pixels), each joined to the sensor.
-void replaySample(const Scene& scene, const Integrator& integrator, const RenderSettings& settings, uint64_t pass, int pixel,
-                  ContributionSink& sink);
+void replaySample(const Scene& scene, const PixelSampleIntegrator& integrator, const RenderSettings& settings, uint64_t pass,
+                  int pixel, ContributionSink& sink);
 
 }  // namespace tripath

@@ -3,7 +3,8 @@
 // team's reductions of counts and films, and the stats. What differs between methods is what a
 // pass is and how the passes are dealt to the team's ranks; a method says that through a
 // PassSource and runs runPasses with it, from its Integrator::render (integrator.h): the fixed
-// methods' camera samples in tiles (render.cpp), mlt's Markov chains (metropolis_render.cpp).
+// methods' camera samples in tiles (PixelSampleIntegrator::render, render.cpp), mlt's Markov
+// chains (metropolis_render.cpp).
 //
 // The loop goes in rounds. In a round each rank renders the passes its source deals it, then the
 // team decides together whether to go on (the clock, a stop request, the budget), and at a

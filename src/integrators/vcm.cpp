@@ -9,13 +9,13 @@
 // --radius-factor with --alpha (integrator.h), --light-paths (N_L per pass; one per pixel by
 // default). Biased for a fixed radius (α = 1); consistent for
 // α < 1, the bias shrinking with the radius.
-#include "integrators/integrator.h"
+#include "integrators/pixel_sample_integrator.h"
 
 namespace tripath {
 
-class VertexConnectionMerging final : public Integrator {
+class VertexConnectionMerging final : public PixelSampleIntegrator {
 public:
-    using Integrator::Integrator;
+    using PixelSampleIntegrator::PixelSampleIntegrator;
     std::string name() const override { return "vcm"; }
     StrategySet strategies() const override { return {.merging = StrategySet::Merging::EveryVertex}; }
 };

@@ -5,7 +5,7 @@
 // flat array; a chunk is filled by one task, so the light phase needs no copy to put its paths in
 // order, and the arrays keep their capacity from pass to pass (no allocation once warm). The
 // store is the same whatever thread traced which chunk. Camera sample i connects to light path
-// i mod N_L (bdpt, vcm; Integrator::sample); merges search every stored vertex at once
+// i mod N_L (bdpt, vcm; PixelSampleIntegrator::sample); merges search every stored vertex at once
 // (LightVertexSearch). Nothing writes
 // into a stored vertex after the light phase: MIS reads the subpaths and takes what a strategy
 // defines at its junction apart (mis.h), so all threads can share the store.

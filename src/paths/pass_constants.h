@@ -9,7 +9,7 @@
 namespace tripath {
 
 struct PassConstants {
-    double lightPaths = 0;  // N_L ≥ 1 (Integrator::lightPaths decides it)
+    double lightPaths = 0;  // N_L ≥ 1 (PixelSampleIntegrator::lightPaths decides it)
     float radius = 0;       // the merge radius r; 0 where the pass does not merge
     float mergeEta = 0;     // η = π r² N_L; 0 where the pass does not merge
 };

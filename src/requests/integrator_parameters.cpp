@@ -11,12 +11,13 @@ namespace tripath {
 namespace {
 
 bool merges(const Integrator& i) { return i.strategies().merges(); }
-bool chains(const Integrator& i) { return i.runsChains(); }
-bool playsRoulette(const Integrator& i) { return !i.runsChains(); }
+bool chains(const Integrator& i) { return i.markovChains() != nullptr; }
+bool playsRoulette(const Integrator& i) { return i.playsRoulette(); }
 bool tracesLightPaths(const Integrator& i) { return i.hasLightPhase(); }
-// lt's one strategy per length, (k, 1), is its depth image; mlt's chains weigh each strategy by
-// where they wander rather than per pass.
-bool hasStrategies(const Integrator& i) { return i.name() != "lt" && !i.runsChains(); }
+// Strategy images add up pixel samples per strategy: lt's one strategy per length, (k, 1), is its
+// depth image; a method without pixel samples (mlt's chains weigh each strategy by where they
+// wander rather than per pass) has none.
+bool hasStrategies(const Integrator& i) { return i.name() != "lt" && i.pixelSamples() != nullptr; }
 
 std::string none(const RenderRequest&) { return ""; }
 

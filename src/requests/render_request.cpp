@@ -25,10 +25,10 @@ Metadata environmentScale(const RenderRequest& r) {
     return {{"tripath:environment-scale", fmt::format("{:.9g}", r.environmentScale)}};
 }
 
-// tripath:rr-depth: the roulette start depth an integrator renders with, or "none" for mlt, whose
-// chains' walks play no roulette.
+// tripath:rr-depth: the roulette start depth an integrator renders with, or "none" for one whose
+// walks play no roulette (mlt's chains).
 std::string rouletteText(const Integrator& integrator, int depth) {
-    return integrator.runsChains() ? "none" : std::to_string(depth);
+    return integrator.playsRoulette() ? std::to_string(depth) : "none";
 }
 
 // The front ends' names of the heuristics; the path core knows only the enum.
@@ -183,7 +183,7 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:ranks", std::to_string(ranks)}};
     if (!r.environment.empty()) m.push_back({"tripath:environment", r.environment});
     for (const Metadata& more : {environmentScale(r), lightPhaseMetadata(r, scene, integrator)}) m.insert(m.end(), more.begin(), more.end());
-    if (integrator.runsChains()) {
+    if (integrator.markovChains()) {
         // Per path length k = 1, 2, …: b_k, the length's chains and their acceptance rate.
         std::vector<std::string> b, chains, acceptance;
         for (const MetropolisLength& l : result.metropolis.lengths) {
@@ -202,17 +202,18 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
 
 Metadata lightPhaseMetadata(const RenderRequest& r, const Scene& scene, const Integrator& integrator) {
     Metadata m;
-    if (integrator.hasLightPhase())
-        m.push_back({"tripath:light-paths-per-pass", fmt::format("{:.0f}", integrator.lightPaths(scene))});
-    if (integrator.strategies().merges()) {
-        m.push_back({"tripath:radius", fmt::format("{:.9g}", integrator.firstMergeRadius(scene))});
-        m.push_back({"tripath:alpha", fmt::format("{:.9g}", r.merge.alpha)});
+    if (const PixelSampleIntegrator* samples = integrator.pixelSamples()) {
+        if (samples->hasLightPhase())
+            m.push_back({"tripath:light-paths-per-pass", fmt::format("{:.0f}", samples->lightPaths(scene))});
+        if (samples->strategies().merges()) {
+            m.push_back({"tripath:radius", fmt::format("{:.9g}", samples->firstMergeRadius(scene))});
+            m.push_back({"tripath:alpha", fmt::format("{:.9g}", r.merge.alpha)});
+        }
     }
-    if (integrator.runsChains()) {
-        const MetropolisSettings& ms = integrator.settings().metropolis;
-        m.push_back({"tripath:bootstrap", std::to_string(ms.bootstrap)});
-        m.push_back({"tripath:chains", std::to_string(ms.chains)});
-        m.push_back({"tripath:large-step", fmt::format("{:.9g}", ms.largeStep)});
+    if (const MetropolisSettings* ms = integrator.markovChains()) {
+        m.push_back({"tripath:bootstrap", std::to_string(ms->bootstrap)});
+        m.push_back({"tripath:chains", std::to_string(ms->chains)});
+        m.push_back({"tripath:large-step", fmt::format("{:.9g}", ms->largeStep)});
     }
     return m;
 }
