@@ -9,6 +9,19 @@
 
 namespace tripath::app {
 
+std::string planReport(const PlanReport& plans) {
+    if (plans.stretches.empty()) return "";
+    std::string out = "  auto's plans, from the pass each starts at:";
+    for (const auto& [first, plan] : plans.stretches) out += fmt::format(" {}: {};", first, plan);
+    out.back() = '\n';
+    if (plans.candidates.empty()) return out;
+    out += "  the candidates at the last choice (relative variance per pass, cost per pass in traced rays, their product):\n";
+    for (const PlanEstimate& c : plans.candidates)
+        out += fmt::format("    {:<34}{:>12.4g}{:>12.4g}{:>12.4g}{}\n", c.plan, c.relativeVariance, c.cost,
+                           c.relativeVariance * c.cost, c.uncovered ? "  cannot sample some light" : "");
+    return out;
+}
+
 std::string statsReport(const RenderResult& r, uint64_t pixels) {
     const StatsSnapshot& s = r.stats;
     const double samples = double(r.passes) * double(pixels);
@@ -28,6 +41,7 @@ std::string statsReport(const RenderResult& r, uint64_t pixels) {
     getrusage(RUSAGE_SELF, &usage);
     out += fmt::format("  memory: estimated {} ({}); the process's peak resident memory so far {}\n",
                        bytesText(r.memory.total()), r.memory.breakdown(), bytesText(uint64_t(usage.ru_maxrss) * 1024));
+    out += planReport(r.plans);
     uint64_t working = 0;
     for (int i = 0; i < kPhaseCount; ++i)
         if (static_cast<Phase>(i) != Phase::Idle) working += s.phaseSamples[i];

@@ -541,7 +541,7 @@ TEST_F(Cli, FlagsThatChangeNothingAreRefused) {
     expectRefused(render(tiny + "--integrator lt --radius-pixels 2 " + out()), "--radius-pixels needs");
     expectRefused(render(tiny + "--integrator bdpt --alpha 0.5 " + out()), "--alpha needs an integrator that merges");
     expectRefused(render(tiny + "--integrator pt --light-paths 10 " + out()),
-                  "--light-paths needs an integrator that traces light paths (lt, bdpt, vcm, bpm or ppm): pt does not");
+                  "--light-paths needs an integrator that traces light paths (lt, bdpt, vcm, bpm, ppm or auto): pt does not");
     expectRefused(render(tiny + "--exposure 2 " + out()), "--exposure requires --png");
     expectRefused(render(tiny + "--exposure nan " + out() + " --png '" + path("out.png") + "'"), "--exposure");
     expectRefused(render(tiny + "--exposure inf " + out() + " --png '" + path("out.png") + "'"), "--exposure");
@@ -559,7 +559,7 @@ TEST_F(Cli, FlagsThatChangeNothingAreRefused) {
     const std::string compare = "compare --scene cornell --width 8 --height 8 --time 0.05 --out '" + path("c") + "' ";
     const std::string given = "--reference '" + path("ref.exr") + "' ";
     expectRefused(compare + given + "--integrators pt,lt --radius 0.1", "--radius needs an integrator that merges "
-                                                                        "(vcm, bpm or ppm): pt, lt do not");
+                                                                        "(vcm, bpm, ppm or auto): pt, lt do not");
     expectRefused(compare + given + "--integrators pt --light-paths 4", "--light-paths needs");
     const Outcome merging = run(compare + given + "--integrators pt,vcm --radius 0.1");
     EXPECT_EQ(merging.exitCode, 0) << merging.err;

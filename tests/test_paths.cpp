@@ -629,6 +629,74 @@ TEST(Mis, EnabledStrategyWeightsSumToOne) {
     }
 }
 
+// The balance heuristic's denominator split by technique class (mis.h's TechniqueSums), from the
+// brute force: Σ p_i / p_chosen over every strategy of the measured set that can sample the path.
+TechniqueSums bruteForceTechniqueSums(const Scene& scene, const Path& x, PathStrategy chosen, const MisContext& measured) {
+    const int k = static_cast<int>(x.size()) - 1;
+    auto pdf = [&](PathStrategy st) {
+        return st.merge ? mergePdf(scene, x, st.index, measured.roulette.depth, measured.measure.mergeEta)
+                        : strategyPdf(scene, x, st.index, measured.roulette.depth);
+    };
+    const double base = pdf(chosen);
+    std::array<double, kTechniqueClasses> sums{};
+    for (int i = 0; i <= k; ++i) {
+        if (strategyCanSample(x, i, measured.measure.strategies))
+            sums[static_cast<int>(techniqueClass(i, k + 1 - i, false))] += pdf({i, false}) / base;
+        if (mergeCanSample(x, i, measured.measure.strategies))
+            sums[static_cast<int>(TechniqueClass::Merge)] += pdf({i, true}) / base;
+    }
+    TechniqueSums out;
+    for (int c = 0; c < kTechniqueClasses; ++c) out[c] = static_cast<float>(sums[c]);
+    return out;
+}
+
+// The technique sums a pass measures (auto's candidates are weighed by them, integrators/auto.cpp)
+// against the brute force, for every strategy a pass of pt, lt, bdpt or vcm renders a path with,
+// the pass measuring the whole vcm set at both merge factors: so a pass that neither merges nor
+// reads the light side's pdfs must still define them at its junctions. Catches a term added to
+// another class than its strategy's (a merge's as a connection's), a junction pdf left unset
+// because the pass's own weight does not read it (checked), a merge's sums not taken relative to
+// the merge itself, and the pass's merge factor used where the measured one belongs. Which class a
+// strategy belongs to is the classifier's, here and in production; PassPlan's moment test checks
+// that choice.
+TEST(Mis, TechniqueSumsMatchBruteForce) {
+    const StrategySet vcm = makeIntegrator("vcm", {})->strategies();
+    for (const auto& [desc, sparse] : oracleScenes()) {
+        const Scene scene(desc, 24, 24);
+        const auto paths = samplePaths(scene, 60, {MisHeuristic::Power, StrategySet{}, Roulette{2}, testPass()});
+        int checked = 0;
+        for (const char* name : {"pt", "lt", "bdpt", "vcm"})
+            for (float eta : kEtas) {
+                const StrategySet set = makeIntegrator(name, {})->strategies();
+                MisContext mis{MisHeuristic::Power, set, Roulette{2}, testPass(set.merges() ? eta : 0.0f)};
+                mis.measure = {true, vcm, eta};
+                for (const SampledPath& p : paths) {
+                    const int k = static_cast<int>(p.x.size()) - 1;
+                    auto expectSums = [&](const Connection& c, PathStrategy chosen) {
+                        const TechniqueSums expected = bruteForceTechniqueSums(scene, p.x, chosen, mis);
+                        for (int cl = 0; cl < kTechniqueClasses; ++cl)
+                            ASSERT_NEAR(c.techniques[cl], expected[cl], 2e-3 * std::max(1.0f, expected[cl]))
+                                << desc.name << " class " << cl << (chosen.merge ? " merge j=" : " s=") << chosen.index
+                                << " k=" << k << " set=" << name << " eta=" << eta;
+                        ++checked;
+                    };
+                    for (int s = 0; s <= k; ++s) {
+                        if (!strategyCanSample(p.x, s, set)) continue;
+                        const Subpath y = lightPrefix(scene, p.x, s), z = cameraPrefix(scene, p.x, s);
+                        const Connection c = connect(scene, y, s, z, k + 1 - s, mis);
+                        if (!isBlack(c.unweighted)) expectSums(c, {s, false});
+                    }
+                    for (int j = 1; j < k; ++j) {
+                        if (!mergeCanSample(p.x, j, set) || mergePdf(scene, p.x, j, 2, eta) == 0) continue;
+                        const Connection c = mergeAt(scene, p.x, j, mis);
+                        if (!isBlack(c.unweighted)) expectSums(c, {j, true});
+                    }
+                }
+            }
+        EXPECT_GT(checked, sparse ? 0 : 100) << desc.name;
+    }
+}
+
 // The unweighted estimate of a strategy is f(x̄) / p_{s,t}(x̄), with f the product of the kernels
 // and p including the continuation probabilities of the strategy's own walks (roulette from the
 // 2nd vertex, so every vertex past the walks' starts plays).

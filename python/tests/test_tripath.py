@@ -22,7 +22,7 @@ import pytest
 import tripath
 
 TRIPATH = os.environ.get("TRIPATH_BINARY", "")
-INTEGRATORS = ["pt", "lt", "bdpt", "vcm", "bpm", "ppm", "mlt"]
+INTEGRATORS = ["pt", "lt", "bdpt", "vcm", "bpm", "ppm", "mlt", "auto"]
 
 
 @pytest.mark.parametrize("integrator", INTEGRATORS)

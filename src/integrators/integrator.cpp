@@ -15,6 +15,7 @@ std::unique_ptr<Integrator> makeVertexMerging(const IntegratorSettings& s);
 std::unique_ptr<Integrator> makeBidirectionalPhotonMapping(const IntegratorSettings& s);
 std::unique_ptr<Integrator> makeProgressivePhotonMapping(const IntegratorSettings& s);
 std::unique_ptr<Integrator> makeMetropolis(const IntegratorSettings& s);
+std::unique_ptr<Integrator> makeAuto(const IntegratorSettings& s);
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const IntegratorSettings& settings) {
     if (name == "pt") return makePathTracer(settings);
@@ -24,6 +25,7 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const Integr
     if (name == "bpm") return makeBidirectionalPhotonMapping(settings);
     if (name == "ppm") return makeProgressivePhotonMapping(settings);
     if (name == "mlt") return makeMetropolis(settings);
+    if (name == "auto") return makeAuto(settings);
     throw InputError(fmt::format("unknown integrator '{}' ({})", name.substr(0, 40), fmt::join(kIntegratorNames, ", ")));
 }
 

@@ -67,6 +67,9 @@ public:
     // Itself as a method of passes of camera samples, whose pixel samples can be replayed and
     // whose passes run a light phase (light_phase.h); nullptr for a method that renders otherwise.
     virtual const PixelSampleIntegrator* pixelSamples() const { return nullptr; }
+    // Passes like the largest it renders, for the memory they take (memory_estimate.h): by
+    // default none; auto's plan of the most light paths (a method of pixel samples is its own).
+    virtual std::unique_ptr<PixelSampleIntegrator> largestPasses(const Scene& scene) const;
     // Whether its walks play Russian roulette (WalkSettings::rrDepth: --rr-depth applies).
     virtual bool playsRoulette() const = 0;
     // Whether its passes trace and store light subpaths before their camera samples, in a light
@@ -88,7 +91,7 @@ private:
 // subpaths carry that light too, and shorter subpaths cut the connections per sample.
 int defaultRouletteDepth(const std::string& integrator);
 
-inline const std::vector<std::string> kIntegratorNames{"pt", "lt", "bdpt", "vcm", "bpm", "ppm", "mlt"};
+inline const std::vector<std::string> kIntegratorNames{"pt", "lt", "bdpt", "vcm", "bpm", "ppm", "mlt", "auto"};
 
 // One of kIntegratorNames; throws InputError for anything else.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const IntegratorSettings& settings);

@@ -21,7 +21,7 @@ LightPathSurvey LightPhase::survey(const Scene& scene, const PixelSampleIntegrat
     const uint64_t paths = static_cast<uint64_t>(integrator.lightPaths(scene));
     const uint64_t traced = std::min<uint64_t>(paths, kSurveyPaths);
     const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
-    const WalkPdfs pdfs = integrator.strategies().lightWalkPdfs();
+    const WalkPdfs pdfs = integrator.walkStrategies().lightWalkPdfs();
     const bool splats = integrator.strategies().minT <= 1;
     Subpath path;
     for (uint64_t j = 0; j < traced; ++j) {
@@ -60,10 +60,10 @@ Pass LightPhase::run(const Scene& scene, const PixelSampleIntegrator& integrator
 
     const uint64_t paths = static_cast<uint64_t>(constants.lightPaths);
     const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
-    const WalkPdfs pdfs = integrator.strategies().lightWalkPdfs();
+    const WalkPdfs pdfs = integrator.walkStrategies().lightWalkPdfs();
     const WalkSettings& walk = integrator.settings().walk;
     store_.reset(paths);
-    const bool merges = constants.radius > 0;
+    const bool merges = integrator.strategies().merges();
     mergeable_.resize(merges ? store_.chunks() : 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, store_.chunks(), 1), [&](const tbb::blocked_range<size_t>& r) {
         thread_local Subpath path;

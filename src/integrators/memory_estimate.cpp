@@ -85,6 +85,8 @@ std::vector<MemoryPart> renderMemory(const Scene& scene, const Integrator& integ
         loop = chainMemory(pixels, *chains, integrator.settings().walk.maxDepth);
     else if (const PixelSampleIntegrator* samples = integrator.pixelSamples(); samples && samples->hasLightPhase())
         loop = lightPhaseMemory(scene, *samples, settings);
+    else if (const std::unique_ptr<PixelSampleIntegrator> largest = integrator.largestPasses(scene))
+        loop = lightPhaseMemory(scene, *largest, settings);
     parts.insert(parts.end(), loop.begin(), loop.end());
     return parts;
 }

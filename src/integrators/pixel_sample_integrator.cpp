@@ -7,8 +7,10 @@
 
 namespace tripath {
 
+std::unique_ptr<PixelSampleIntegrator> Integrator::largestPasses(const Scene&) const { return nullptr; }
+
 float PixelSampleIntegrator::firstMergeRadius(const Scene& scene) const {
-    if (!strategies().merges()) return 0.0f;
+    if (!walkStrategies().merges()) return 0.0f;
     const MergeSettings& m = settings().merge;
     const float sceneRadius = 0.5f * length(scene.boundsMax() - scene.boundsMin());
     float r1 = m.radius;
@@ -30,6 +32,8 @@ double PixelSampleIntegrator::lightPaths(const Scene& scene) const {
 MisContext PixelSampleIntegrator::misContext(const PassConstants& constants) const {
     MisContext mis{settings().mis, strategies(), Roulette{settings().walk.rrDepth}, constants};
     mis.runningSums = canUseRunningSums(mis);
+    if (const std::optional<StrategySet> measured = measuredStrategies())
+        mis.measure = {true, *measured, constants.mergeEta};
     return mis;
 }
 
@@ -56,7 +60,7 @@ void PixelSampleIntegrator::splatLightPaths(const Scene& scene, const Pass& pass
 
 void PixelSampleIntegrator::cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng,
                                        Subpath& camera) const {
-    cameraSubpath(scene, ray, rng, settings().walk, strategies().cameraWalkPdfs(), pass.mis.constants.lightPaths, camera);
+    cameraSubpath(scene, ray, rng, settings().walk, walkStrategies().cameraWalkPdfs(), pass.mis.constants.lightPaths, camera);
     recordRunningSums(camera.vertices, false, pass.mis);
 }
 

@@ -55,17 +55,23 @@ public:
     // Whether sample() traces the camera ray it is given (lt does not): the render loop then traces
     // neighbouring pixels' camera rays together.
     virtual bool tracesCameraRays() const { return true; }
+    // The strategies it measures, a superset of those it enables (mis.h's TechniqueMeasure): none
+    // by default; a pass of auto's measures the whole vcm set whatever its plan (pass_plan.h).
+    virtual std::optional<StrategySet> measuredStrategies() const { return std::nullopt; }
+    // The strategies whose pdfs its walks record: the measured ones, else the enabled ones.
+    StrategySet walkStrategies() const { return measuredStrategies().value_or(strategies()); }
 
     // N_L, the light paths each pass traces when it has a light phase: the settings' count, or one
     // per pixel. The one place that number is decided; the light phase puts it in the pass's
     // constants (pass_constants.h), which every kernel then reads.
     double lightPaths(const Scene& scene) const;
-    // The first pass's merge radius r_1 (0 when the integrator does not merge). It may trace a
-    // few hundred rays (the default measures pixels): compute it once per render.
+    // The first pass's merge radius r_1 (0 when the integrator neither merges nor measures merges).
+    // It may trace a few hundred rays (the default measures pixels): compute it once per render.
     float firstMergeRadius(const Scene& scene) const;
     // The radius of 0-based pass `index` given r_1: the schedule r_1 · (index + 1)^((α−1)/2).
     float mergeRadius(float firstRadius, uint64_t index) const;
-    // The MIS context of a pass with these constants.
+    // The MIS context of a pass with these constants, measuring the measured strategies with the
+    // constants' merge factor.
     MisContext misContext(const PassConstants& constants) const;
 
 protected:

@@ -95,6 +95,20 @@ struct MetropolisReport {
     std::string chainStates;        // on rank 0: every chain's state, in chain order (checkpoints)
 };
 
+// What auto chose (integrators/auto.cpp): the plan of each stretch of passes, from the offset of
+// its first pass in the render, and each candidate's estimates at the last choice: its relative
+// variance per pass, its cost per pass in traced rays, and whether it cannot sample a path some
+// pass found light on.
+struct PlanEstimate {
+    std::string plan;
+    double relativeVariance = 0, cost = 0;
+    bool uncovered = false;
+};
+struct PlanReport {
+    std::vector<std::pair<uint64_t, std::string>> stretches;
+    std::vector<PlanEstimate> candidates;
+};
+
 struct RenderResult {
     Film film;                    // on rank 0 of a team, every rank's passes; on the others, their own
     int passes = 0;               // passes in the film, over the whole team (and the resumed render)
@@ -120,6 +134,7 @@ struct RenderResult {
     // nothing, not even the render it resumed, and has no image to write nor state to checkpoint.
     bool interruptedBeforeAnyPass = false;
     MetropolisReport metropolis{};  // mlt only
+    PlanReport plans{};             // auto only
     MemoryEstimate memory{};        // what the render was estimated to need before it started
     Image image() const { return film.image(passes); }
 };

@@ -25,10 +25,12 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
     const LocalScattering at(scene, pt, nullptr, nullptr, toCamera.towardB());  // an emitter: no BSDF
     c.unweighted = pt.beta * emittance(at.value(), traced(pt, ptMinus));  // ε(pt → ptMinus)
     if (isBlack(c.unweighted)) return c;
+    const StrategySet& reads = mis.junctionStrategies();
     Junction junction;
-    if (mis.strategies.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter, pt.ns);
-    if (mis.strategies.readsCameraPdfs(t - 2, 0, t)) junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), ptMinus);
+    if (reads.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter, pt.ns);
+    if (reads.readsCameraPdfs(t - 2, 0, t)) junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), ptMinus);
     c.setWeight(misWeight(light, 0, camera, t, junction, mis));
+    if (mis.measure.on) c.techniques = connectionTechniqueSums(light, 0, camera, t, junction, mis.measured());
     return c;
 }
 
@@ -65,12 +67,14 @@ Connection join(const Scene& scene, const SubpathView& light, int s, const Subpa
         c.unweighted = Spectrum(0.0f);
         return c;
     }
+    const StrategySet& reads = mis.junctionStrategies();
     Junction junction;
-    if (mis.strategies.readsCameraPdfs(t - 1, s, t)) junction.cameraEnd = segment.toArea(atQ.pdfTowardCamera(), pt);
-    if (mis.strategies.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);
-    if (mis.strategies.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(mis.constants.lightPaths), qs);
-    if (mis.strategies.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(mis.constants.lightPaths), *qsMinus);
+    if (reads.readsCameraPdfs(t - 1, s, t)) junction.cameraEnd = segment.toArea(atQ.pdfTowardCamera(), pt);
+    if (reads.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);
+    if (reads.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(mis.constants.lightPaths), qs);
+    if (reads.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(mis.constants.lightPaths), *qsMinus);
     c.setWeight(misWeight(light.vertices, s, camera.vertices, t, junction, mis));
+    if (mis.measure.on) c.techniques = connectionTechniqueSums(light.vertices, s, camera.vertices, t, junction, mis.measured());
     return c;
 }
 

@@ -25,6 +25,7 @@ Connection merge(const Scene& scene, std::span<const Vertex> light, int s, const
     junction.lightEnd = incoming.toArea(at.pdfTowardLight(mis.constants.lightPaths), yBefore);
     if (s >= 3) junction.lightBeforeEnd = light[s - 3].pdfRev;
     c.setWeight(mergeWeight(light, s, camera.vertices, t, junction, mis));
+    if (mis.measure.on) c.techniques = mergeTechniqueSums(light, s, camera.vertices, t, junction, mis.measured());
     return c;
 }
 

@@ -52,6 +52,7 @@
 // tests hold the running sums to, and serves the uniform heuristic, the bounded sets, and any
 // path whose running sums leave the float range (where the walk's own products stay in it).
 #pragma once
+#include <array>
 #include <span>
 
 #include "paths/pass_constants.h"
@@ -75,6 +76,9 @@ struct StrategySet {
     // joining an emitter point straight to the sensor is light tracing's splat); t = 1: the light
     // subpath joined to the sensor. t = 0 is impossible with a pinhole and never enabled.
     int maxS = kUnbounded, minT = 1, maxT = kUnbounded;
+    // Whether the box's connections with s, t ≥ 2 are enabled: without them, a box that holds s ≤ 1
+    // and t = 1 enables path tracing and light tracing alone.
+    bool connects = true;
     // Merges of light vertex y_{s−1} with camera vertex z_{t−1} (s, t ≥ 2): none; at every
     // non-delta camera vertex; or only where the camera walk first meets a non-delta surface, which
     // also counts s = 0 only for camera walks through deltas alone, so that every path is sampled
@@ -83,21 +87,23 @@ struct StrategySet {
     Merging merging = Merging::None;
 
     bool operator==(const StrategySet&) const = default;
-    bool enabled(int s, int t) const { return s <= maxS && t >= minT && t <= maxT; }
+    bool enabled(int s, int t) const {
+        return s <= maxS && t >= minT && t <= maxT && (connects || s <= 1 || t == 1);
+    }
     bool merges() const { return merging != Merging::None; }
     // Every path the set samples, it samples with exactly one strategy: its weight is 1.
     bool uniqueStrategy() const { return merging == Merging::FirstNonDelta; }
     // Whether the weights can use running sums (mis.h): every strategy beyond the junction is
     // enabled or disabled by its vertex count on one side alone (all connections; or s = 0 only).
     bool summable() const {
-        return !uniqueStrategy() && ((maxS == kUnbounded && minT == 1 && maxT == kUnbounded) || maxS == 0);
+        return !uniqueStrategy() && ((connects && maxS == kUnbounded && minT == 1 && maxT == kUnbounded) || maxS == 0);
     }
 
     // The weight of (s, t) walks outward from the connection through strategies (s+t−i, i) on the
     // camera side and (i, s+t−i) on the light side, multiplying one pdf ratio per vertex, and needs
-    // to go only as far as the last enabled one. So it reads the pdfs of camera vertex i only when
-    // i ≥ minT and s + t − i ≤ maxS, and of light vertex i only when s + t − i ≤ maxT (the
-    // light side's t only grows). With merges, a merge may be enabled at any vertex: every pdf is
+    // to go only as far as the last enabled one (or further, where connections are off). So it
+    // reads the pdfs of camera vertex i only when i ≥ minT and s + t − i ≤ maxS, and of light
+    // vertex i only when s + t − i ≤ maxT (the light side's t only grows). With merges, a merge may be enabled at any vertex: every pdf is
     // read. `connect` sets no other pdf, and the walks record no other.
     bool readsCameraPdfs(int i, int s, int t) const {
         if (uniqueStrategy()) return false;
@@ -143,6 +149,29 @@ struct MisWeight {
     bool guarded = false;  // a pdf ratio was not finite: the weight was set to 0
 };
 
+// The classes of strategies whose numbers per pass a render may change independently of one
+// another (integrators/auto.cpp): the unidirectional ones, s ≤ 1 with t ≥ 2 (the camera walk hits
+// an emitter, next-event estimation), whatever the light phase; the connections, s, t ≥ 2, of a
+// camera subpath with one light subpath; light tracing, t = 1, N_L joins to the sensor per pass;
+// and the merges, whose factor η = π r² N_L grows with the light paths too.
+enum class TechniqueClass { Unidirectional, Connection, LightTracing, Merge };
+inline constexpr int kTechniqueClasses = 4;
+inline TechniqueClass techniqueClass(int s, int t, bool merge) {
+    if (merge) return TechniqueClass::Merge;
+    if (t == 1) return TechniqueClass::LightTracing;
+    return s <= 1 ? TechniqueClass::Unidirectional : TechniqueClass::Connection;
+}
+using TechniqueSums = std::array<float, kTechniqueClasses>;
+
+// The strategies a render measures, whichever of them its pass enables (integrators/auto.cpp):
+// connections and merges then also give each path's technique sums over this set, with this merge
+// factor (Connection::techniques), which a pass that does not merge needs all the same.
+struct TechniqueMeasure {
+    bool on = false;
+    StrategySet strategies;
+    float mergeEta = 0;
+};
+
 // What a weight depends on besides the path: the heuristic, the strategies the integrator enables,
 // and the roulette its walks play (each strategy's pdf includes its walks' continuation factors);
 // and the pass's constants: N_L, which the sensor's pdf in t = 1 connections is over, and with
@@ -156,6 +185,16 @@ struct MisContext {
     // The subpaths carry running sums recorded for this context (recordRunningSums): weights in
     // O(1). Only for a summable set under the balance or power heuristic.
     bool runningSums = false;
+    TechniqueMeasure measure;
+    // The strategies whose pdfs a junction must define: the enabled ones, and the measured ones.
+    const StrategySet& junctionStrategies() const { return measure.on ? measure.strategies : strategies; }
+    // This context as the technique sums read it: the measured set and merge factor.
+    MisContext measured() const {
+        MisContext m = *this;
+        m.strategies = measure.strategies;
+        m.constants.mergeEta = measure.mergeEta;
+        return m;
+    }
 };
 
 // Whether a context may use running sums: the set is summable and the heuristic multiplicative.
@@ -174,5 +213,18 @@ MisWeight misWeight(std::span<const Vertex> light, int s, std::span<const Vertex
 // `junction` is that of the connection (s−1, t) joining light[s−2] to camera[t−1] (merge.cpp).
 MisWeight mergeWeight(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                       const Junction& junction, const MisContext& mis);
+
+// The balance heuristic's denominator of a path split by class: Σ p_i / p over the strategies of
+// mis's set that can sample the path, p being the pdf of the strategy that sampled it (the
+// connection (s, t) or the merge of light[s−1] with camera[t−1], whose junction misWeight or
+// mergeWeight is given), that strategy included. The pdfs are those of mis's constants: a
+// render that would trace N_L' light paths instead of N_L, or connect c' times instead of once,
+// has the denominator Σ_class n'_class / n_class · sums[class] (integrators/auto.cpp). Whatever
+// mis's heuristic, the sums are the balance heuristic's, and the full walk's (no running sums).
+// All zero if that strategy cannot sample the path.
+TechniqueSums connectionTechniqueSums(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
+                                      const Junction& junction, const MisContext& mis);
+TechniqueSums mergeTechniqueSums(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
+                                 const Junction& junction, const MisContext& mis);
 
 }  // namespace tripath

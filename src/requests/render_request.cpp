@@ -195,6 +195,12 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
         m.push_back({"tripath:mlt-chains-per-length", fmt::format("{}", fmt::join(chains, " "))});
         m.push_back({"tripath:mlt-acceptance", fmt::format("{}", fmt::join(acceptance, " "))});
     }
+    if (!result.plans.stretches.empty()) {
+        // auto's plan of each stretch of passes, from its first pass: "0 N_L=1/px connect+trace+merge; 4 pt; …".
+        std::vector<std::string> stretches;
+        for (const auto& [first, plan] : result.plans.stretches) stretches.push_back(fmt::format("{} {}", first, plan));
+        m.push_back({"tripath:auto-plans", fmt::format("{}", fmt::join(stretches, "; "))});
+    }
     if (result.memory.total() > 0) m.push_back({"tripath:memory-estimate", std::to_string(result.memory.total())});
     if (result.interrupted) m.push_back({"tripath:interrupted", interruptionText(result)});
     return m;

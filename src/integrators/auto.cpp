@@ -1,0 +1,242 @@
+// auto — efficiency-aware MIS over vcm's strategies (Grittmann, Yazici, Georgiev and Slusallek
+// 2022): the method that chooses, while it renders, which of its strategies pay on the scene.
+//
+// Every pass renders camera samples as vcm's do, with a plan (pass_plan.h): N_L light paths
+// (none, or a quarter, one or four times --light-paths, one per pixel by default) and which of
+// the connections, light tracing and merges it runs; the camera walk with its hits on emitters
+// and its next-event estimates runs always. The first passes run every class with one light
+// path per pixel. Every pass measures, for each candidate plan, the second moment that plan's
+// estimator would have, tile by tile (plan_moments.h). After 4, 8, 16, 32, … passes of the
+// render, the team chooses from the totals of every pass so far the plan of least relative
+// variance × cost for the passes up to the next choice (plan_choice.h).
+//
+// Unbiased: a pass's plan depends on the passes before it alone, and every pass weighs the same
+// in the image (the film's average), a weight fixed before the pass; each plan's estimator is
+// unbiased where it samples every path (a plan that cannot sample a path some pass found light
+// on is never chosen), and its merges keep vcm's radius schedule. Deterministic: the moments are
+// exact sums like the film's, the costs come from a survey traced from fixed streams, and the
+// choices fall at pass counts, so the plans and the image are the same for any thread count and
+// any team of ranks. mlt is not among the plans: its chains are no MIS technique.
+//
+// Parameters: --max-depth, --rr-depth (default 2), --mis, --light-paths (the unit of the plans'
+// N_L) and vcm's radius schedule (--radius, --radius-factor, --alpha). The plan of each stretch
+// of passes and the candidates' estimates at the last choice go to the EXR's metadata and to
+// --stats. Not yet: plans per pixel, checkpoints.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+#include "integrators/pass_plan.h"
+#include "integrators/plan_choice.h"
+#include "integrators/plan_moments.h"
+#include "integrators/tile_passes.h"
+
+namespace tripath {
+
+namespace {
+
+// The first block of stretch e, the passes between choice e − 1 and choice e: 0, 1, 2, 4, 8, …
+uint64_t stretchStart(int e) { return e == 0 ? 0 : uint64_t(1) << (e - 1); }
+
+// What a pass does on this scene (plan_choice.h's PassWork), from the streams of the render's
+// first pass: up to 1024 of its camera samples, its light paths' survey, and the merges the
+// surveyed camera vertices would make among up to 1024 of its light paths.
+PassWork surveyWork(const Scene& scene, const PixelSampleIntegrator& full, const RenderSettings& settings) {
+    constexpr uint64_t kSurveyed = 1024;
+    PassWork work;
+    work.lightVertices = LightPhase::survey(scene, full, settings.firstPass, settings.seed, settings.domain).vertices;
+    const Camera& cam = scene.camera();
+    const uint64_t pixels = uint64_t(cam.width()) * cam.height(), cameraPaths = std::min(pixels, kSurveyed);
+    const double lightPaths = full.lightPaths(scene);
+    std::vector<Vec3> queries;
+    Subpath path;
+    double vertices = 0;
+    for (uint64_t i = 0; i < cameraPaths; ++i) {
+        const int pixel = static_cast<int>(i * pixels / cameraPaths);
+        Rng rng = sampleStream(settings.seed, settings.domain, settings.firstPass, cam, pixel);
+        const Vec2 raster = jitteredRaster(rng, pixel, cam.width());
+        cameraSubpath(scene, CameraRay(raster), rng, full.settings().walk, WalkPdfs::None, lightPaths, path);
+        vertices += double(path.size()) - 1;
+        for (size_t v = 1; v < path.size(); ++v)
+            if (!path[v].delta && !path[v].atInfinity) queries.push_back(path[v].p);
+    }
+    work.cameraVertices = vertices / double(cameraPaths);
+
+    const uint64_t traced = std::min<uint64_t>(static_cast<uint64_t>(lightPaths), kSurveyed);
+    const float radius = full.mergeRadius(full.firstMergeRadius(scene), settings.firstPass);
+    if (traced == 0 || queries.empty() || !(radius > 0)) return work;
+    LightStore store;
+    store.reset(traced);
+    const uint64_t domain = static_cast<uint64_t>(lightPathDomain(settings.domain));
+    for (uint64_t j = 0; j < traced; ++j) {
+        Rng rng(settings.seed, domain, settings.firstPass * static_cast<uint64_t>(lightPaths) + j);
+        lightSubpath(scene, rng, full.settings().walk, WalkPdfs::None, path);
+        store.chunk(j / LightStore::kPathsPerChunk).append(path);
+    }
+    std::vector<std::vector<LightVertexSearch::Entry>> mergeable(store.chunks());
+    for (size_t c = 0; c < store.chunks(); ++c) LightVertexSearch::mergeable(store.chunk(c), mergeable[c]);
+    const LightVertexSearch search(mergeable, radius);
+    double found = 0;
+    for (size_t q = 0; q < queries.size(); q += LightVertexSearch::kQueriesAtOnce) {
+        const size_t n = std::min<size_t>(LightVertexSearch::kQueriesAtOnce, queries.size() - q);
+        search.forEachWithin(std::span<const Vec3>(queries.data() + q, n), [&](int, std::span<const Vertex>, int) { ++found; });
+    }
+    // Per camera vertex that searches (its share of all of them) and per light path of the pass.
+    work.mergesPerQuery = found / double(queries.size()) / double(traced);
+    return work;
+}
+
+class AutoPasses final : public TilePasses {
+public:
+    AutoPasses(const Scene& scene, const PixelSampleIntegrator& full, const RenderSettings& settings, uint64_t firstPass)
+        : TilePasses(scene, full, settings, firstPass), scene_(scene), pixels_(double(scene.camera().width()) * scene.camera().height()),
+          candidates_(candidatePlans(full.lightPaths(scene))),
+          moments_(scene.camera().width(), scene.camera().height(), kTileSize, candidates_.size()) {
+        for (const PassPlan& plan : candidates_) plans_.push_back(makePlannedPasses(plan, full.settings()));
+        const PassWork work = surveyWork(scene, full, settings);
+        for (const PassPlan& plan : candidates_) {
+            costs_.push_back(passCost(plan, work, pixels_));
+            samples_.push_back(samplesPerPixel(plan, pixels_));
+        }
+        const PassPlan everything{full.lightPaths(scene), true, true, true};
+        choose(size_t(std::find(candidates_.begin(), candidates_.end(), everything) - candidates_.begin()), 0);
+    }
+
+    // The stretch's blocks dealt to the ranks in rounds, as TilePasses deals all of them; a rank
+    // whose block would lie past the stretch's end waits for the choice.
+    std::pair<uint64_t, uint64_t> round(uint64_t round, uint64_t budget) const override {
+        const Place p = place(round);
+        const uint64_t block = stretchStart(p.stretch) + p.round * ranks() + uint64_t(team_.rank());
+        const uint64_t begin = std::min(block, stretchStart(p.stretch + 1)) * kPassesPerBlock;
+        const uint64_t end = block < stretchStart(p.stretch + 1) ? begin + kPassesPerBlock : begin;
+        return {std::min(budget, begin), std::min(budget, end)};
+    }
+    bool budgetDone(uint64_t round, uint64_t budget) const override {
+        const Place p = place(round);
+        const uint64_t blocks = std::min(stretchStart(p.stretch) + (p.round + 1) * ranks(), stretchStart(p.stretch + 1));
+        return blocks * kPassesPerBlock >= budget;
+    }
+    void run(uint64_t offset, RenderResult& result) override {
+        renderer_.run(*plans_[current_], firstPass_ + offset, result, &moments_);
+    }
+    void endRound(Film& film) override {
+        renderer_.endBlock(film);
+        moments_.endBlock();
+        const Place p = place(roundsDone_++);
+        if (p.round + 1 == p.rounds) decide(film, stretchStart(p.stretch + 1) * kPassesPerBlock);
+    }
+    void gather(RenderResult& into, Film& mine, uint64_t local, uint64_t localNext, const RenderResult& counts) override {
+        TilePasses::gather(into, mine, local, localNext, counts);
+        into.plans.stretches.clear();
+        for (const auto& [first, name] : stretches_)
+            if (first < uint64_t(into.passes)) into.plans.stretches.push_back({first, name});
+        into.plans.candidates = estimates_;
+    }
+
+private:
+    // Where round `round` falls: its stretch, its index there, and the stretch's rounds.
+    struct Place {
+        int stretch;
+        uint64_t round, rounds;
+    };
+    Place place(uint64_t round) const {
+        for (int e = 0;; ++e) {
+            const uint64_t rounds = (stretchStart(e + 1) - stretchStart(e) + ranks() - 1) / ranks();
+            if (round < rounds) return {e, round, rounds};
+            round -= rounds;
+        }
+    }
+
+    // The team's choice after `passes` passes: rank 0 gathers the moments and the film, chooses,
+    // and tells the others.
+    void decide(Film& film, uint64_t passes) {
+        std::string mine(reinterpret_cast<const char*>(moments_.totals().words().data()), moments_.totals().words().size_bytes());
+        const std::vector<std::string> all = team_.gather(mine);
+        std::optional<Film> copy;
+        if (team_.size() > 1 && team_.rank() == 0) copy.emplace(film);
+        team_.reduce(copy ? *copy : film);
+        std::string choice;
+        if (team_.rank() == 0) {
+            PlanMoments team = moments_;
+            for (size_t r = 1; r < all.size(); ++r) {
+                ExactSums other(team.totals().size());
+                std::memcpy(other.words().data(), all[r].data(), std::min(all[r].size(), other.words().size_bytes()));
+                team.totals().add(other);
+            }
+            const PlanEvidence evidence = team.evidence(copy ? *copy : film, static_cast<int>(passes));
+            const std::vector<double> variances = relativeVariances(evidence, samples_);
+            choice = std::to_string(choosePlan(variances, costs_, evidence.uncovered, current_));
+            estimates_.clear();
+            for (size_t k = 0; k < candidates_.size(); ++k)
+                estimates_.push_back({planName(candidates_[k], pixels_), variances[k], costs_[k], bool(evidence.uncovered[k])});
+        }
+        team_.broadcast(choice);
+        choose(std::stoul(choice), passes);
+    }
+    void choose(size_t plan, uint64_t firstPass) {
+        current_ = plan;
+        moments_.setFactors(factorsOver(plans_[plan]->lightPaths(scene_)));
+        stretches_.push_back({firstPass, planName(candidates_[plan], pixels_)});
+    }
+    std::vector<TechniqueSums> factorsOver(double lightPaths) const {
+        std::vector<TechniqueSums> f;
+        for (const PassPlan& c : candidates_) f.push_back(c.factors(lightPaths));
+        return f;
+    }
+
+    const Scene& scene_;
+    const double pixels_;
+    const std::vector<PassPlan> candidates_;
+    std::vector<std::unique_ptr<PixelSampleIntegrator>> plans_;
+    std::vector<double> costs_;
+    std::vector<TechniqueSums> samples_;
+    PlanMoments moments_;
+    size_t current_ = 0;
+    uint64_t roundsDone_ = 0;
+    std::vector<std::pair<uint64_t, std::string>> stretches_;  // (first pass, plan)
+    std::vector<PlanEstimate> estimates_;                      // at the last choice, on rank 0
+};
+
+class AutoMis final : public Integrator {
+public:
+    using Integrator::Integrator;
+    std::string name() const override { return "auto"; }
+    StrategySet strategies() const override { return measuredStrategies(); }
+    bool playsRoulette() const override { return true; }
+    bool hasLightPhase() const override { return true; }
+    // The plan of the most light paths, which runs every class.
+    std::unique_ptr<PixelSampleIntegrator> largestPasses(const Scene& scene) const override {
+        return makePlannedPasses({4 * unit(scene), true, true, true}, settings());
+    }
+    RenderResult render(const Scene& scene, const RenderSettings& settings) const override {
+        if (settings.resume || settings.checkpointSeconds > 0)
+            throw InputError("auto does not write or resume checkpoints yet: leave out --checkpoint");
+        const Camera& cam = scene.camera();
+        FilmLayers layers = settings.layers;
+        layers.strategies = strategies();
+        MemoryEstimate memory = admitMemory(scene, *this, settings);
+        RenderResult result{.film = Film(cam.width(), cam.height(), layers),
+                            .budgetPasses = settings.spp,
+                            .budgetSeconds = settings.seconds,
+                            .memory = std::move(memory)};
+        const auto full = makePlannedPasses({unit(scene), true, true, true}, this->settings());
+        AutoPasses passes(scene, *full, settings, settings.firstPass);
+        return runPasses(settings, passes, std::move(result));
+    }
+
+private:
+    // The unit of the plans' N_L: --light-paths, or one per pixel.
+    double unit(const Scene& scene) const {
+        const Camera& cam = scene.camera();
+        return settings().lightPaths ? double(*settings().lightPaths) : double(cam.width()) * cam.height();
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> makeAuto(const IntegratorSettings& s) { return std::make_unique<AutoMis>(s); }
+
+}  // namespace tripath

@@ -1,0 +1,61 @@
+#include "integrators/pass_plan.h"
+
+namespace tripath {
+
+StrategySet PassPlan::strategies() const {
+    StrategySet set;  // every connection
+    if (!lightTraces) set.minT = 2;
+    if (!connects) {
+        if (lightTraces)
+            set.connects = false;
+        else
+            set.maxS = 1;
+    }
+    if (merges) set.merging = StrategySet::Merging::EveryVertex;
+    return set;
+}
+
+TechniqueSums PassPlan::factors(double measuredLightPaths) const {
+    const float share = static_cast<float>(lightPaths / measuredLightPaths);
+    TechniqueSums f{};
+    f[static_cast<int>(TechniqueClass::Unidirectional)] = 1.0f;
+    f[static_cast<int>(TechniqueClass::Connection)] = connects && lightPaths > 0 ? 1.0f : 0.0f;
+    f[static_cast<int>(TechniqueClass::LightTracing)] = lightTraces ? share : 0.0f;
+    f[static_cast<int>(TechniqueClass::Merge)] = merges ? share : 0.0f;
+    return f;
+}
+
+StrategySet measuredStrategies() { return {.merging = StrategySet::Merging::EveryVertex}; }
+
+float planDenominator(const TechniqueSums& factors, const TechniqueSums& sums) {
+    float d = 0;
+    for (int c = 0; c < kTechniqueClasses; ++c) d += factors[c] * sums[c];
+    return d;
+}
+
+namespace {
+
+class PlannedPasses final : public PixelSampleIntegrator {
+public:
+    PlannedPasses(const PassPlan& plan, IntegratorSettings settings) : PixelSampleIntegrator(withLightPaths(settings, plan)), plan_(plan) {}
+    std::string name() const override { return "auto"; }
+    StrategySet strategies() const override { return plan_.strategies(); }
+    std::optional<StrategySet> measuredStrategies() const override { return tripath::measuredStrategies(); }
+
+private:
+    // The plan's N_L; a plan without light paths keeps the default N_L of the pass's constants
+    // (one per pixel), the unit its technique sums are measured in.
+    static IntegratorSettings withLightPaths(IntegratorSettings s, const PassPlan& plan) {
+        s.lightPaths = plan.lightPaths > 0 ? std::optional<int64_t>(static_cast<int64_t>(plan.lightPaths)) : std::nullopt;
+        return s;
+    }
+    PassPlan plan_;
+};
+
+}  // namespace
+
+std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings) {
+    return std::make_unique<PlannedPasses>(plan, settings);
+}
+
+}  // namespace tripath

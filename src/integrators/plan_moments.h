@@ -1,0 +1,52 @@
+// The candidate plans' second moments as auto's passes measure them (pass_plan.h), kept the way
+// the film keeps its sums (film.h): per tile of the image and per candidate, the current block's
+// sums in double, added in the render loop's fixed order, then the exact totals of the finished
+// blocks (exact_sum.h). So the totals, and every plan chosen from them, are the same for any
+// thread count, any team of ranks and any grouping of blocks.
+//
+// The tiles are the render loop's: one thread writes a tile's camera contributions in a pass, and
+// the splats come after the pass in tile order, as the film's do.
+#pragma once
+#include <vector>
+
+#include "core/vec.h"
+#include "integrators/exact_sum.h"
+#include "integrators/film.h"
+#include "integrators/plan_choice.h"
+
+namespace tripath {
+
+class PlanMoments {
+public:
+    PlanMoments(int width, int height, int tileSize, size_t candidates);
+
+    // The candidates' factors over the constants of the passes to come (PassPlan::factors).
+    void setFactors(std::vector<TechniqueSums> factors) { factors_ = std::move(factors); }
+    // A contribution to `pixel` as the film takes it (its weighted and unweighted values, a
+    // splat's already divided by N_L) and its path's technique sums: for each candidate, F · U / D'
+    // to its moment and F · w'_c to its mean by class c (w'_c = factor_c · sums_c / D', the
+    // candidate's balance weight of the class), or 1 to its count of paths it cannot sample
+    // (D' = 0, F · U > 0).
+    void add(int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums);
+    // Adds the block's sums to the exact totals and clears them.
+    void endBlock();
+    // The exact totals, in a fixed order: what the team gathers and adds.
+    ExactSums& totals() { return totals_; }
+    const ExactSums& totals() const { return totals_; }
+
+    // What the choice reads after `passes` passes whose film (a team's, all its passes) is `film`.
+    PlanEvidence evidence(const Film& film, int passes) const;
+
+private:
+    // Per tile and candidate: its moment, its count of paths it cannot sample, its means by class.
+    static constexpr size_t kSums = 2 + kTechniqueClasses;
+    size_t sumIndex(int tile, size_t candidate, size_t which) const { return (size_t(tile) * candidates_ + candidate) * kSums + which; }
+    int tileOf(int pixel) const;
+    int width_, height_, tileSize_, tilesX_, tiles_;
+    size_t candidates_;
+    std::vector<TechniqueSums> factors_;
+    std::vector<double> block_;
+    ExactSums totals_;
+};
+
+}  // namespace tripath

@@ -1,0 +1,75 @@
+// auto (integrators/auto.cpp): unbiased against bdpt whatever plans it chooses, the same render
+// for any thread count, and each pass's plan chosen from the passes before it alone.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scenes/builtin_scenes.h"
+#include "support.h"
+
+namespace tripath {
+namespace {
+
+RenderRequest autoRequest(int spp) {
+    RenderRequest r = test::smallRequest();
+    r.integrator = "auto";
+    r.width = r.height = 24;
+    r.spp = spp;
+    return r;
+}
+
+// The plans a render chose, as its EXR says them.
+std::vector<std::pair<uint64_t, std::string>> plansOf(const RenderResult& r) { return r.plans.stretches; }
+
+// auto against bdpt, block by block (Welch, Holm, the noise ceiling), on a diffuse box, a caustic
+// under an area light (where merges and light tracing pay), and the textured sky, at 40 passes:
+// every render chooses at 4, 8, 16 and 32 passes. A plan that weighed its own passes, or passes
+// of different plans combined with weights that depend on them, would bias the image; so would
+// a plan chosen although it cannot sample a path (pt's on the caustic's SDS light).
+TEST(Auto, AgreesWithBdptWhateverItChooses) {
+    for (const char* name : {"cornell", "caustic", "sky"}) {
+        const Scene scene(builtinScene(name), 24, 24);
+        RenderRequest a = autoRequest(40), b = a;
+        b.integrator = "bdpt";
+        b.spp = 160;  // bdpt's noise on the caustic, below the ceiling
+        const std::vector<test::Block> blocks = test::blockGrid(24, 24, 2, 2);
+        test::BlockAgreement agreement;
+        agreement.compare(test::blockRuns(scene, a, 12, 700, blocks), test::blockRuns(scene, b, 12, 800, blocks),
+                          std::string("auto against bdpt on ") + name);
+        agreement.expectNoBias();
+    }
+}
+
+// The same image and the same plans on 1, 2 and 3 threads: the moments the plans are chosen from
+// are exact sums, gathered in the film's order. Fails if a choice read a sum added in thread order.
+TEST(Auto, TheSameRenderWhateverTheThreadCount) {
+    const Scene scene(builtinScene("cornell-spheres"), 40, 24);
+    RenderRequest r = autoRequest(20);
+    r.width = 40;
+    r.threads = 1;
+    const RenderResult one = test::renderScene(scene, r);
+    EXPECT_GE(plansOf(one).size(), 4u);
+    for (int threads : {2, 3}) {
+        r.threads = threads;
+        const RenderResult other = test::renderScene(scene, r);
+        EXPECT_EQ(one.image().rgb, other.image().rgb) << threads << " threads";
+        EXPECT_EQ(plansOf(one), plansOf(other)) << threads << " threads";
+    }
+}
+
+// The plans of a render's first 12 passes do not depend on how many passes come after them.
+// Fails if a plan were chosen from passes after it, or from the budget.
+TEST(Auto, APassesPlanDependsOnThePassesBeforeItAlone) {
+    const Scene scene(builtinScene("cornell"), 24, 24);
+    const RenderResult longer = test::renderScene(scene, autoRequest(40));
+    const RenderResult shorter = test::renderScene(scene, autoRequest(12));
+    auto before = [](std::vector<std::pair<uint64_t, std::string>> plans, uint64_t passes) {
+        std::erase_if(plans, [&](const auto& p) { return p.first >= passes; });
+        return plans;
+    };
+    EXPECT_EQ(before(plansOf(longer), 12), plansOf(shorter));
+    EXPECT_EQ(plansOf(shorter).size(), 3u);  // passes 0, 4 and 8 on
+}
+
+}  // namespace
+}  // namespace tripath
