@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "bench_scenes.h"
-#include "integrators/render.h"
+#include "pass_timing.h"
 
 namespace tripath::bench {
 
@@ -31,19 +31,7 @@ void runPass(benchmark::State& state, const std::string& integratorName, const s
     IntegratorSettings settings;
     settings.walk.maxDepth = kDepth;
     settings.walk.rrDepth = defaultRouletteDepth(integratorName);  // as the front ends render
-    const auto integrator = makeIntegrator(integratorName, settings);
-    RenderSettings rs;
-    rs.spp = 1;
-    rs.threads = 1;
-    uint64_t samples = 0;
-    for (auto _ : state) {
-        const RenderResult r = render(scene, *integrator, rs);
-        benchmark::DoNotOptimize(r.film.width());
-        samples += uint64_t(kWidth) * kHeight;
-        ++rs.firstPass;
-    }
-    using C = benchmark::Counter;
-    state.counters["samples_per_s"] = C(double(samples), C::kIsRate);
+    timePasses(state, scene, *makeIntegrator(integratorName, settings), 1);
 }
 
 // (label, cache key) of the scenes measured.

@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "bench_scenes.h"
+#include "pass_timing.h"
 #include "scenes/builtin_scenes.h"
 #include "integrators/light_phase.h"
 #include "integrators/render.h"
@@ -119,20 +120,7 @@ void runMerges(benchmark::State& state, const std::string& name) {
 }
 
 void runPass(benchmark::State& state, const std::string& integratorName, const std::string& name) {
-    const Scene& scene = cachedScene(name);
-    const auto integrator = makeIntegrator(integratorName, IntegratorSettings{});
-    RenderSettings rs;
-    rs.spp = 1;
-    rs.threads = 2;
-    uint64_t samples = 0;
-    for (auto _ : state) {
-        const RenderResult r = render(scene, *integrator, rs);
-        benchmark::DoNotOptimize(r.film.width());
-        samples += uint64_t(kWidth) * kHeight;
-        ++rs.firstPass;
-    }
-    using C = benchmark::Counter;
-    state.counters["samples_per_s"] = C(double(samples), C::kIsRate);
+    timePasses(state, cachedScene(name), *makeIntegrator(integratorName, IntegratorSettings{}), 2);
 }
 
 const bool registered = [] {

@@ -5,10 +5,11 @@
 // (none, or a quarter, one or four times --light-paths, one per pixel by default) and which of
 // the connections, light tracing and merges it runs; the camera walk with its hits on emitters
 // and its next-event estimates runs always. The first passes run every class with one light
-// path per pixel. Every pass measures, for each candidate plan, the second moment that plan's
-// estimator would have, tile by tile (plan_moments.h). After 4, 8, 16, 32, … passes of the
-// render, the team chooses from the totals of every pass so far the plan of least relative
-// variance × cost for the passes up to the next choice (plan_choice.h).
+// path per pixel. The first block of passes after each choice (passes 0-3, 4-7, 8-11, 16-19, …)
+// measures, for each candidate plan, the second moment that plan's estimator would have, tile by
+// tile (plan_moments.h); the others render without the measuring's cost. After 4, 8, 16, 32, …
+// passes of the render, the team chooses from the totals of every measuring pass so far the plan
+// of least relative variance × cost for the passes up to the next choice (plan_choice.h).
 //
 // Unbiased: a pass's plan depends on the passes before it alone, and every pass weighs the same
 // in the image (the film's average), a weight fixed before the pass; each plan's estimator is
@@ -82,7 +83,8 @@ PassWork surveyWork(const Scene& scene, const PixelSampleIntegrator& full, const
     double found = 0;
     for (size_t q = 0; q < queries.size(); q += LightVertexSearch::kQueriesAtOnce) {
         const size_t n = std::min<size_t>(LightVertexSearch::kQueriesAtOnce, queries.size() - q);
-        search.forEachWithin(std::span<const Vec3>(queries.data() + q, n), [&](int, std::span<const Vertex>, int) { ++found; });
+        search.forEachWithin(std::span<const Vec3>(queries.data() + q, n),
+                             [&](int, std::span<const Vertex>, int) { ++found; });
     }
     // Per camera vertex that searches (its share of all of them) and per light path of the pass.
     work.mergesPerQuery = found / double(queries.size()) / double(traced);
@@ -92,10 +94,14 @@ PassWork surveyWork(const Scene& scene, const PixelSampleIntegrator& full, const
 class AutoPasses final : public TilePasses {
 public:
     AutoPasses(const Scene& scene, const PixelSampleIntegrator& full, const RenderSettings& settings, uint64_t firstPass)
-        : TilePasses(scene, full, settings, firstPass), scene_(scene), pixels_(double(scene.camera().width()) * scene.camera().height()),
+        : TilePasses(scene, full, settings, firstPass), scene_(scene),
+          pixels_(double(scene.camera().width()) * scene.camera().height()),
           candidates_(candidatePlans(full.lightPaths(scene))),
           moments_(scene.camera().width(), scene.camera().height(), kTileSize, candidates_.size()) {
-        for (const PassPlan& plan : candidates_) plans_.push_back(makePlannedPasses(plan, full.settings()));
+        for (const PassPlan& plan : candidates_) {
+            measuring_.push_back(makePlannedPasses(plan, full.settings(), true));
+            plain_.push_back(makePlannedPasses(plan, full.settings(), false));
+        }
         const PassWork work = surveyWork(scene, full, settings);
         for (const PassPlan& plan : candidates_) {
             costs_.push_back(passCost(plan, work, pixels_));
@@ -119,14 +125,20 @@ public:
         const uint64_t blocks = std::min(stretchStart(p.stretch) + (p.round + 1) * ranks(), stretchStart(p.stretch + 1));
         return blocks * kPassesPerBlock >= budget;
     }
+    // The first block of each stretch measures (blocks 0, 1, 2, 4, 8, …); the others render alone.
     void run(uint64_t offset, RenderResult& result) override {
-        renderer_.run(*plans_[current_], firstPass_ + offset, result, &moments_);
+        const uint64_t block = offset / kPassesPerBlock;
+        if ((block & (block - 1)) == 0)
+            renderer_.run(*measuring_[current_], firstPass_ + offset, result, &moments_);
+        else
+            renderer_.run(*plain_[current_], firstPass_ + offset, result);
     }
     void endRound(Film& film) override {
         renderer_.endBlock(film);
         moments_.endBlock();
         const Place p = place(roundsDone_++);
-        if (p.round + 1 == p.rounds) decide(film, stretchStart(p.stretch + 1) * kPassesPerBlock);
+        if (p.round + 1 == p.rounds)
+            decide(film, stretchStart(p.stretch + 1) * kPassesPerBlock, uint64_t(p.stretch + 1) * kPassesPerBlock);
     }
     void gather(RenderResult& into, Film& mine, uint64_t local, uint64_t localNext, const RenderResult& counts) override {
         TilePasses::gather(into, mine, local, localNext, counts);
@@ -150,10 +162,11 @@ private:
         }
     }
 
-    // The team's choice after `passes` passes: rank 0 gathers the moments and the film, chooses,
-    // and tells the others.
-    void decide(Film& film, uint64_t passes) {
-        std::string mine(reinterpret_cast<const char*>(moments_.totals().words().data()), moments_.totals().words().size_bytes());
+    // The team's choice after `passes` passes, `measured` of them measuring: rank 0 gathers the
+    // moments and the film, chooses, and tells the others.
+    void decide(Film& film, uint64_t passes, uint64_t measured) {
+        const std::span<const uint64_t> words = moments_.totals().words();
+        const std::string mine(reinterpret_cast<const char*>(words.data()), words.size_bytes());
         const std::vector<std::string> all = team_.gather(mine);
         std::optional<Film> copy;
         if (team_.size() > 1 && team_.rank() == 0) copy.emplace(film);
@@ -166,19 +179,21 @@ private:
                 std::memcpy(other.words().data(), all[r].data(), std::min(all[r].size(), other.words().size_bytes()));
                 team.totals().add(other);
             }
-            const PlanEvidence evidence = team.evidence(copy ? *copy : film, static_cast<int>(passes));
+            const PlanEvidence evidence =
+                team.evidence(copy ? *copy : film, static_cast<int>(passes), static_cast<int>(measured));
             const std::vector<double> variances = relativeVariances(evidence, samples_);
             choice = std::to_string(choosePlan(variances, costs_, evidence.uncovered, current_));
             estimates_.clear();
             for (size_t k = 0; k < candidates_.size(); ++k)
-                estimates_.push_back({planName(candidates_[k], pixels_), variances[k], costs_[k], bool(evidence.uncovered[k])});
+                estimates_.push_back(
+                    {planName(candidates_[k], pixels_), variances[k], costs_[k], bool(evidence.uncovered[k])});
         }
         team_.broadcast(choice);
         choose(std::stoul(choice), passes);
     }
     void choose(size_t plan, uint64_t firstPass) {
         current_ = plan;
-        moments_.setFactors(factorsOver(plans_[plan]->lightPaths(scene_)));
+        moments_.setFactors(factorsOver(measuring_[plan]->lightPaths(scene_)));
         stretches_.push_back({firstPass, planName(candidates_[plan], pixels_)});
     }
     std::vector<TechniqueSums> factorsOver(double lightPaths) const {
@@ -190,7 +205,7 @@ private:
     const Scene& scene_;
     const double pixels_;
     const std::vector<PassPlan> candidates_;
-    std::vector<std::unique_ptr<PixelSampleIntegrator>> plans_;
+    std::vector<std::unique_ptr<PixelSampleIntegrator>> measuring_, plain_;  // per candidate
     std::vector<double> costs_;
     std::vector<TechniqueSums> samples_;
     PlanMoments moments_;
@@ -214,14 +229,7 @@ public:
     RenderResult render(const Scene& scene, const RenderSettings& settings) const override {
         if (settings.resume || settings.checkpointSeconds > 0)
             throw InputError("auto does not write or resume checkpoints yet: leave out --checkpoint");
-        const Camera& cam = scene.camera();
-        FilmLayers layers = settings.layers;
-        layers.strategies = strategies();
-        MemoryEstimate memory = admitMemory(scene, *this, settings);
-        RenderResult result{.film = Film(cam.width(), cam.height(), layers),
-                            .budgetPasses = settings.spp,
-                            .budgetSeconds = settings.seconds,
-                            .memory = std::move(memory)};
+        RenderResult result = startRender(scene, *this, settings);
         const auto full = makePlannedPasses({unit(scene), true, true, true}, this->settings());
         AutoPasses passes(scene, *full, settings, settings.firstPass);
         return runPasses(settings, passes, std::move(result));

@@ -355,14 +355,7 @@ MetropolisMemory metropolisMemory(double pixels, const MetropolisSettings& setti
 }
 
 RenderResult renderMetropolis(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
-    const Camera& cam = scene.camera();
-    FilmLayers layers = settings.layers;
-    layers.strategies = integrator.strategies();
-    MemoryEstimate memory = admitMemory(scene, integrator, settings);
-    RenderResult result{.film = Film(cam.width(), cam.height(), layers),
-                        .budgetPasses = settings.spp,
-                        .budgetSeconds = settings.seconds,
-                        .memory = std::move(memory)};
+    RenderResult result = startRender(scene, integrator, settings);
     ChainPasses passes(scene, integrator, settings);
     return runPasses(settings, passes, std::move(result));
 }

@@ -2,7 +2,7 @@
 // TechniqueClass) it runs, among vcm's. The plans are auto's candidates: it renders each pass
 // with one, chosen from what the passes before measured.
 //
-// Every pass of a plan measures the whole vcm set (Integrator::measuredStrategies): each
+// A measuring pass of a plan measures the whole vcm set (Integrator::measuredStrategies): each
 // contribution comes with its path's technique sums, Σ p_i / p per class over vcm's strategies
 // in the pass's own constants (N_L and the merge radius). Another plan's balance-heuristic
 // denominator for the same path is a recombination of them: a class's pdfs scale with its
@@ -39,15 +39,16 @@ struct PassPlan {
     TechniqueSums factors(double measuredLightPaths) const;
 };
 
-// The strategies every planned pass measures: vcm's.
+// The strategies a measuring pass measures: vcm's.
 StrategySet measuredStrategies();
 
 // Σ_class factors[class] · sums[class]: a plan's balance-heuristic denominator of a path, over the
 // pdf of the strategy that sampled it, from that path's technique sums.
 float planDenominator(const TechniqueSums& factors, const TechniqueSums& sums);
 
-// A method that renders every pass with `plan`, measuring vcm's strategies (an auto pass).
-// `settings` give the walks, the heuristic and the radius schedule; the plan gives N_L.
-std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings);
+// A method that renders every pass with `plan` (an auto pass), measuring vcm's strategies if
+// `measures`. `settings` give the walks, the heuristic and the radius schedule; the plan, N_L.
+std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings,
+                                                         bool measures = true);
 
 }  // namespace tripath

@@ -8,10 +8,10 @@
 // samples per pixel (N_L / pixels for light tracing, one for the camera walk's strategies and the
 // connections; the merges' part is not subtracted, a merge summing over every light vertex within
 // its radius), and at least a thousandth of the moment (a difference of two estimates, it can
-// come out below 0 where the variance is small). A tile keeps its
-// classes' means; each pixel is taken to share them as the tile does, so Σ_p μ_t,p² is the
-// tile's Σ_p I_p² times class t's share squared. Relative: over the tile's squared mean, so that
-// a bright tile does not outvote a dark one; summed over the render's tiles. Its cost is a pass's work in units of a traced ray,
+// come out below 0 where the variance is small). A tile keeps its classes' means; each pixel is
+// taken to share them as the tile does, so Σ_p μ_t,p² is the tile's Σ_p I_p² times class t's
+// share squared. Relative: over the tile's squared mean, so that a bright tile does not outvote a
+// dark one; summed over the render's tiles. Its cost is a pass's work in units of a traced ray,
 // from counts a survey of the scene gives before the first pass (traced from fixed streams, so
 // that the choice is the same on every run, thread count and rank count): camera and light
 // vertices, connections, joins to the sensor, merge searches and merges. A candidate that cannot

@@ -22,7 +22,8 @@ void PlanMoments::add(int pixel, Spectrum weighted, Spectrum unweighted, const T
             continue;
         }
         block_[sumIndex(tile, k, 0)] += fu / d;
-        for (int c = 0; c < kTechniqueClasses; ++c) block_[sumIndex(tile, k, 2 + size_t(c))] += f * factors_[k][c] * sums[c] / d;
+        for (int c = 0; c < kTechniqueClasses; ++c)
+            block_[sumIndex(tile, k, 2 + size_t(c))] += f * factors_[k][c] * sums[c] / d;
     }
 }
 
@@ -31,7 +32,7 @@ void PlanMoments::endBlock() {
     std::fill(block_.begin(), block_.end(), 0.0);
 }
 
-PlanEvidence PlanMoments::evidence(const Film& film, int passes) const {
+PlanEvidence PlanMoments::evidence(const Film& film, int passes, int measured) const {
     PlanEvidence e;
     e.tileMean.assign(size_t(tiles_), 0.0);
     e.tileMeanSquares.assign(size_t(tiles_), 0.0);
@@ -51,10 +52,11 @@ PlanEvidence PlanMoments::evidence(const Film& film, int passes) const {
     e.uncovered.assign(candidates_, false);
     for (int tile = 0; tile < tiles_; ++tile)
         for (size_t k = 0; k < candidates_; ++k) {
-            e.moments[k][size_t(tile)] = totals_.value(sumIndex(tile, k, 0)) / passes;
+            e.moments[k][size_t(tile)] = totals_.value(sumIndex(tile, k, 0)) / measured;
             if (totals_.value(sumIndex(tile, k, 1)) > 0) e.uncovered[k] = true;
             for (int c = 0; c < kTechniqueClasses; ++c)
-                e.classMeans[k][size_t(tile)][c] = static_cast<float>(totals_.value(sumIndex(tile, k, 2 + size_t(c))) / passes);
+                e.classMeans[k][size_t(tile)][c] =
+                    static_cast<float>(totals_.value(sumIndex(tile, k, 2 + size_t(c))) / measured);
         }
     return e;
 }

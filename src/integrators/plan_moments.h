@@ -34,13 +34,16 @@ public:
     ExactSums& totals() { return totals_; }
     const ExactSums& totals() const { return totals_; }
 
-    // What the choice reads after `passes` passes whose film (a team's, all its passes) is `film`.
-    PlanEvidence evidence(const Film& film, int passes) const;
+    // What the choice reads after `passes` passes whose film (a team's, all its passes) is `film`,
+    // `measured` of them measuring.
+    PlanEvidence evidence(const Film& film, int passes, int measured) const;
 
 private:
     // Per tile and candidate: its moment, its count of paths it cannot sample, its means by class.
     static constexpr size_t kSums = 2 + kTechniqueClasses;
-    size_t sumIndex(int tile, size_t candidate, size_t which) const { return (size_t(tile) * candidates_ + candidate) * kSums + which; }
+    size_t sumIndex(int tile, size_t candidate, size_t which) const {
+        return (size_t(tile) * candidates_ + candidate) * kSums + which;
+    }
     int tileOf(int pixel) const;
     int width_, height_, tileSize_, tilesX_, tiles_;
     size_t candidates_;

@@ -26,15 +26,19 @@ MemoryEstimate admitMemory(const Scene& scene, const Integrator& integrator, con
     return estimate;
 }
 
-RenderResult PixelSampleIntegrator::render(const Scene& scene, const RenderSettings& settings) const {
+RenderResult startRender(const Scene& scene, const Integrator& integrator, const RenderSettings& settings) {
     const Camera& cam = scene.camera();
     FilmLayers layers = settings.layers;
-    layers.strategies = strategies();
-    MemoryEstimate memory = admitMemory(scene, *this, settings);
-    RenderResult result{.film = Film(cam.width(), cam.height(), layers),
-                        .budgetPasses = settings.spp,
-                        .budgetSeconds = settings.seconds,
-                        .memory = std::move(memory)};
+    layers.strategies = integrator.strategies();
+    MemoryEstimate memory = admitMemory(scene, integrator, settings);
+    return {.film = Film(cam.width(), cam.height(), layers),
+            .budgetPasses = settings.spp,
+            .budgetSeconds = settings.seconds,
+            .memory = std::move(memory)};
+}
+
+RenderResult PixelSampleIntegrator::render(const Scene& scene, const RenderSettings& settings) const {
+    RenderResult result = startRender(scene, *this, settings);
     TilePasses passes(scene, *this, settings, settings.resume ? settings.resume->nextPass : settings.firstPass);
     return runPasses(settings, passes, std::move(result));
 }

@@ -150,8 +150,13 @@ RenderResult& addResumed(RenderResult& r, const RenderResult* resume);
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
 
 // The render's memory estimate, passed through settings.checkMemory (if set) on every rank of its
-// team together: what render() and renderMetropolis() call before they allocate anything large.
+// team together: what every method's render calls (startRender) before it allocates anything large.
 MemoryEstimate admitMemory(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
+
+// The result a method's render starts from: the film of the camera's size with the settings'
+// layers and the method's strategies, the budget, and the memory estimate admitted (admitMemory)
+// before the film is allocated.
+RenderResult startRender(const Scene& scene, const Integrator& integrator, const RenderSettings& settings);
 
 // The memory `splats` light-tracing splats (t = 1 connections) take while they wait for the end of
 // their pass, when they are added to the film in tile order.

@@ -103,8 +103,9 @@ struct StrategySet {
     // camera side and (i, s+t−i) on the light side, multiplying one pdf ratio per vertex, and needs
     // to go only as far as the last enabled one (or further, where connections are off). So it
     // reads the pdfs of camera vertex i only when i ≥ minT and s + t − i ≤ maxS, and of light
-    // vertex i only when s + t − i ≤ maxT (the light side's t only grows). With merges, a merge may be enabled at any vertex: every pdf is
-    // read. `connect` sets no other pdf, and the walks record no other.
+    // vertex i only when s + t − i ≤ maxT (the light side's t only grows). With merges, a merge
+    // may be enabled at any vertex: every pdf is read. `connect` sets no other pdf, and the walks
+    // record no other.
     bool readsCameraPdfs(int i, int s, int t) const {
         if (uniqueStrategy()) return false;
         return i < t && (merges() ? i >= 1 : i >= minT && s + t - i <= maxS);
