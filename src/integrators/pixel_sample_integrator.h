@@ -2,7 +2,7 @@
 // image-tile integrators, as against its MLT integrator). In each pass every pixel takes one
 // sample, by sample(), after the pass's light phase when the method has one (light_phase.h);
 // what a method estimates is then its strategy set and its settings. Their render() is one for
-// all (render.cpp): passes in tiles, dealt over a team in canonical blocks. A pixel's sample can
+// all (render.cpp): passes in tiles, dealt over a team in canonical blocks (tile_passes.h). A pixel's sample can
 // be rendered again alone (replaySample, render.h).
 #pragma once
 #include "integrators/integrator.h"
@@ -36,7 +36,7 @@ public:
 class PixelSampleIntegrator : public Integrator {
 public:
     using Integrator::Integrator;
-    // Passes of camera samples in tiles, each sample by sample() (render.cpp).
+    // Passes of camera samples in tiles, each sample by sample() (render.cpp, tile_passes.h).
     RenderResult render(const Scene& scene, const RenderSettings& settings) const override;
     const PixelSampleIntegrator* pixelSamples() const final { return this; }
     // The camera and light walks play roulette from WalkSettings::rrDepth.
@@ -56,7 +56,8 @@ public:
     // neighbouring pixels' camera rays together.
     virtual bool tracesCameraRays() const { return true; }
     // The strategies it measures, a superset of those it enables (mis.h's TechniqueMeasure): none
-    // by default; a pass of auto's measures the whole vcm set whatever its plan (pass_plan.h).
+    // by default; a measuring pass of auto's measures the whole vcm set whatever its plan
+    // (pass_plan.h).
     virtual std::optional<StrategySet> measuredStrategies() const { return std::nullopt; }
     // The strategies whose pdfs its walks record: the measured ones, else the enabled ones.
     StrategySet walkStrategies() const { return measuredStrategies().value_or(strategies()); }
