@@ -51,9 +51,9 @@ float ownPdf(std::span<const Vertex> path, int i, bool delta, bool generatorDelt
 // Σ term(p_i / p_base) over the enabled strategies that can sample the path, connections and
 // merges, where base is the connection (s, t) of these subpaths and junction: counted itself when
 // `countBase` (the caller knows whether it is enabled and possible), into an accumulator that
-// keeps one sum (the weights) or one per technique class (techniqueClassSums). Also the ratio of
-// the merge at z_{t−1} to the base, which a merge's own weight needs (0 where that merge is not
-// possible).
+// keeps one sum (the weights) or one per technique class (connectionTechniqueSums,
+// mergeTechniqueSums). Also the ratio of the merge at z_{t−1} to the base, which a merge's own
+// weight needs (0 where that merge is not possible).
 struct OneSum {
     static constexpr bool kTakesRunningSums = true;
     float sum = 0;
