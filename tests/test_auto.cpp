@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "integrators/pass_plan.h"
+#include "integrators/tile_passes.h"
 #include "scenes/builtin_scenes.h"
 #include "support.h"
 
@@ -38,6 +40,60 @@ TEST(Auto, AgreesWithBdptWhateverItChooses) {
                           std::string("auto against bdpt on ") + name);
         agreement.expectNoBias();
     }
+}
+
+// `passes` passes of the 32×32 cornell box whose four 16×16 tiles run `plans` (N_L of the first),
+// as auto's passes render a choice (tile_passes.h), with `seed`.
+Image renderTilePlans(const Scene& scene, const std::vector<PassPlan>& plans, int passes, uint64_t seed) {
+    PassPlan all = plans.front();
+    for (const PassPlan& p : plans) {
+        all.connects = all.connects || p.connects;
+        all.lightTraces = all.lightTraces || p.lightTraces;
+        all.merges = all.merges || p.merges;
+        all.unidirectional = all.unidirectional || p.unidirectional;
+    }
+    IntegratorSettings is;
+    is.walk = {6, 2};
+    const auto method = makePlannedPasses(all, is);
+    RenderSettings settings;
+    settings.seed = seed;
+    settings.threads = 2;
+    PassRenderer renderer(scene, settings);
+    RenderResult result{.film = Film(scene.camera().width(), scene.camera().height())};
+    for (int pass = 0; pass < passes; ++pass) {
+        renderer.run(*method, uint64_t(pass), result, nullptr, plans);
+        if ((pass + 1) % kPassesPerBlock == 0 || pass + 1 == passes) renderer.endBlock(result.film);
+    }
+    return result.film.image(passes);
+}
+
+// Tiles that run different classes side by side, each set able to sample every path of the
+// diffuse box: light tracing alone (no camera walk), path tracing alone, light tracing with
+// merges, path tracing with connections. Each tile's image agrees with bdpt's (Welch per tile,
+// Holm). A splat is weighed by the classes of the tile it lands in: weighed by those of the tile
+// whose sample traced it, light tracing's splats into the path-tracing tile count twice there
+// (checked: that change fails it), and the light tracer's tile, without them, loses its light.
+TEST(Auto, TilesOfDifferentPlansEachAgreeWithBdpt) {
+    const Scene scene(builtinScene("cornell"), 32, 32);
+    const double n = 32 * 32;
+    const std::vector<PassPlan> plans = {{n, false, true, false, false},
+                                         {n, false, false, false, true},
+                                         {n, false, true, true, false},
+                                         {n, true, false, false, true}};
+    const std::vector<test::Block> tiles = test::blockGrid(32, 32, 2, 2);
+    test::BlockRuns runs(tiles.size());
+    for (int run = 0; run < 12; ++run) {
+        const Image image = renderTilePlans(scene, plans, 16, 900 + uint64_t(run));
+        for (size_t k = 0; k < tiles.size(); ++k) runs[k].push_back(test::blockMean(image, tiles[k], luminance));
+    }
+    RenderRequest b = test::smallRequest();
+    b.integrator = "bdpt";
+    b.width = b.height = 32;
+    b.maxDepth = 6;
+    b.spp = 32;
+    test::BlockAgreement agreement;
+    agreement.compare(runs, test::blockRuns(scene, b, 12, 1000, tiles), "tiles of four plans against bdpt");
+    agreement.expectNoBias();
 }
 
 // The same image and the same plans on 1, 2 and 3 threads: the moments the plans are chosen from

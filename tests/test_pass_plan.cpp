@@ -7,24 +7,28 @@
 
 #include "integrators/light_phase.h"
 #include "integrators/pass_plan.h"
+#include "integrators/plan_moments.h"
 #include "scenes/builtin_scenes.h"
 #include "support.h"
 
 namespace tripath {
 namespace {
 
-// Each plan enables the unidirectional strategies and exactly the classes it runs.
+// Each plan enables exactly the classes it runs, and needs the camera walk unless it only traces
+// light. Fails if a class's switch reaches another class's strategies (checked: the
+// unidirectional switch left out of StrategySet::enabled fails it).
 TEST(PassPlan, EnablesTheClassesItRuns) {
-    for (int bits = 0; bits < 8; ++bits) {
-        const PassPlan plan{16, (bits & 1) != 0, (bits & 2) != 0, (bits & 4) != 0};
+    for (int bits = 1; bits < 16; ++bits) {
+        const PassPlan plan{16, (bits & 2) != 0, (bits & 4) != 0, (bits & 8) != 0, (bits & 1) != 0};
         const StrategySet set = plan.strategies();
         for (int s = 0; s <= 6; ++s)
             for (int t = 1; t <= 6; ++t) {
                 if (s + t < 2) continue;
-                const bool expected = t == 1 ? plan.lightTraces : s <= 1 || plan.connects;
+                const bool expected = t == 1 ? plan.lightTraces : s <= 1 ? plan.unidirectional : plan.connects;
                 EXPECT_EQ(set.enabled(s, t), expected) << "plan " << bits << " s=" << s << " t=" << t;
             }
         EXPECT_EQ(set.merges(), plan.merges) << "plan " << bits;
+        EXPECT_EQ(set.walksCamera(), plan.unidirectional || plan.connects || plan.merges) << "plan " << bits;
     }
 }
 
@@ -33,16 +37,17 @@ TEST(PassPlan, EnablesTheClassesItRuns) {
 // for each candidate.
 class MomentSink final : public ContributionSink {
 public:
-    MomentSink(std::vector<TechniqueSums> factors, double lightPaths)
-        : factors_(std::move(factors)), splatShare_(1.0 / lightPaths), moments(factors_.size(), 0.0),
+    MomentSink(TechniqueSums own, std::vector<TechniqueSums> factors, double lightPaths)
+        : own_(own), factors_(std::move(factors)), splatShare_(1.0 / lightPaths), moments(factors_.size(), 0.0),
           uncovered(factors_.size(), 0) {}
     void add(Strategy st, const Connection& c) override {
         // A splat is one of the pass's N_L estimates of the pixel it lands in (render.cpp's TileSink).
         const double share = !st.merge && st.t == 1 ? splatShare_ : 1.0;
-        const double fu = share * luminance(c.weighted()) * share * luminance(c.unweighted);
+        const float w = classWeight(own_, techniqueClass(st.s, st.t, st.merge), c.techniques).value;
+        const double fu = share * w * luminance(c.unweighted) * share * luminance(c.unweighted);
         if (!(fu > 0)) return;
         for (size_t k = 0; k < factors_.size(); ++k) {
-            const float d = planDenominator(factors_[k], c.techniques);
+            const float d = techniqueDenominator(factors_[k], c.techniques);
             if (d > 0)
                 moments[k] += fu / d;
             else
@@ -51,6 +56,7 @@ public:
     }
 
 private:
+    TechniqueSums own_;  // the measuring plan's factors, which weigh its contributions
     std::vector<TechniqueSums> factors_;
     double splatShare_;
 
@@ -70,7 +76,7 @@ MomentSink renderPass(const Scene& scene, const PassPlan& plan, const std::vecto
     const Pass p = phase.run(scene, *integrator, pass, 17, StreamDomain::Test);
     std::vector<TechniqueSums> factors;
     for (const PassPlan& c : candidates) factors.push_back(c.factors(p.mis.constants.lightPaths));
-    MomentSink sink(factors, p.mis.constants.lightPaths);
+    MomentSink sink(plan.factors(p.mis.constants.lightPaths), factors, p.mis.constants.lightPaths);
     PathBuffers paths;
     const Camera& cam = scene.camera();
     const uint64_t pixels = uint64_t(cam.width()) * cam.height();
@@ -119,6 +125,31 @@ TEST(PassPlan, AMomentMeasuredUnderOnePlanIsTheMomentUnderAnother) {
                 agreement.compare(runs[m][k], runs[k][k],
                                   "candidate " + std::to_string(k) + " measured by plan " + std::to_string(m));
     agreement.expectNoBias();
+}
+
+// For the candidate that is the measuring plan itself, a camera sample adds to the moment the
+// square of its estimate, Σ_i X_i squared: its contributions' own moments and their cross terms.
+// Two contributions to one pixel (a next-event estimate, a connection) and one to the next pixel,
+// with sums as a path's technique sums are (the own class's term counts 1). Fails if the cross
+// terms are left out (the moment is then 13.0 instead of 21.6, checked), or a sample's sums run
+// on into the next pixel's (30.6).
+TEST(PassPlan, TheMeasuringPlansMomentIsTheSquareOfEachSamplesEstimate) {
+    PlanMoments moments(2, 1, 16, 1);
+    const TechniqueSums all{1, 1, 1, 1};
+    moments.setFactors({all});
+    PlanMoments::Sample sample;
+    auto add = [&](int pixel, float unweighted, const TechniqueSums& sums, TechniqueClass c) {
+        const float weight = classWeight(all, c, sums).value;
+        moments.add(sample, pixel, Spectrum(weight * unweighted), Spectrum(unweighted), sums, c);
+        return weight * unweighted;
+    };
+    const double a = add(0, 2, {1, 0.5f, 0, 0}, TechniqueClass::Unidirectional);
+    const double b = add(0, 4, {0.25f, 1, 0, 0}, TechniqueClass::Connection);
+    const double c = add(1, 1, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
+    moments.endSample(sample);
+    moments.endBlock();
+    const PlanEvidence e = moments.evidence(Film(2, 1), 1, 1);
+    EXPECT_NEAR(e.moments[0][0], (a + b) * (a + b) + c * c, 1e-4);
 }
 
 }  // namespace

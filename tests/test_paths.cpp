@@ -697,6 +697,51 @@ TEST(Mis, TechniqueSumsMatchBruteForce) {
     }
 }
 
+// A render that runs some of vcm's classes (auto's plan of a tile, pass_plan.h) weighs each path by
+// its technique sums (classWeight): over the strategies of those classes that can sample a path,
+// the weights sum to one, for every one of the 15 sets of classes, on every oracle scene, at both
+// merge factors. Fails if a class the render does not run keeps its weight or its place in the
+// denominator (checked: classWeight without its own factor, the weight 1 / Σ, fails it).
+TEST(Mis, ClassWeightsOfAnySetOfClassesSumToOne) {
+    const StrategySet vcm = makeIntegrator("vcm", {})->strategies();
+    for (const auto& [desc, sparse] : oracleScenes()) {
+        const Scene scene(desc, 24, 24);
+        const auto paths = samplePaths(scene, 60, {MisHeuristic::Power, StrategySet{}, Roulette{2}, testPass()});
+        int checked = 0;
+        for (float eta : kEtas) {
+            MisContext mis{MisHeuristic::Balance, vcm, Roulette{2}, testPass(eta)};
+            mis.measure = {true, vcm, eta};
+            for (const SampledPath& p : paths) {
+                const int k = static_cast<int>(p.x.size()) - 1;
+                // Every strategy that can sample the path, its class and its technique sums.
+                std::vector<std::pair<TechniqueClass, TechniqueSums>> samplers;
+                for (int s = 0; s <= k; ++s)
+                    if (strategyCanSample(p.x, s, vcm)) {
+                        const Subpath y = lightPrefix(scene, p.x, s), z = cameraPrefix(scene, p.x, s);
+                        samplers.push_back({techniqueClass(s, k + 1 - s, false), connect(scene, y, s, z, k + 1 - s, mis).techniques});
+                    }
+                for (int j = 1; j < k; ++j)
+                    if (mergeCanSample(p.x, j, vcm) && mergePdf(scene, p.x, j, 2, eta) > 0)
+                        samplers.push_back({TechniqueClass::Merge, mergeAt(scene, p.x, j, mis).techniques});
+                for (int bits = 1; bits < 16; ++bits) {
+                    TechniqueSums factors{};
+                    for (int c = 0; c < kTechniqueClasses; ++c) factors[c] = (bits >> c) & 1 ? 1.0f : 0.0f;
+                    double sum = 0;
+                    bool any = false;
+                    for (const auto& [cl, sums] : samplers) {
+                        any = any || factors[static_cast<int>(cl)] > 0;
+                        sum += classWeight(factors, cl, sums).value;
+                    }
+                    if (!any) continue;
+                    ASSERT_NEAR(sum, 1.0, 2e-3) << desc.name << " k=" << k << " classes " << bits << " eta=" << eta;
+                    ++checked;
+                }
+            }
+        }
+        EXPECT_GT(checked, sparse ? 0 : 100) << desc.name;
+    }
+}
+
 // The unweighted estimate of a strategy is f(x̄) / p_{s,t}(x̄), with f the product of the kernels
 // and p including the continuation probabilities of the strategy's own walks (roulette from the
 // 2nd vertex, so every vertex past the walks' starts plays).

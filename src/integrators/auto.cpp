@@ -1,33 +1,39 @@
 // auto — efficiency-aware MIS over vcm's strategies (Grittmann, Yazici, Georgiev and Slusallek
 // 2022): the method that chooses, while it renders, which of its strategies pay on the scene.
 //
-// Every pass renders camera samples as vcm's do, with a plan (pass_plan.h): N_L light paths
-// (none, or a quarter, one or four times --light-paths, one per pixel by default) and which of
-// the connections, light tracing and merges it runs; the camera walk with its hits on emitters
-// and its next-event estimates runs always. The first passes run every class with one light
-// path per pixel. The first block of passes after each choice (passes 0-3, 4-7, 8-11, 16-19, …)
-// measures, for each candidate plan, the second moment that plan's estimator would have, tile by
-// tile (plan_moments.h); the others render without the measuring's cost. After 4, 8, 16, 32, …
-// passes of the render, the team chooses from the totals of every measuring pass so far the plan
-// of least relative variance × cost for the passes up to the next choice (plan_choice.h).
+// Every pass renders camera samples as vcm's do, with a plan per 16×16 tile of the image
+// (pass_plan.h): N_L light paths for the whole pass (none, or a quarter, one or four times
+// --light-paths, one per pixel by default), and which classes of strategies each tile runs: the
+// camera walk's hits on emitters and next-event estimates, the connections, light tracing's joins
+// to the sensor, the merges. Every contribution is weighed by the balance heuristic over the
+// classes the tile it lands in runs (classWeight, mis.h): a splat by those of the tile it falls
+// in, whichever sample traced it. The first block of passes after each choice (passes 0-3, 4-7,
+// 8-11, 16-19, …) runs every class with one light path per pixel in every tile, and measures for
+// each candidate the second moment its estimator would have, tile by tile (plan_moments.h); the
+// other blocks render the choice alone. After 4, 8, 16, 32, … passes of the render, the team
+// chooses from the totals of every measuring pass so far the plans of least relative second moment ×
+// cost for the passes up to the next choice (plan_choice.h).
 //
-// Unbiased: a pass's plan depends on the passes before it alone, and every pass weighs the same
-// in the image (the film's average), a weight fixed before the pass; each plan's estimator is
-// unbiased where it samples every path (a plan that cannot sample a path some pass found light
-// on is never chosen), and its merges keep vcm's radius schedule. Deterministic: the moments are
-// exact sums like the film's, the costs come from a survey traced from fixed streams, and the
-// choices fall at pass counts, so the plans and the image are the same for any thread count and
-// any team of ranks. mlt is not among the plans: its chains are no MIS technique.
+// Unbiased: a pass's plans depend on the passes before it alone, and every pass weighs the same
+// in the image (the film's average), a weight fixed before the pass; within a pass the weights of
+// every pixel's strategies sum to one, and each tile's plan samples every path some pass found
+// light on there (a plan that cannot is never chosen); the merges keep vcm's radius schedule.
+// Deterministic: the moments are exact sums like the film's, the costs come from a survey traced
+// from fixed streams, and the choices fall at pass counts, so the plans and the image are the same
+// for any thread count and any team of ranks. mlt is not among the plans: its chains are no MIS
+// technique.
 //
-// Parameters: --max-depth, --rr-depth (default 2), --mis, --light-paths (the unit of the plans'
-// N_L) and vcm's radius schedule (--radius, --radius-factor, --alpha). The plan of each stretch
-// of passes and the candidates' estimates at the last choice go to the EXR's metadata and to
-// --stats. Not yet: plans per pixel, checkpoints.
+// Parameters: --max-depth, --rr-depth (default 2), --light-paths (the unit of the plans' N_L) and
+// vcm's radius schedule (--radius, --radius-factor, --alpha); the weights are the balance
+// heuristic's, the estimator whose moments the choice reads, whatever --mis says. The plans of each
+// stretch of passes, the candidates' estimates at the last choice and each tile's classes go to the
+// EXR's metadata and to --stats. Not yet: checkpoints.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
 #include "core/error.h"
 #include "integrators/pass_plan.h"
@@ -91,24 +97,50 @@ PassWork surveyWork(const Scene& scene, const PixelSampleIntegrator& full, const
     return work;
 }
 
+// The name of a choice of plans per tile: "N_L=1/px trace+merge" when every tile runs the same
+// classes, else the number of tiles that run each set of classes, most first.
+std::string choiceName(const std::vector<PassPlan>& tiles, double pixels) {
+    std::vector<std::pair<std::string, int>> counts;
+    for (const PassPlan& plan : tiles) {
+        const std::string name = className(plan);
+        auto it = std::find_if(counts.begin(), counts.end(), [&](const auto& c) { return c.first == name; });
+        if (it == counts.end())
+            counts.push_back({name, 1});
+        else
+            ++it->second;
+    }
+    if (counts.size() == 1) return planName(tiles.front(), pixels);
+    std::stable_sort(counts.begin(), counts.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::vector<std::string> parts;
+    for (const auto& [name, n] : counts) parts.push_back(fmt::format("{} {} tiles", name, n));
+    return fmt::format("N_L={:g}/px {}", tiles.front().lightPaths / pixels, fmt::join(parts, ", "));
+}
+
+// The plan that runs, over the image, every class some tile runs.
+PassPlan unionOf(const std::vector<PassPlan>& tiles) {
+    PassPlan u{tiles.front().lightPaths, false, false, false, false};
+    for (const PassPlan& p : tiles) {
+        u.connects = u.connects || p.connects;
+        u.lightTraces = u.lightTraces || p.lightTraces;
+        u.merges = u.merges || p.merges;
+        u.unidirectional = u.unidirectional || p.unidirectional;
+    }
+    return u;
+}
+
 class AutoPasses final : public TilePasses {
 public:
     AutoPasses(const Scene& scene, const PixelSampleIntegrator& full, const RenderSettings& settings, uint64_t firstPass)
-        : TilePasses(scene, full, settings, firstPass), scene_(scene),
+        : TilePasses(scene, full, settings, firstPass), scene_(scene), settings_(full.settings()),
           pixels_(double(scene.camera().width()) * scene.camera().height()),
+          tiles_(size_t(((scene.camera().width() + kTileSize - 1) / kTileSize) *
+                        ((scene.camera().height() + kTileSize - 1) / kTileSize))),
           candidates_(candidatePlans(full.lightPaths(scene))),
+          everything_(size_t(std::find(candidates_.begin(), candidates_.end(),
+                                       PassPlan{full.lightPaths(scene), true, true, true, true}) - candidates_.begin())),
+          work_(surveyWork(scene, full, settings)),
           moments_(scene.camera().width(), scene.camera().height(), kTileSize, candidates_.size()) {
-        for (const PassPlan& plan : candidates_) {
-            measuring_.push_back(makePlannedPasses(plan, full.settings(), true));
-            plain_.push_back(makePlannedPasses(plan, full.settings(), false));
-        }
-        const PassWork work = surveyWork(scene, full, settings);
-        for (const PassPlan& plan : candidates_) {
-            costs_.push_back(passCost(plan, work, pixels_));
-            samples_.push_back(samplesPerPixel(plan, pixels_));
-        }
-        const PassPlan everything{full.lightPaths(scene), true, true, true};
-        choose(size_t(std::find(candidates_.begin(), candidates_.end(), everything) - candidates_.begin()), 0);
+        choose(std::vector<size_t>(tiles_, everything_), 0);
     }
 
     // The stretch's blocks dealt to the ranks in rounds, as TilePasses deals all of them; a rank
@@ -125,13 +157,10 @@ public:
         const uint64_t blocks = std::min(stretchStart(p.stretch) + (p.round + 1) * ranks(), stretchStart(p.stretch + 1));
         return blocks * kPassesPerBlock >= budget;
     }
-    // The first block of each stretch measures (blocks 0, 1, 2, 4, 8, …); the others render alone.
+    // The first block of each stretch (blocks 0, 1, 2, 4, 8, …) measures; the others render alone.
     void run(uint64_t offset, RenderResult& result) override {
         const uint64_t block = offset / kPassesPerBlock;
-        if ((block & (block - 1)) == 0)
-            renderer_.run(*measuring_[current_], firstPass_ + offset, result, &moments_);
-        else
-            renderer_.run(*plain_[current_], firstPass_ + offset, result);
+        renderer_.run(*chosen_, firstPass_ + offset, result, (block & (block - 1)) == 0 ? &moments_ : nullptr, tilePlans_);
     }
     void endRound(Film& film) override {
         renderer_.endBlock(film);
@@ -146,6 +175,8 @@ public:
         for (const auto& [first, name] : stretches_)
             if (first < uint64_t(into.passes)) into.plans.stretches.push_back({first, name});
         into.plans.candidates = estimates_;
+        into.plans.tiles.clear();
+        for (const PassPlan& plan : tilePlans_) into.plans.tiles.push_back(className(plan));
     }
 
 private:
@@ -181,37 +212,54 @@ private:
             }
             const PlanEvidence evidence =
                 team.evidence(copy ? *copy : film, static_cast<int>(passes), static_cast<int>(measured));
-            const std::vector<double> variances = relativeVariances(evidence, samples_);
-            choice = std::to_string(choosePlan(variances, costs_, evidence.uncovered, current_));
-            estimates_.clear();
-            for (size_t k = 0; k < candidates_.size(); ++k)
-                estimates_.push_back(
-                    {planName(candidates_[k], pixels_), variances[k], costs_[k], bool(evidence.uncovered[k])});
+            const std::vector<std::vector<double>> moments = relativeMoments(evidence);
+            const PlanChoice chosen = choosePlans(moments, evidence, candidates_, work_, everything_);
+            for (size_t tile : chosen.tiles) choice += std::to_string(tile) + " ";
+            report(moments, evidence, chosen);
         }
         team_.broadcast(choice);
-        choose(std::stoul(choice), passes);
+        std::vector<size_t> tiles;
+        std::istringstream in(choice);
+        for (size_t k; in >> k;) tiles.push_back(k);
+        choose(tiles, passes);
     }
-    void choose(size_t plan, uint64_t firstPass) {
-        current_ = plan;
-        moments_.setFactors(factorsOver(measuring_[plan]->lightPaths(scene_)));
-        stretches_.push_back({firstPass, planName(candidates_[plan], pixels_)});
+    // What --stats and the EXR show of a choice: each candidate as if every tile ran it, then the
+    // choice itself.
+    void report(const std::vector<std::vector<double>>& moments, const PlanEvidence& evidence, const PlanChoice& chosen) {
+        estimates_.clear();
+        for (size_t k = 0; k < candidates_.size(); ++k) {
+            double moment = 0;
+            for (double m : moments[k]) moment += m;
+            const bool uncovered = std::find(evidence.uncovered[k].begin(), evidence.uncovered[k].end(), true) !=
+                                   evidence.uncovered[k].end();
+            estimates_.push_back({planName(candidates_[k], pixels_), moment, passCost(candidates_[k], work_, pixels_), uncovered});
+        }
+        std::vector<PassPlan> plans;
+        for (size_t k : chosen.tiles) plans.push_back(candidates_[k]);
+        estimates_.push_back({"chosen: " + choiceName(plans, pixels_), chosen.relativeMoment, chosen.cost, false});
     }
-    std::vector<TechniqueSums> factorsOver(double lightPaths) const {
-        std::vector<TechniqueSums> f;
-        for (const PassPlan& c : candidates_) f.push_back(c.factors(lightPaths));
-        return f;
+    void choose(const std::vector<size_t>& tiles, uint64_t firstPass) {
+        tilePlans_.clear();
+        for (size_t k : tiles) tilePlans_.push_back(candidates_[k]);
+        chosen_ = makePlannedPasses(unionOf(tilePlans_), settings_);
+        std::vector<TechniqueSums> factors;
+        for (const PassPlan& c : candidates_) factors.push_back(c.factors(chosen_->lightPaths(scene_)));
+        moments_.setFactors(std::move(factors));
+        stretches_.push_back({firstPass, choiceName(tilePlans_, pixels_)});
     }
 
     const Scene& scene_;
+    const IntegratorSettings settings_;
     const double pixels_;
+    const size_t tiles_;
     const std::vector<PassPlan> candidates_;
-    std::vector<std::unique_ptr<PixelSampleIntegrator>> measuring_, plain_;  // per candidate
-    std::vector<double> costs_;
-    std::vector<TechniqueSums> samples_;
+    const size_t everything_;  // the candidate of every class at one light path per pixel: the first plan
+    const PassWork work_;
     PlanMoments moments_;
-    size_t current_ = 0;
+    std::vector<PassPlan> tilePlans_;                // the choice, per tile
+    std::unique_ptr<PixelSampleIntegrator> chosen_;  // the passes of its union
     uint64_t roundsDone_ = 0;
-    std::vector<std::pair<uint64_t, std::string>> stretches_;  // (first pass, plan)
+    std::vector<std::pair<uint64_t, std::string>> stretches_;  // (first pass, choice)
     std::vector<PlanEstimate> estimates_;                      // at the last choice, on rank 0
 };
 
@@ -224,13 +272,13 @@ public:
     bool hasLightPhase() const override { return true; }
     // The plan of the most light paths, which runs every class.
     std::unique_ptr<PixelSampleIntegrator> largestPasses(const Scene& scene) const override {
-        return makePlannedPasses({4 * unit(scene), true, true, true}, settings());
+        return makePlannedPasses({4 * unit(scene), true, true, true, true}, settings());
     }
     RenderResult render(const Scene& scene, const RenderSettings& settings) const override {
         if (settings.resume || settings.checkpointSeconds > 0)
             throw InputError("auto does not write or resume checkpoints yet: leave out --checkpoint");
         RenderResult result = startRender(scene, *this, settings);
-        const auto full = makePlannedPasses({unit(scene), true, true, true}, this->settings());
+        const auto full = makePlannedPasses({unit(scene), true, true, true, true}, this->settings());
         AutoPasses passes(scene, *full, settings, settings.firstPass);
         return runPasses(settings, passes, std::move(result));
     }

@@ -12,13 +12,14 @@ StrategySet PassPlan::strategies() const {
             set.maxS = 1;
     }
     if (merges) set.merging = StrategySet::Merging::EveryVertex;
+    set.unidirectional = unidirectional;
     return set;
 }
 
 TechniqueSums PassPlan::factors(double measuredLightPaths) const {
     const float share = static_cast<float>(lightPaths / measuredLightPaths);
     TechniqueSums f{};
-    f[static_cast<int>(TechniqueClass::Unidirectional)] = 1.0f;
+    f[static_cast<int>(TechniqueClass::Unidirectional)] = unidirectional ? 1.0f : 0.0f;
     f[static_cast<int>(TechniqueClass::Connection)] = connects && lightPaths > 0 ? 1.0f : 0.0f;
     f[static_cast<int>(TechniqueClass::LightTracing)] = lightTraces ? share : 0.0f;
     f[static_cast<int>(TechniqueClass::Merge)] = merges ? share : 0.0f;
@@ -27,22 +28,20 @@ TechniqueSums PassPlan::factors(double measuredLightPaths) const {
 
 StrategySet measuredStrategies() { return {.merging = StrategySet::Merging::EveryVertex}; }
 
-float planDenominator(const TechniqueSums& factors, const TechniqueSums& sums) {
-    float d = 0;
-    for (int c = 0; c < kTechniqueClasses; ++c) d += factors[c] * sums[c];
-    return d;
-}
-
 namespace {
 
 class PlannedPasses final : public PixelSampleIntegrator {
 public:
-    PlannedPasses(const PassPlan& plan, IntegratorSettings settings, bool measures)
-        : PixelSampleIntegrator(withLightPaths(settings, plan)), plan_(plan), measures_(measures) {}
+    PlannedPasses(const PassPlan& plan, IntegratorSettings settings)
+        : PixelSampleIntegrator(withLightPaths(settings, plan)), plan_(plan) {}
     std::string name() const override { return "auto"; }
     StrategySet strategies() const override { return plan_.strategies(); }
-    std::optional<StrategySet> measuredStrategies() const override {
-        return measures_ ? std::optional(tripath::measuredStrategies()) : std::nullopt;
+    std::optional<StrategySet> measuredStrategies() const override { return tripath::measuredStrategies(); }
+    void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
+                ContributionSink& sink) const override {
+        if (pass.mis.strategies.walksCamera()) return PixelSampleIntegrator::sample(scene, pass, pixel, ray, rng, paths, sink);
+        sensorSubpath(scene, paths.camera);
+        splatLightPaths(scene, pass, pixel, paths.camera, rng, sink);
     }
 
 private:
@@ -53,14 +52,12 @@ private:
         return s;
     }
     PassPlan plan_;
-    bool measures_;
 };
 
 }  // namespace
 
-std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings,
-                                                         bool measures) {
-    return std::make_unique<PlannedPasses>(plan, settings, measures);
+std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings) {
+    return std::make_unique<PlannedPasses>(plan, settings);
 }
 
 }  // namespace tripath

@@ -1,16 +1,17 @@
 // A pass's plan: how many light paths it traces and which classes of strategies (mis.h's
-// TechniqueClass) it runs, among vcm's. The plans are auto's candidates: it renders each pass
-// with one, chosen from what the passes before measured.
+// TechniqueClass) it runs, among vcm's. The plans are auto's candidates: it renders each tile of
+// each pass with one, chosen from what the passes before measured.
 //
-// A measuring pass of a plan measures the whole vcm set (Integrator::measuredStrategies): each
-// contribution comes with its path's technique sums, Σ p_i / p per class over vcm's strategies
-// in the pass's own constants (N_L and the merge radius). Another plan's balance-heuristic
-// denominator for the same path is a recombination of them: a class's pdfs scale with its
-// number of samples per camera sample, so the plan's denominator is Σ_class factor_class ·
-// sums[class], factor_class its count over the measuring pass's (factors()). One camera subpath
-// per pixel sample is common to every plan (the unidirectional class, factor 1); a plan with
-// light paths connects each camera subpath to one of them (factor 1 or 0); light tracing's joins
-// and the merges' factor η both grow as N_L (factor N_L' / N_L or 0).
+// A pass of a plan measures the whole vcm set (Integrator::measuredStrategies): each contribution
+// comes with its path's technique sums, Σ p_i / p per class over vcm's strategies in the pass's
+// own constants (N_L and the merge radius), and is weighed by them (classWeight, mis.h). Another
+// plan's balance-heuristic denominator for the same path is a recombination of them: a class's
+// pdfs scale with its number of samples per camera sample, so the plan's denominator is
+// Σ_class factor_class · sums[class], factor_class its count over the measuring pass's
+// (factors()). One camera subpath per pixel sample is common to every plan that walks the camera
+// (the unidirectional class, factor 1 or 0); a plan with light paths connects each camera
+// subpath to one of them (factor 1 or 0); light tracing's joins and the merges' factor η both
+// grow as N_L (factor N_L' / N_L or 0).
 //
 // What that gives (Grittmann et al. 2022, "Efficiency-aware multiple importance sampling"): the
 // second moment a plan's balance-heuristic estimator would have in a pixel, ∫ f² / Σ_i n'_i p_i,
@@ -30,25 +31,24 @@ struct PassPlan {
     bool connects = false;     // connections s, t ≥ 2 of each camera subpath with one light subpath
     bool lightTraces = false;  // light tracing's joins to the sensor, t = 1
     bool merges = false;       // merges with the pass's light vertices
+    bool unidirectional = true;  // the camera walk's hits on emitters and next-event estimates, s ≤ 1
 
     bool operator==(const PassPlan&) const = default;
-    // The strategies it enables: s ≤ 1 with t ≥ 2 always, and the classes it runs.
+    // The strategies it enables: those of the classes it runs.
     StrategySet strategies() const;
     // Its number of samples of each class over that of a pass that runs every class with
     // `measuredLightPaths` light paths: the factors its denominator recombines technique sums with.
     TechniqueSums factors(double measuredLightPaths) const;
 };
 
-// The strategies a measuring pass measures: vcm's.
+// The strategies a pass of a plan measures: vcm's.
 StrategySet measuredStrategies();
 
-// Σ_class factors[class] · sums[class]: a plan's balance-heuristic denominator of a path, over the
-// pdf of the strategy that sampled it, from that path's technique sums.
-float planDenominator(const TechniqueSums& factors, const TechniqueSums& sums);
-
-// A method that renders every pass with `plan` (an auto pass), measuring vcm's strategies if
-// `measures`. `settings` give the walks, the heuristic and the radius schedule; the plan, N_L.
-std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings,
-                                                         bool measures = true);
+// A method that renders every pass with `plan` (an auto pass): its connections and merges carry
+// their technique sums over vcm's strategies, and each is weighed by the classes the plan runs
+// where it lands (classWeight, mis.h; tile_passes.h's plans per tile). `settings` give the walks
+// and the radius schedule; the plan, N_L. A camera sample of a set without a camera walk
+// (StrategySet::walksCamera) is the sensor alone, and splats the light paths as lt's does.
+std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings);
 
 }  // namespace tripath

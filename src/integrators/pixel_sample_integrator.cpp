@@ -31,9 +31,10 @@ double PixelSampleIntegrator::lightPaths(const Scene& scene) const {
 
 MisContext PixelSampleIntegrator::misContext(const PassConstants& constants) const {
     MisContext mis{settings().mis, strategies(), Roulette{settings().walk.rrDepth}, constants};
-    mis.runningSums = canUseRunningSums(mis);
     if (const std::optional<StrategySet> measured = measuredStrategies())
-        mis.measure = {true, *measured, constants.mergeEta};
+        mis.measure = {true, *measured, constants.mergeEta};  // weighed by class: no running sums read
+    else
+        mis.runningSums = canUseRunningSums(mis);
     return mis;
 }
 

@@ -1,10 +1,12 @@
 #include "integrators/plan_choice.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 namespace tripath {
 
@@ -18,8 +20,10 @@ namespace {
 // cornell, veach-mis, lamp-caustic, caustic and degenerate (32², four passes, one thread) against
 // their counts of each event (--stats): the fit gives every run's count within 0.8-1.4×, lt's on
 // caustic 2×. A merge search and a light vertex's place in the grid did not separate from the
-// rest in that fit: their weights are estimates.
-constexpr double kCameraVertex = 2.5;
+// rest in that fit, nor a camera vertex's step from its next-event estimate: those weights are
+// estimates (the step and the estimate taken as alike).
+constexpr double kCameraStep = 1.25;
+constexpr double kNextEvent = 1.25;
 constexpr double kLightVertex = 2.0;
 constexpr double kConnection = 1.5;
 constexpr double kSensorJoin = 1.0;
@@ -27,88 +31,142 @@ constexpr double kMergeSearch = 0.3;
 constexpr double kMerge = 1.45;
 constexpr double kGridEntry = 0.2;
 
-// The least variance a tile is taken to have, as a share of its moment: the difference of two
-// estimates, it can come out below 0 where the variance is small.
-constexpr double kLeastVarianceShare = 1e-3;
+// The relMSE's offset of a pixel's squared mean (evaluation/metrics.h): a black pixel's
+// error counts as absolute.
+constexpr double kRelativeOffset = 1e-2;
 
-// A floor for a tile's squared mean, as a share of the image's: a black tile's variance counts as
-// absolute variance against the image's level, not as infinitely relative.
-constexpr double kDarkTileFloor = 1e-2;
+// At most this many sweeps of the choice over the tiles.
+constexpr int kSweeps = 8;
+
+// The work of the light paths a pass of N_L = `lightPaths` shares over the image: their
+// vertices, their joins to the sensor if any tile traces, their places in the grid if any merges.
+double sharedCost(double lightPaths, bool traces, bool merges, const PassWork& work) {
+    return lightPaths * work.lightVertices * (kLightVertex + (traces ? kSensorJoin : 0) + (merges ? kGridEntry : 0));
+}
+
+// The work of `pixels` camera samples of `plan`: the camera walk where a class needs it, and the
+// classes' own.
+double cameraCost(const PassPlan& plan, const PassWork& work, double pixels) {
+    const double vertices = pixels * work.cameraVertices;
+    double cost = 0;
+    if (plan.strategies().walksCamera()) cost += vertices * kCameraStep;
+    if (plan.unidirectional) cost += vertices * kNextEvent;
+    if (plan.connects && plan.lightPaths > 0) cost += vertices * std::max(0.0, work.lightVertices - 1) * kConnection;
+    if (plan.merges) cost += vertices * (kMergeSearch + work.mergesPerQuery * plan.lightPaths * kMerge);
+    return cost;
+}
+
+// The classes a plan runs, as a count.
+int classes(const PassPlan& p) { return int(p.unidirectional) + int(p.connects) + int(p.lightTraces) + int(p.merges); }
 
 }  // namespace
 
 std::vector<PassPlan> candidatePlans(double pixels) {
-    std::vector<PassPlan> plans{{0, false, false, false}};
+    std::vector<PassPlan> plans{{0, false, false, false, true}};
     for (double perPixel : {0.25, 1.0, 4.0})
-        for (int classes = 1; classes < 8; ++classes)
-            plans.push_back({std::max(1.0, std::round(perPixel * pixels)), (classes & 1) != 0, (classes & 2) != 0,
-                             (classes & 4) != 0});
+        for (int bits = 1; bits < 16; ++bits)
+            plans.push_back({std::max(1.0, std::round(perPixel * pixels)), (bits & 2) != 0, (bits & 4) != 0,
+                             (bits & 8) != 0, (bits & 1) != 0});
     return plans;
+}
+
+std::string className(const PassPlan& plan) {
+    if (plan.lightPaths == 0 || (plan.unidirectional && classes(plan) == 1)) return "pt";
+    std::vector<std::string_view> names;
+    for (const auto& [on, name] : {std::pair{plan.unidirectional, "pt"}, {plan.connects, "connect"},
+                                   {plan.lightTraces, "trace"}, {plan.merges, "merge"}})
+        if (on) names.push_back(name);
+    return fmt::format("{}", fmt::join(names, "+"));
 }
 
 std::string planName(const PassPlan& plan, double pixels) {
     if (plan.lightPaths == 0) return "pt";
-    std::string classes;
-    for (const auto& [on, name] : {std::pair{plan.connects, "connect"}, {plan.lightTraces, "trace"}, {plan.merges, "merge"}})
-        if (on) classes += (classes.empty() ? "" : "+") + std::string(name);
-    return fmt::format("N_L={:g}/px {}", plan.lightPaths / pixels, classes);
+    return fmt::format("N_L={:g}/px {}", plan.lightPaths / pixels, className(plan));
 }
 
 double passCost(const PassPlan& plan, const PassWork& work, double pixels) {
-    const double cameraVertices = pixels * work.cameraVertices;
-    const double lightVertices = plan.lightPaths * work.lightVertices;
-    double cost = cameraVertices * kCameraVertex + lightVertices * kLightVertex;
-    if (plan.connects) cost += cameraVertices * std::max(0.0, work.lightVertices - 1) * kConnection;
-    if (plan.lightTraces) cost += lightVertices * kSensorJoin;
-    if (plan.merges)
-        cost += lightVertices * kGridEntry +
-                cameraVertices * (kMergeSearch + work.mergesPerQuery * plan.lightPaths * kMerge);
-    return cost;
+    return sharedCost(plan.lightPaths, plan.lightTraces, plan.merges, work) + cameraCost(plan, work, pixels);
 }
 
-TechniqueSums samplesPerPixel(const PassPlan& plan, double pixels) {
-    // A merge's estimate sums over every light vertex within the radius: no single sample's mean
-    // to subtract (0 stands for that).
-    return {1.0f, 1.0f, static_cast<float>(plan.lightPaths / pixels), 0.0f};
-}
-
-std::vector<double> relativeVariances(const PlanEvidence& e, const std::vector<TechniqueSums>& samples) {
-    double imageMean = 0, pixels = 0;
-    for (size_t tile = 0; tile < e.tileMean.size(); ++tile) {
-        imageMean += e.tileMean[tile];
-        pixels += e.tilePixels[tile];
-    }
-    imageMean = pixels > 0 ? imageMean / pixels : 0;
-    std::vector<double> out;
+std::vector<std::vector<double>> relativeMoments(const PlanEvidence& e) {
+    std::vector<std::vector<double>> out;
     for (size_t k = 0; k < e.moments.size(); ++k) {
-        double sum = 0;
+        std::vector<double> tiles;
         for (size_t tile = 0; tile < e.moments[k].size(); ++tile) {
-            const TechniqueSums& means = e.classMeans[k][tile];
-            double total = 0, squaredShares = 0;
-            for (float m : means) total += m;
-            for (int c = 0; c < kTechniqueClasses; ++c)
-                if (samples[k][c] > 0 && total > 0) squaredShares += (means[c] / total) * (means[c] / total) / samples[k][c];
             const double n = e.tilePixels[tile], mean = e.tileMean[tile] / n;
-            const double variance = std::max(kLeastVarianceShare * e.moments[k][tile],
-                                             e.moments[k][tile] - e.tileMeanSquares[tile] * squaredShares);
-            sum += variance / (n * std::max(mean * mean, kDarkTileFloor * imageMean * imageMean));
+            tiles.push_back(e.moments[k][tile] / (n * (mean * mean + kRelativeOffset)));
         }
-        out.push_back(sum);
+        out.push_back(std::move(tiles));
     }
     return out;
 }
 
-size_t choosePlan(const std::vector<double>& relativeVariance, const std::vector<double>& cost,
-                  const std::vector<bool>& uncovered, size_t fallback) {
-    size_t best = fallback;
+PlanChoice choosePlans(const std::vector<std::vector<double>>& rm, const PlanEvidence& e,
+                       const std::vector<PassPlan>& candidates, const PassWork& work, size_t fallback) {
+    const size_t tiles = e.tilePixels.size();
+    auto tileCost = [&](size_t k, size_t tile) { return cameraCost(candidates[k], work, e.tilePixels[tile]); };
+    std::vector<double> levels;
+    for (const PassPlan& c : candidates)
+        if (std::find(levels.begin(), levels.end(), c.lightPaths) == levels.end()) levels.push_back(c.lightPaths);
+
+    PlanChoice best{std::vector<size_t>(tiles, fallback), 0, 0};
     double bestEfficiency = std::numeric_limits<double>::infinity();
-    for (size_t k = 0; k < cost.size(); ++k) {
-        const double efficiency = relativeVariance[k] * cost[k];
-        if (uncovered[k] || !(efficiency < bestEfficiency)) continue;
-        best = k;
-        bestEfficiency = efficiency;
-    }
-    return bestEfficiency > 0 ? best : fallback;
+    for (double lightPaths : levels)
+        for (bool traces : {false, true}) {
+            if (traces && lightPaths == 0) continue;
+            std::vector<size_t> options;
+            for (size_t k = 0; k < candidates.size(); ++k)
+                if (candidates[k].lightPaths == lightPaths && (traces || !candidates[k].lightTraces)) options.push_back(k);
+            // Each tile starts with the most classes it may run.
+            std::vector<size_t> pick(tiles, candidates.size());
+            for (size_t tile = 0; tile < tiles; ++tile)
+                for (size_t k : options)
+                    if (!e.uncovered[k][tile] && (pick[tile] == candidates.size() || classes(candidates[k]) > classes(candidates[pick[tile]])))
+                        pick[tile] = k;
+            if (std::find(pick.begin(), pick.end(), candidates.size()) != pick.end()) continue;  // a tile it cannot cover
+            double moment = 0, cost = 0;
+            int merging = 0;
+            for (size_t tile = 0; tile < tiles; ++tile) {
+                moment += rm[pick[tile]][tile];
+                cost += tileCost(pick[tile], tile);
+                merging += candidates[pick[tile]].merges;
+            }
+            auto efficiency = [&](double m, double c, int merges) {
+                return m * (c + sharedCost(lightPaths, traces, merges > 0, work));
+            };
+            for (int sweep = 0; sweep < kSweeps; ++sweep) {
+                bool changed = false;
+                for (size_t tile = 0; tile < tiles; ++tile) {
+                    const size_t now = pick[tile];
+                    size_t then = now;
+                    double least = efficiency(moment, cost, merging);
+                    for (size_t k : options) {
+                        if (e.uncovered[k][tile]) continue;
+                        const double m = moment - rm[now][tile] + rm[k][tile], c = cost - tileCost(now, tile) + tileCost(k, tile);
+                        const double f = efficiency(m, c, merging - candidates[now].merges + candidates[k].merges);
+                        if (f < least) {
+                            least = f;
+                            then = k;
+                        }
+                    }
+                    if (then == now) continue;
+                    moment += rm[then][tile] - rm[now][tile];
+                    cost += tileCost(then, tile) - tileCost(now, tile);
+                    merging += candidates[then].merges - candidates[now].merges;
+                    pick[tile] = then;
+                    changed = true;
+                }
+                if (!changed) break;
+            }
+            const double f = efficiency(moment, cost, merging);
+            if (f < bestEfficiency) {
+                bestEfficiency = f;
+                best = {pick, moment, cost + sharedCost(lightPaths, traces, merging > 0, work)};
+            }
+        }
+    // Nothing seen yet: every choice is as good, and the plan stays.
+    if (!(bestEfficiency > 0) || !std::isfinite(bestEfficiency)) return {std::vector<size_t>(tiles, fallback), 0, 0};
+    return best;
 }
 
 }  // namespace tripath

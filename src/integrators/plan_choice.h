@@ -1,21 +1,30 @@
-// How auto chooses the plan of its next passes (pass_plan.h): the candidates, what a pass of each
-// costs, and the choice from the moments the passes before measured.
+// How auto chooses the plans of its next passes (pass_plan.h): the candidates, what a pass of each
+// costs, and the choice, tile by tile, from the moments the passes before measured.
 //
-// A candidate's efficiency is its relative variance times its cost (Grittmann et al. 2022). Its
-// balance-heuristic estimator's variance in a pixel, per pass, is Σ_t (1/n_t) Var[w_t f / p_t]:
-// its second moment ∫ f² / Σ n'_i p_i (measured, pass_plan.h) less Σ_t μ_t² / n_t, μ_t the part
-// of the pixel's mean that technique class t takes under the candidate's weights and n_t its
-// samples per pixel (N_L / pixels for light tracing, one for the camera walk's strategies and the
-// connections; the merges' part is not subtracted, a merge summing over every light vertex within
-// its radius), and at least a thousandth of the moment (a difference of two estimates, it can
-// come out below 0 where the variance is small). A tile keeps its classes' means; each pixel is
-// taken to share them as the tile does, so Σ_p μ_t,p² is the tile's Σ_p I_p² times class t's
-// share squared. Relative: over the tile's squared mean, so that a bright tile does not outvote a
-// dark one; summed over the render's tiles. Its cost is a pass's work in units of a traced ray,
-// from counts a survey of the scene gives before the first pass (traced from fixed streams, so
-// that the choice is the same on every run, thread count and rank count): camera and light
-// vertices, connections, joins to the sensor, merge searches and merges. A candidate that cannot
-// sample a path some pass found light on is never chosen: it would lose that light.
+// A candidate is a number of light paths N_L and the classes a tile runs with them. Its
+// efficiency is its relative error times its cost (Grittmann et al. 2022), the error taken as a
+// second moment of a pixel's estimate per pass, as the paper takes it. The estimate is the sum of
+// the pixel's camera sample's contributions X_i and of the splats that land in it, each weighed by
+// the balance heuristic over the candidate's classes. The measuring passes give (plan_moments.h)
+// the diagonal of its square, ∫ f² / Σ n'_i p_i, and the cross terms of the camera sample's
+// contributions, whose strategies share the camera subpath's throughput: without them the merges
+// with many light vertices, and more light paths, look far better than they render. The splats,
+// from light paths independent of the camera sample and of one another, add only products of
+// means, left out as a variance leaves out the squared mean. (With them in, or with the camera
+// sample's squared mean taken out, the choices measured worse on docs/failures.md's rows.)
+// Relative as the benchmark's relMSE is (evaluation/metrics.h): over the tile's squared mean plus
+// 0.01, so that a bright tile does not outvote a dark one, nor a black one count infinitely;
+// summed over the tiles. Its cost is a pass's work in units of a traced ray, from counts a survey
+// of the scene gives before the first pass (traced from fixed streams, so that the choice is the
+// same on every run, thread count and rank count): the light paths' vertices, their joins to the
+// sensor and their places in the merge grid, shared by the image; and each tile's camera
+// vertices, next-event estimates, connections, merge searches and merges.
+//
+// The choice: for each N_L, and with light tracing allowed or not, every tile starts with every
+// class it may run, then takes in turn, sweep after sweep, the classes that least make the image's
+// relative moment times its cost, until no tile changes; the best of those is the plan. A
+// tile never runs classes that cannot sample a path some pass found light on in it: it would lose
+// that light.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -25,11 +34,14 @@
 
 namespace tripath {
 
-// The plans auto chooses among, for an image of `pixels` pixels: path tracing alone, and with N_L
-// of a quarter, one or four light paths per pixel, every non-empty choice of the other classes.
+// The candidates a tile chooses among, for an image of `pixels` pixels: path tracing alone, and
+// with N_L of a quarter, one or four light paths per pixel every non-empty set of classes.
 std::vector<PassPlan> candidatePlans(double pixels);
 
-// The plan's name as the output shows it, e.g. "N_L=1/px connect+trace+merge", "pt".
+// The classes' names as the output shows them, e.g. "connect+trace+merge", "pt" for the
+// unidirectional class alone.
+std::string className(const PassPlan& plan);
+// The plan's name: "N_L=1/px connect+trace+merge", "pt".
 std::string planName(const PassPlan& plan, double pixels);
 
 // What a pass does, as counts a survey measured (plan_choice.cpp's relative costs weigh them).
@@ -39,31 +51,33 @@ struct PassWork {
     double mergesPerQuery = 0;  // light vertices found by a merge search, per light path of the pass
 };
 
-// The cost of one pass of `plan` over `pixels` pixels, in traced rays.
+// The cost of one pass of `plan` over `pixels` pixels, in traced rays: in every tile alike.
 double passCost(const PassPlan& plan, const PassWork& work, double pixels);
 
 // What the choice reads, per tile of the image (in the order the moments were kept): the sum of
-// its pixels' means and of their squares, and per candidate the tile's moment and means by class
-// per pass. Also, per candidate, whether any pass found light on a path it cannot sample.
+// its pixels' means, and per candidate the tile's moment per pass and whether a pass found light
+// in the tile on a path the candidate cannot sample.
 struct PlanEvidence {
-    std::vector<double> tileMean;                        // Σ_p I_p over the tile's pixels
-    std::vector<double> tileMeanSquares;                 // Σ_p I_p²
-    std::vector<int> tilePixels;                         // pixels in the tile
-    std::vector<std::vector<double>> moments;            // [candidate][tile]: Σ_p M_p, per pass
-    std::vector<std::vector<TechniqueSums>> classMeans;  // [candidate][tile]: Σ_p μ_t,p, per pass
-    std::vector<bool> uncovered;                         // [candidate]
+    std::vector<double> tileMean;              // Σ_p I_p over the tile's pixels
+    std::vector<int> tilePixels;               // pixels in the tile
+    std::vector<std::vector<double>> moments;  // [candidate][tile]: Σ_p M_p, per pass
+    std::vector<std::vector<bool>> uncovered;  // [candidate][tile]
 };
 
-// A plan's samples of each class per pixel and pass, over an image of `pixels` pixels.
-TechniqueSums samplesPerPixel(const PassPlan& plan, double pixels);
+// Each candidate's relative second moment per pass in each tile ([candidate][tile], see the top
+// of this file).
+std::vector<std::vector<double>> relativeMoments(const PlanEvidence& evidence);
 
-// Each candidate's relative variance per pass, summed over the tiles (see the top of this file);
-// `samples[k]` is candidate k's samplesPerPixel.
-std::vector<double> relativeVariances(const PlanEvidence& evidence, const std::vector<TechniqueSums>& samples);
+// A choice: the candidate of each tile (all of one N_L), and the image's relative moment and
+// cost per pass under it.
+struct PlanChoice {
+    std::vector<size_t> tiles;
+    double relativeMoment = 0, cost = 0;
+};
 
-// The index of the candidate of least relative variance × cost among those that sample every
-// path seen; `fallback` when none does or nothing was seen.
-size_t choosePlan(const std::vector<double>& relativeVariance, const std::vector<double>& cost,
-                  const std::vector<bool>& uncovered, size_t fallback);
+// The plans of least relative moment × cost (see the top of this file); `fallback` in every tile
+// when no choice samples every path seen.
+PlanChoice choosePlans(const std::vector<std::vector<double>>& relativeMoment, const PlanEvidence& evidence,
+                       const std::vector<PassPlan>& candidates, const PassWork& work, size_t fallback);
 
 }  // namespace tripath

@@ -11,20 +11,47 @@ int PlanMoments::tileOf(int pixel) const {
     return (pixel / width_ / tileSize_) * tilesX_ + (pixel % width_) / tileSize_;
 }
 
-void PlanMoments::add(int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums) {
-    const double f = luminance(weighted), fu = f * double(luminance(unweighted));
+void PlanMoments::addSplat(int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums) {
+    add(nullptr, pixel, weighted, unweighted, sums, TechniqueClass::LightTracing);
+}
+
+void PlanMoments::add(Sample& sample, int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums,
+                      TechniqueClass sampled) {
+    if (sample.pixel != pixel) {
+        endSample(sample);
+        sample.pixel = pixel;
+        sample.sum.assign(candidates_, 0.0);
+        sample.squares.assign(candidates_, 0.0);
+    }
+    add(&sample, pixel, weighted, unweighted, sums, sampled);
+}
+
+void PlanMoments::add(Sample* sample, int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums,
+                      TechniqueClass sampled) {
+    const double u = luminance(unweighted), fu = double(luminance(weighted)) * u;
     if (!(fu > 0)) return;
     const int tile = tileOf(pixel);
     for (size_t k = 0; k < candidates_; ++k) {
-        const float d = planDenominator(factors_[k], sums);
+        const float d = techniqueDenominator(factors_[k], sums);
         if (!(d > 0)) {
             block_[sumIndex(tile, k, 1)] += 1;
             continue;
         }
         block_[sumIndex(tile, k, 0)] += fu / d;
-        for (int c = 0; c < kTechniqueClasses; ++c)
-            block_[sumIndex(tile, k, 2 + size_t(c))] += f * factors_[k][c] * sums[c] / d;
+        if (!sample) continue;
+        const double x = u * factors_[k][static_cast<int>(sampled)] / d;
+        sample->sum[k] += x;
+        sample->squares[k] += x * x;
     }
+}
+
+void PlanMoments::endSample(Sample& sample) {
+    if (sample.pixel >= 0) {
+        const int tile = tileOf(sample.pixel);
+        for (size_t k = 0; k < sample.sum.size(); ++k)
+            block_[sumIndex(tile, k, 0)] += sample.sum[k] * sample.sum[k] - sample.squares[k];
+    }
+    sample.pixel = -1;
 }
 
 void PlanMoments::endBlock() {
@@ -35,7 +62,6 @@ void PlanMoments::endBlock() {
 PlanEvidence PlanMoments::evidence(const Film& film, int passes, int measured) const {
     PlanEvidence e;
     e.tileMean.assign(size_t(tiles_), 0.0);
-    e.tileMeanSquares.assign(size_t(tiles_), 0.0);
     e.tilePixels.assign(size_t(tiles_), 0);
     const Image image = film.image(passes);
     for (int y = 0; y < height_; ++y)
@@ -44,19 +70,14 @@ PlanEvidence PlanMoments::evidence(const Film& film, int passes, int measured) c
             const double mean = luminance(Spectrum(rgb[0], rgb[1], rgb[2]));
             const int tile = tileOf(y * width_ + x);
             e.tileMean[size_t(tile)] += mean;
-            e.tileMeanSquares[size_t(tile)] += mean * mean;
             ++e.tilePixels[size_t(tile)];
         }
     e.moments.assign(candidates_, std::vector<double>(size_t(tiles_), 0.0));
-    e.classMeans.assign(candidates_, std::vector<TechniqueSums>(size_t(tiles_), TechniqueSums{}));
-    e.uncovered.assign(candidates_, false);
+    e.uncovered.assign(candidates_, std::vector<bool>(size_t(tiles_), false));
     for (int tile = 0; tile < tiles_; ++tile)
         for (size_t k = 0; k < candidates_; ++k) {
             e.moments[k][size_t(tile)] = totals_.value(sumIndex(tile, k, 0)) / measured;
-            if (totals_.value(sumIndex(tile, k, 1)) > 0) e.uncovered[k] = true;
-            for (int c = 0; c < kTechniqueClasses; ++c)
-                e.classMeans[k][size_t(tile)][c] =
-                    static_cast<float>(totals_.value(sumIndex(tile, k, 2 + size_t(c))) / measured);
+            e.uncovered[k][size_t(tile)] = totals_.value(sumIndex(tile, k, 1)) > 0;
         }
     return e;
 }

@@ -22,12 +22,28 @@ public:
 
     // The candidates' factors over the constants of the passes to come (PassPlan::factors).
     void setFactors(std::vector<TechniqueSums> factors) { factors_ = std::move(factors); }
-    // A contribution to `pixel` as the film takes it (its weighted and unweighted values, a
-    // splat's already divided by N_L) and its path's technique sums: for each candidate, F · U / D'
-    // to its moment and F · w'_c to its mean by class c (w'_c = factor_c · sums_c / D', the
-    // candidate's balance weight of the class), or 1 to its count of paths it cannot sample
-    // (D' = 0, F · U > 0).
-    void add(int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums);
+    // A splat to `pixel` as the film takes it (its weighted and unweighted values, already divided
+    // by N_L) and its path's technique sums: for each candidate, F · U / D' to its moment, or 1 to
+    // its count of paths it cannot sample (D' = 0, F · U > 0).
+    void addSplat(int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums);
+
+    // One camera sample's contributions to its own pixel, each as the candidate would weigh it,
+    // X_k = U · factor_k,class / D'_k: their sum and the sum of their squares per candidate. The
+    // contributions' own moments, F · U / D', are the diagonal of the square of the sample's
+    // estimate; its cross terms Σ_{i≠j} X_i X_j are large where the strategies of one camera
+    // subpath share its throughput (the merges with many light vertices, the path lengths of one
+    // walk), which the diagonal alone does not see.
+    struct Sample {
+        int pixel = -1;
+        std::vector<double> sum, squares;
+    };
+    // A contribution of `sample` (of class `sampled`) to its pixel: its moment and its count of
+    // paths it cannot sample as a splat's, and its value to the sample's sums.
+    void add(Sample& sample, int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums,
+             TechniqueClass sampled);
+    // Adds a finished sample's cross terms, (Σ_i X_k,i)² − Σ_i X_k,i², to each candidate's moment
+    // in its pixel's tile, and clears it.
+    void endSample(Sample& sample);
     // Adds the block's sums to the exact totals and clears them.
     void endBlock();
     // The exact totals, in a fixed order: what the team gathers and adds.
@@ -39,8 +55,11 @@ public:
     PlanEvidence evidence(const Film& film, int passes, int measured) const;
 
 private:
-    // Per tile and candidate: its moment, its count of paths it cannot sample, its means by class.
-    static constexpr size_t kSums = 2 + kTechniqueClasses;
+    // Per tile and candidate: its moment, its count of paths it cannot sample.
+    static constexpr size_t kSums = 2;
+    // A contribution's moment for each candidate, and its value to `sample` if given.
+    void add(Sample* sample, int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums,
+             TechniqueClass sampled);
     size_t sumIndex(int tile, size_t candidate, size_t which) const {
         return (size_t(tile) * candidates_ + candidate) * kSums + which;
     }

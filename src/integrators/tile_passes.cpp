@@ -41,39 +41,61 @@ namespace {
 // Camera contributions go straight to the sample's pixel (owned by this tile for the pass), and
 // to the moments when the pass measures; splats are kept in order and merged after the pass,
 // tile by tile, so floating-point sums are added in the same order whatever the thread count.
+// With plans per tile, each contribution is weighed by the classes of the plan of the tile it
+// lands in.
 class TileSink final : public ContributionSink {
 public:
-    TileSink(Film& film, PlanMoments* moments, const Camera& camera, double lightPaths, TileOutput& out, uint64_t pass)
-        : film_(film), moments_(moments), camera_(camera), out_(out),
+    TileSink(Film& film, PlanMoments* moments, std::span<const PassPlan> plans, const Camera& camera, double lightPaths,
+             TileOutput& out, uint64_t pass)
+        : film_(film), moments_(moments), plans_(plans), camera_(camera), out_(out), lightPaths_(lightPaths),
           splatShare_(static_cast<float>(1.0 / lightPaths)), pass_(pass) {}
     void setPixel(int pixel) { pixel_ = pixel; }
+    // The tile is done: the last sample's cross terms go to the moments.
+    void finish() {
+        if (moments_) moments_->endSample(sample_);
+    }
     void add(Strategy st, const Connection& c) override {
-        if (c.weightGuarded) ++out_.guardedWeights;
-        const Spectrum w = c.weighted();
+        const bool splat = !st.merge && st.t == 1;
+        const int pixel = splat ? landing(*c.raster) : pixel_;
+        const MisWeight weight = plans_.empty() ? MisWeight{c.weight, c.weightGuarded}
+                                                : classWeight(plans_[tileOf(pixel)].factors(lightPaths_),
+                                                              techniqueClass(st.s, st.t, st.merge), c.techniques);
+        if (weight.guarded) ++out_.guardedWeights;
+        const Spectrum w = c.unweighted * weight.value;
         if (!isFinite(w) || !isFinite(c.unweighted)) {
             ++out_.dropped;
             if (out_.droppedLog.size() < kDroppedLogSize) out_.droppedLog.push_back({pass_, pixel_});
             return;
         }
-        if (!st.merge && st.t == 1) {
-            const int x = std::min(static_cast<int>(c.raster->x), camera_.width() - 1);
-            const int y = std::min(static_cast<int>(c.raster->y), camera_.height() - 1);
-            out_.splats.push_back({y * camera_.width() + x, st, w * splatShare_, c.unweighted * splatShare_});
+        if (splat) {
+            out_.splats.push_back({pixel, st, w * splatShare_, c.unweighted * splatShare_});
             if (moments_) out_.splatTechniques.push_back(c.techniques);
         } else {
-            film_.add(pixel_, st, w, c.unweighted);
-            if (moments_) moments_->add(pixel_, w, c.unweighted, c.techniques);
+            film_.add(pixel, st, w, c.unweighted);
+            if (moments_) moments_->add(sample_, pixel, w, c.unweighted, c.techniques, techniqueClass(st.s, st.t, st.merge));
         }
     }
 
 private:
+    int landing(Vec2 raster) const {
+        const int x = std::min(static_cast<int>(raster.x), camera_.width() - 1);
+        const int y = std::min(static_cast<int>(raster.y), camera_.height() - 1);
+        return y * camera_.width() + x;
+    }
+    int tileOf(int pixel) const {
+        const int tilesX = (camera_.width() + kTileSize - 1) / kTileSize;
+        return (pixel / camera_.width() / kTileSize) * tilesX + (pixel % camera_.width()) / kTileSize;
+    }
     Film& film_;
     PlanMoments* moments_;
+    std::span<const PassPlan> plans_;
     const Camera& camera_;
     TileOutput& out_;
+    const double lightPaths_;
     const float splatShare_;  // each splat is one of the pass's N_L estimates of every pixel it lands in
     const uint64_t pass_;
     int pixel_ = 0;
+    PlanMoments::Sample sample_;  // the current camera sample's sums, when measuring
 };
 
 }  // namespace
@@ -89,16 +111,29 @@ Vec2 jitteredRaster(Rng& rng, int pixel, int width) {
 
 namespace {
 
-void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, const Pass& pass, Film& film,
-                PlanMoments* moments, int tile, uint64_t seed, StreamDomain domain, TileOutput& out) {
+// The pass as tile `tile` of plan `plan` runs it: its own classes, and the joins to the sensor of
+// the light paths its samples splat whenever the pass splats (they land anywhere).
+Pass tilePass(const Pass& pass, const PixelSampleIntegrator& integrator, const PassPlan& plan) {
+    Pass p = pass;
+    PassPlan runs = plan;
+    runs.lightTraces = integrator.strategies().enabled(1, 1);
+    p.mis.strategies = runs.strategies();
+    if (!plan.merges) p.search = nullptr;
+    return p;
+}
+
+void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, const Pass& wholePass, Film& film,
+                PlanMoments* moments, std::span<const PassPlan> plans, int tile, uint64_t seed, StreamDomain domain,
+                TileOutput& out) {
     const Camera& cam = scene.camera();
     const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
     const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
     thread_local PathBuffers paths;
-    TileSink sink(film, moments, cam, pass.mis.constants.lightPaths, out, pass.index);
+    const Pass pass = plans.empty() ? wholePass : tilePass(wholePass, integrator, plans[size_t(tile)]);
+    TileSink sink(film, moments, plans, cam, pass.mis.constants.lightPaths, out, pass.index);
     enrolThread();
     const PhaseScope scope(Phase::CameraSamples);
-    const bool packets = integrator.tracesCameraRays();
+    const bool packets = integrator.tracesCameraRays() && pass.mis.strategies.walksCamera();
     // Runs of up to 8 pixels of a row: their camera rays are traced together (Scene::intersect8),
     // then each sample goes on with its own stream. The runs depend on the tile alone.
     constexpr int kRun = 8;
@@ -124,6 +159,7 @@ void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, con
                 integrator.sample(scene, pass, pixel, ray, *rngs[i], paths, sink);
             }
         }
+    sink.finish();
 }
 
 }  // namespace
@@ -137,12 +173,14 @@ PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings)
 
 PassRenderer::~PassRenderer() = default;
 
-void PassRenderer::run(const PixelSampleIntegrator& method, uint64_t passIndex, RenderResult& result, PlanMoments* moments) {
+void PassRenderer::run(const PixelSampleIntegrator& method, uint64_t passIndex, RenderResult& result, PlanMoments* moments,
+                       std::span<const PassPlan> tilePlans) {
     arena_.execute([&] {
         const Pass pass = lightPhase_.run(scene_, method, passIndex, settings_.seed, settings_.domain);
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_, 1), [&](const tbb::blocked_range<int>& r) {
             for (int tile = r.begin(); tile < r.end(); ++tile)
-                renderTile(scene_, method, pass, result.film, moments, tile, settings_.seed, settings_.domain, outputs_[tile]);
+                renderTile(scene_, method, pass, result.film, moments, tilePlans, tile, settings_.seed, settings_.domain,
+                           outputs_[tile]);
         });
     });
     const PhaseScope filing(Phase::Film);
@@ -151,7 +189,7 @@ void PassRenderer::run(const PixelSampleIntegrator& method, uint64_t passIndex, 
         for (size_t i = 0; i < out.splats.size(); ++i) {
             const Splat& sp = out.splats[i];
             result.film.add(sp.pixel, sp.strategy, sp.weighted, sp.unweighted);
-            if (moments) moments->add(sp.pixel, sp.weighted, sp.unweighted, out.splatTechniques[i]);
+            if (moments) moments->addSplat(sp.pixel, sp.weighted, sp.unweighted, out.splatTechniques[i]);
         }
         out.splats.clear();
         out.splatTechniques.clear();

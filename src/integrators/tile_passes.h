@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "integrators/light_phase.h"
+#include "integrators/pass_plan.h"
 #include "integrators/render_loop.h"
 
 namespace tripath {
@@ -30,9 +31,13 @@ class PassRenderer {
 public:
     PassRenderer(const Scene& scene, const RenderSettings& settings);
     ~PassRenderer();
-    // Pass `passIndex` of `method`; each contribution also goes to `moments` when given. One
-    // PassRenderer serves one render: every method it is given shares the first pass's radius.
-    void run(const PixelSampleIntegrator& method, uint64_t passIndex, RenderResult& result, PlanMoments* moments = nullptr);
+    // Pass `passIndex` of `method`; each contribution also goes to `moments` when given. A method
+    // that weighs by class (auto's passes, pass_plan.h) is given a plan per tile, all of its N_L:
+    // each tile runs its plan's classes, and each contribution is weighed by the classes of the
+    // plan of the tile it lands in. One PassRenderer serves one render: every method it is given
+    // shares the first pass's radius.
+    void run(const PixelSampleIntegrator& method, uint64_t passIndex, RenderResult& result, PlanMoments* moments = nullptr,
+             std::span<const PassPlan> tilePlans = {});
     // Adds the block's sums to the film's exact totals.
     void endBlock(Film& film);
 

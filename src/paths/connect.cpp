@@ -29,8 +29,10 @@ Connection emitterHit(const Scene& scene, std::span<const Vertex> light, std::sp
     Junction junction;
     if (reads.readsCameraPdfs(t - 1, 0, t)) junction.cameraEnd = scene.emitters().pdfA(pt.emitter, pt.ns);
     if (reads.readsCameraPdfs(t - 2, 0, t)) junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), ptMinus);
-    c.setWeight(misWeight(light, 0, camera, t, junction, mis));
-    if (mis.measure.on) c.techniques = connectionTechniqueSums(light, 0, camera, t, junction, mis.measured());
+    if (mis.measure.on)
+        c.techniques = connectionTechniqueSums(light, 0, camera, t, junction, mis.measured());
+    else
+        c.setWeight(misWeight(light, 0, camera, t, junction, mis));
     return c;
 }
 
@@ -73,8 +75,10 @@ Connection join(const Scene& scene, const SubpathView& light, int s, const Subpa
     if (reads.readsCameraPdfs(t - 2, s, t)) junction.cameraBeforeEnd = backP.toArea(atP.pdfTowardCamera(), *ptMinus);
     if (reads.readsLightPdfs(s - 1, s, t)) junction.lightEnd = segment.toArea(atP.pdfTowardLight(mis.constants.lightPaths), qs);
     if (reads.readsLightPdfs(s - 2, s, t)) junction.lightBeforeEnd = backQ.toArea(atQ.pdfTowardLight(mis.constants.lightPaths), *qsMinus);
-    c.setWeight(misWeight(light.vertices, s, camera.vertices, t, junction, mis));
-    if (mis.measure.on) c.techniques = connectionTechniqueSums(light.vertices, s, camera.vertices, t, junction, mis.measured());
+    if (mis.measure.on)
+        c.techniques = connectionTechniqueSums(light.vertices, s, camera.vertices, t, junction, mis.measured());
+    else
+        c.setWeight(misWeight(light.vertices, s, camera.vertices, t, junction, mis));
     return c;
 }
 

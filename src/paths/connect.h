@@ -20,10 +20,10 @@ struct Strategy {
 
 struct Connection {
     Spectrum unweighted{0.0f};      // f(x̄) / p_{s,t}(x̄)
-    float weight = 0;               // MIS weight of (s, t) among the enabled strategies
+    float weight = 0;               // MIS weight of (s, t) among the enabled strategies, unless measured
     bool weightGuarded = false;     // the weight's pdf ratios were not finite, so it is 0 (mis.h)
     std::optional<Vec2> raster;     // t = 1: the pixel the path lands in (splat there)
-    TechniqueSums techniques{};     // where the context measures them (mis.h's TechniqueMeasure)
+    TechniqueSums techniques{};     // where the context measures them, instead of the weight (mis.h's TechniqueMeasure)
     Spectrum weighted() const { return unweighted * weight; }
     void setWeight(MisWeight w) {
         weight = w.value;

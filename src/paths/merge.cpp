@@ -24,8 +24,10 @@ Connection merge(const Scene& scene, std::span<const Vertex> light, int s, const
     junction.cameraBeforeEnd = toCamera.toArea(at.pdfTowardCamera(), zBefore);
     junction.lightEnd = incoming.toArea(at.pdfTowardLight(mis.constants.lightPaths), yBefore);
     if (s >= 3) junction.lightBeforeEnd = light[s - 3].pdfRev;
-    c.setWeight(mergeWeight(light, s, camera.vertices, t, junction, mis));
-    if (mis.measure.on) c.techniques = mergeTechniqueSums(light, s, camera.vertices, t, junction, mis.measured());
+    if (mis.measure.on)
+        c.techniques = mergeTechniqueSums(light, s, camera.vertices, t, junction, mis.measured());
+    else
+        c.setWeight(mergeWeight(light, s, camera.vertices, t, junction, mis));
     return c;
 }
 

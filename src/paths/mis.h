@@ -79,6 +79,10 @@ struct StrategySet {
     // Whether the box's connections with s, t ≥ 2 are enabled: without them, a box that holds s ≤ 1
     // and t = 1 enables path tracing and light tracing alone.
     bool connects = true;
+    // Whether the unidirectional strategies (s ≤ 1 with t ≥ 2: the camera walk's hits on emitters
+    // and its next-event estimates) are enabled: a set without them, connections and merges keeps
+    // of a camera sample only the sensor, for light tracing.
+    bool unidirectional = true;
     // Merges of light vertex y_{s−1} with camera vertex z_{t−1} (s, t ≥ 2): none; at every
     // non-delta camera vertex; or only where the camera walk first meets a non-delta surface, which
     // also counts s = 0 only for camera walks through deltas alone, so that every path is sampled
@@ -88,15 +92,18 @@ struct StrategySet {
 
     bool operator==(const StrategySet&) const = default;
     bool enabled(int s, int t) const {
-        return s <= maxS && t >= minT && t <= maxT && (connects || s <= 1 || t == 1);
+        return s <= maxS && t >= minT && t <= maxT && (connects || s <= 1 || t == 1) &&
+               (unidirectional || s >= 2 || t == 1);
     }
     bool merges() const { return merging != Merging::None; }
+    // Whether a camera sample needs its camera walk: some strategy with t ≥ 2 is enabled.
+    bool walksCamera() const { return maxT >= 2 && (merges() || unidirectional || (connects && maxS >= 2)); }
     // Every path the set samples, it samples with exactly one strategy: its weight is 1.
     bool uniqueStrategy() const { return merging == Merging::FirstNonDelta; }
     // Whether the weights can use running sums (mis.h): every strategy beyond the junction is
     // enabled or disabled by its vertex count on one side alone (all connections; or s = 0 only).
     bool summable() const {
-        return !uniqueStrategy() && ((connects && maxS == kUnbounded && minT == 1 && maxT == kUnbounded) || maxS == 0);
+        return !uniqueStrategy() && unidirectional && ((connects && maxS == kUnbounded && minT == 1 && maxT == kUnbounded) || maxS == 0);
     }
 
     // The weight of (s, t) walks outward from the connection through strategies (s+t−i, i) on the
@@ -165,8 +172,9 @@ inline TechniqueClass techniqueClass(int s, int t, bool merge) {
 using TechniqueSums = std::array<float, kTechniqueClasses>;
 
 // The strategies a render measures, whichever of them its pass enables (integrators/auto.cpp):
-// connections and merges then also give each path's technique sums over this set, with this merge
-// factor (Connection::techniques), which a pass that does not merge needs all the same.
+// connections and merges then give each path's technique sums over this set, with this merge
+// factor (Connection::techniques), which a pass that does not merge needs all the same, and no
+// weight: the render weighs each path by its classes (classWeight), pixel by pixel.
 struct TechniqueMeasure {
     bool on = false;
     StrategySet strategies;
@@ -227,5 +235,14 @@ TechniqueSums connectionTechniqueSums(std::span<const Vertex> light, int s, std:
                                       const Junction& junction, const MisContext& mis);
 TechniqueSums mergeTechniqueSums(std::span<const Vertex> light, int s, std::span<const Vertex> camera, int t,
                                  const Junction& junction, const MisContext& mis);
+
+// Σ_class factors[class] · sums[class]: the balance heuristic's denominator of a path, over the
+// pdf of the strategy that sampled it, for a render that runs factors[class] times as many samples
+// of each class as the technique sums were measured with (0: a class it does not run).
+float techniqueDenominator(const TechniqueSums& factors, const TechniqueSums& sums);
+// The balance heuristic's weight of a path sampled by a strategy of class `sampled`, in a render
+// with those factors: factors[sampled] / techniqueDenominator; 0 where the render does not run the
+// class, and 0 and guarded where the sums are not finite.
+MisWeight classWeight(const TechniqueSums& factors, TechniqueClass sampled, const TechniqueSums& sums);
 
 }  // namespace tripath
