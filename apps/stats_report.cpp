@@ -14,6 +14,18 @@ std::string planReport(const PlanReport& plans) {
     std::string out = "  auto's plans, from the pass each starts at:";
     for (const auto& [first, plan] : plans.stretches) out += fmt::format(" {}: {};", first, plan);
     out.back() = '\n';
+    if (!plans.tiles.empty() && plans.tilesAcross > 0) {
+        // Each tile's classes by their initials: p the camera walk's, c connections, t light
+        // tracing, m merges.
+        out += "  the classes of each 16x16 tile in the last stretch (p: pt's, c: connect, t: trace, m: merge):\n";
+        for (size_t t = 0; t < plans.tiles.size(); ++t) {
+            std::string initials;
+            for (size_t i = 0; i < plans.tiles[t].size(); ++i)
+                if (i == 0 || plans.tiles[t][i - 1] == '+') initials += plans.tiles[t][i];
+            out += fmt::format("{}{:<5}", t % size_t(plans.tilesAcross) == 0 ? "    " : "", initials);
+            if ((t + 1) % size_t(plans.tilesAcross) == 0 || t + 1 == plans.tiles.size()) out += "\n";
+        }
+    }
     if (plans.candidates.empty()) return out;
     out += "  the candidates at the last choice (relative second moment per pass, cost per pass in traced rays, their product):\n";
     for (const PlanEstimate& c : plans.candidates)

@@ -77,9 +77,8 @@ PassWork surveyWork(const Scene& scene, const PixelSampleIntegrator& full, const
     if (traced == 0 || queries.empty() || !(radius > 0)) return work;
     LightStore store;
     store.reset(traced);
-    const uint64_t domain = static_cast<uint64_t>(lightPathDomain(settings.domain));
     for (uint64_t j = 0; j < traced; ++j) {
-        Rng rng(settings.seed, domain, settings.firstPass * static_cast<uint64_t>(lightPaths) + j);
+        Rng rng = lightPathStream(settings.seed, settings.domain, settings.firstPass, static_cast<uint64_t>(lightPaths), j);
         lightSubpath(scene, rng, full.settings().walk, WalkPdfs::None, path);
         store.chunk(j / LightStore::kPathsPerChunk).append(path);
     }
@@ -177,6 +176,7 @@ public:
         into.plans.candidates = estimates_;
         into.plans.tiles.clear();
         for (const PassPlan& plan : tilePlans_) into.plans.tiles.push_back(className(plan));
+        into.plans.tilesAcross = (camera_.width() + kTileSize - 1) / kTileSize;
     }
 
 private:

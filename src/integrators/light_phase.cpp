@@ -14,18 +14,21 @@ namespace {
 constexpr Counter kLightVertices{Event::LightVertices};
 }  // namespace
 
+Rng lightPathStream(uint64_t seed, StreamDomain cameraDomain, uint64_t index, uint64_t paths, uint64_t j) {
+    return Rng(seed, static_cast<uint64_t>(lightPathDomain(cameraDomain)), index * paths + j);
+}
+
 LightPathSurvey LightPhase::survey(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index,
                                    uint64_t seed, StreamDomain cameraDomain) {
     LightPathSurvey out;
     if (!integrator.hasLightPhase()) return out;
     const uint64_t paths = static_cast<uint64_t>(integrator.lightPaths(scene));
     const uint64_t traced = std::min<uint64_t>(paths, kSurveyPaths);
-    const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
     const WalkPdfs pdfs = integrator.walkStrategies().lightWalkPdfs();
     const bool splats = integrator.strategies().minT <= 1;
     Subpath path;
     for (uint64_t j = 0; j < traced; ++j) {
-        Rng rng(seed, domain, index * paths + j * paths / traced);
+        Rng rng = lightPathStream(seed, cameraDomain, index, paths, j * paths / traced);
         lightSubpath(scene, rng, integrator.settings().walk, pdfs, path);
         out.vertices += double(path.size());
         out.bsdfs += double(path.bsdfs.size());
@@ -59,7 +62,6 @@ Pass LightPhase::run(const Scene& scene, const PixelSampleIntegrator& integrator
     if (!integrator.hasLightPhase()) return pass;
 
     const uint64_t paths = static_cast<uint64_t>(constants.lightPaths);
-    const uint64_t domain = static_cast<uint64_t>(lightPathDomain(cameraDomain));
     const WalkPdfs pdfs = integrator.walkStrategies().lightWalkPdfs();
     const WalkSettings& walk = integrator.settings().walk;
     store_.reset(paths);
@@ -73,7 +75,7 @@ Pass LightPhase::run(const Scene& scene, const PixelSampleIntegrator& integrator
             LightStore::Chunk& chunk = store_.chunk(c);
             const uint64_t first = c * LightStore::kPathsPerChunk;
             for (uint64_t i = first; i < std::min(paths, first + LightStore::kPathsPerChunk); ++i) {
-                Rng rng(seed, domain, index * paths + i);
+                Rng rng = lightPathStream(seed, cameraDomain, index, paths, i);
                 lightSubpath(scene, rng, walk, pdfs, path);
                 recordRunningSums(path.vertices, true, pass.mis);
                 kLightVertices.add(path.size());

@@ -23,6 +23,10 @@ struct LightPathSurvey {
     double vertices = 0, bsdfs = 0, mergeable = 0, splats = 0;
 };
 
+// The random stream of light path j of pass `index`, a pass tracing `paths` of them: the light
+// phase, its survey and auto's survey of a pass's work all start a light path here.
+Rng lightPathStream(uint64_t seed, StreamDomain cameraDomain, uint64_t index, uint64_t paths, uint64_t j);
+
 class LightPhase {
 public:
     // The averages of LightPathSurvey over up to kSurveyPaths of pass `index`'s light paths, spread

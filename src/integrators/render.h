@@ -108,6 +108,7 @@ struct PlanReport {
     std::vector<std::pair<uint64_t, std::string>> stretches;
     std::vector<PlanEstimate> candidates;
     std::vector<std::string> tiles;  // the classes each 16×16 tile runs in the last stretch, in row order
+    int tilesAcross = 0;             // tiles in a row
 };
 
 struct RenderResult {
