@@ -45,16 +45,9 @@ TEST(Auto, AgreesWithBdptWhateverItChooses) {
 // `passes` passes of the 32×32 cornell box whose four 16×16 tiles run `plans` (N_L of the first),
 // as auto's passes render a choice (tile_passes.h), with `seed`.
 Image renderTilePlans(const Scene& scene, const std::vector<PassPlan>& plans, int passes, uint64_t seed) {
-    PassPlan all = plans.front();
-    for (const PassPlan& p : plans) {
-        all.connects = all.connects || p.connects;
-        all.lightTraces = all.lightTraces || p.lightTraces;
-        all.merges = all.merges || p.merges;
-        all.unidirectional = all.unidirectional || p.unidirectional;
-    }
     IntegratorSettings is;
     is.walk = {6, 2};
-    const auto method = makePlannedPasses(all, is);
+    const auto method = makePlannedPasses(unionOf(plans), is);
     RenderSettings settings;
     settings.seed = seed;
     settings.threads = 2;

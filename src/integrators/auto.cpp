@@ -115,18 +115,6 @@ std::string choiceName(const std::vector<PassPlan>& tiles, double pixels) {
     return fmt::format("N_L={:g}/px {}", tiles.front().lightPaths / pixels, fmt::join(parts, ", "));
 }
 
-// The plan that runs, over the image, every class some tile runs.
-PassPlan unionOf(const std::vector<PassPlan>& tiles) {
-    PassPlan u{tiles.front().lightPaths, false, false, false, false};
-    for (const PassPlan& p : tiles) {
-        u.connects = u.connects || p.connects;
-        u.lightTraces = u.lightTraces || p.lightTraces;
-        u.merges = u.merges || p.merges;
-        u.unidirectional = u.unidirectional || p.unidirectional;
-    }
-    return u;
-}
-
 class AutoPasses final : public TilePasses {
 public:
     AutoPasses(const Scene& scene, const PixelSampleIntegrator& full, const RenderSettings& settings, uint64_t firstPass)

@@ -26,6 +26,17 @@ TechniqueSums PassPlan::factors(double measuredLightPaths) const {
     return f;
 }
 
+PassPlan unionOf(std::span<const PassPlan> plans) {
+    PassPlan u{plans.front().lightPaths, false, false, false, false};
+    for (const PassPlan& p : plans) {
+        u.connects = u.connects || p.connects;
+        u.lightTraces = u.lightTraces || p.lightTraces;
+        u.merges = u.merges || p.merges;
+        u.unidirectional = u.unidirectional || p.unidirectional;
+    }
+    return u;
+}
+
 StrategySet measuredStrategies() { return {.merging = StrategySet::Merging::EveryVertex}; }
 
 namespace {

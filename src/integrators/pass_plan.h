@@ -21,6 +21,7 @@
 // sample it: it would lose that light.
 #pragma once
 #include <memory>
+#include <span>
 
 #include "integrators/pixel_sample_integrator.h"
 
@@ -40,6 +41,10 @@ struct PassPlan {
     // `measuredLightPaths` light paths: the factors its denominator recombines technique sums with.
     TechniqueSums factors(double measuredLightPaths) const;
 };
+
+// The plan that runs every class some plan of `plans` runs, with the first's N_L: a pass's plan
+// over the image when its tiles run `plans`.
+PassPlan unionOf(std::span<const PassPlan> plans);
 
 // The strategies a pass of a plan measures: vcm's.
 StrategySet measuredStrategies();
