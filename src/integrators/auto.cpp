@@ -7,12 +7,13 @@
 // camera walk's hits on emitters and next-event estimates, the connections, light tracing's joins
 // to the sensor, the merges. Every contribution is weighed by the balance heuristic over the
 // classes the tile it lands in runs (classWeight, mis.h): a splat by those of the tile it falls
-// in, whichever sample traced it. The first block of passes after each choice (passes 0-3, 4-7,
-// 8-11, 16-19, …) runs every class with one light path per pixel in every tile, and measures for
-// each candidate the second moment its estimator would have, tile by tile (plan_moments.h); the
-// other blocks render the choice alone. After 4, 8, 16, 32, … passes of the render, the team
-// chooses from the totals of every measuring pass so far the plans of least relative second moment ×
-// cost for the passes up to the next choice (plan_choice.h).
+// in, whichever sample traced it. The first passes run every class with one light path per pixel
+// in every tile. The first block of passes after each choice (passes 0-3, 4-7, 8-11, 16-19, …)
+// measures, under the plans chosen, the second moment each candidate's estimator would have,
+// tile by tile (plan_moments.h); the other blocks render without the measuring's cost. After 4, 8,
+// 16, 32, … passes of the render, the team chooses from the totals of every measuring pass so far
+// the plans of least relative second moment × cost for the passes up to the next choice
+// (plan_choice.h).
 //
 // Unbiased: a pass's plans depend on the passes before it alone, and every pass weighs the same
 // in the image (the film's average), a weight fixed before the pass; within a pass the weights of
