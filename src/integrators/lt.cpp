@@ -14,13 +14,8 @@ class LightTracer final : public PixelSampleIntegrator {
 public:
     using PixelSampleIntegrator::PixelSampleIntegrator;
     std::string name() const override { return "lt"; }
+    // No strategy with t ≥ 2: each camera sample is the sensor alone and its splats (sample()).
     StrategySet strategies() const override { return {.maxT = 1}; }
-    bool tracesCameraRays() const override { return false; }
-    void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay&, Rng& rng, PathBuffers& paths,
-                ContributionSink& sink) const override {
-        sensorSubpath(scene, paths.camera);
-        splatLightPaths(scene, pass, pixel, paths.camera, rng, sink);
-    }
 };
 
 std::unique_ptr<Integrator> makeLightTracer(const IntegratorSettings& s) { return std::make_unique<LightTracer>(s); }

@@ -48,12 +48,6 @@ public:
     std::string name() const override { return "auto"; }
     StrategySet strategies() const override { return plan_.strategies(); }
     std::optional<StrategySet> measuredStrategies() const override { return tripath::measuredStrategies(); }
-    void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
-                ContributionSink& sink) const override {
-        if (pass.mis.strategies.walksCamera()) return PixelSampleIntegrator::sample(scene, pass, pixel, ray, rng, paths, sink);
-        sensorSubpath(scene, paths.camera);
-        splatLightPaths(scene, pass, pixel, paths.camera, rng, sink);
-    }
 
 private:
     // The plan's N_L; a plan without light paths keeps the default N_L of the pass's constants

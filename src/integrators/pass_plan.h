@@ -52,8 +52,7 @@ StrategySet measuredStrategies();
 // A method that renders every pass with `plan` (an auto pass): its connections and merges carry
 // their technique sums over vcm's strategies, and each is weighed by the classes the plan runs
 // where it lands (classWeight, mis.h; tile_passes.h's plans per tile). `settings` give the walks
-// and the radius schedule; the plan, N_L. A camera sample of a set without a camera walk
-// (StrategySet::walksCamera) is the sensor alone, and splats the light paths as lt's does.
+// and the radius schedule; the plan, N_L.
 std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings);
 
 }  // namespace tripath

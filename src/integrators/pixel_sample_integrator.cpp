@@ -40,6 +40,11 @@ MisContext PixelSampleIntegrator::misContext(const PassConstants& constants) con
 
 void PixelSampleIntegrator::sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng,
                                    PathBuffers& paths, ContributionSink& sink) const {
+    if (!pass.mis.strategies.walksCamera()) {
+        sensorSubpath(scene, paths.camera);
+        splatLightPaths(scene, pass, pixel, paths.camera, rng, sink);
+        return;
+    }
     const SubpathView light = pass.light ? pass.light->path(size_t(pixel) % pass.light->paths()) : SubpathView();
     // The light path was likely traced on another core: its lines are requested before the camera walk.
     for (size_t i = 0; i < light.vertices.size_bytes(); i += 64)

@@ -49,12 +49,11 @@ public:
     // a camera walk; the splats of the pass's light paths that fall to this pixel's sample
     // (splatLightPaths); every enabled connection with t ≥ 2 with light path number pixel mod N_L
     // (an empty one without a light phase); and every merge with the pass's light vertices if
-    // the integrator merges. lt, which has no camera walk, overrides this.
+    // the integrator merges. Where the pass's strategies need no camera walk (StrategySet::
+    // walksCamera: lt, and auto's tiles that only trace light), the sensor alone and its splats;
+    // the render loop then traces no camera ray for it.
     virtual void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
                         ContributionSink& sink) const;
-    // Whether sample() traces the camera ray it is given (lt does not): the render loop then traces
-    // neighbouring pixels' camera rays together.
-    virtual bool tracesCameraRays() const { return true; }
     // The strategies it measures, a superset of those it enables (mis.h's TechniqueMeasure): none
     // by default; a measuring pass of auto's measures the whole vcm set whatever its plan
     // (pass_plan.h).

@@ -133,7 +133,7 @@ void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, con
     TileSink sink(film, moments, plans, cam, pass.mis.constants.lightPaths, out, pass.index);
     enrolThread();
     const PhaseScope scope(Phase::CameraSamples);
-    const bool packets = integrator.tracesCameraRays() && pass.mis.strategies.walksCamera();
+    const bool packets = pass.mis.strategies.walksCamera();
     // Runs of up to 8 pixels of a row: their camera rays are traced together (Scene::intersect8),
     // then each sample goes on with its own stream. The runs depend on the tile alone.
     constexpr int kRun = 8;
