@@ -16,7 +16,8 @@
 //
 // A checkpoint is held to the settings its own header gives (its "tripath:" lines): how a header
 // differing from the run's is refused is the command line's test (tests/test_cli.cpp), while here
-// any header gets as far as its numbers, totals and chains. The resumed render's own settings are
+// any header gets as far as its numbers, totals and the method's state (mlt's chains, auto's
+// moments and plans). The resumed render's own settings are
 // fixed: max depth 3, and for mlt a bootstrap of 300 samples and one chain per lit length.
 //
 // The seeds (fuzz/seeds/environment-checkpoint/, each a byte then the file): 4 × 2 to 16 × 8
@@ -24,7 +25,7 @@
 // (tiled, grey and RGBA too), HDR flat and run-length encoded, and PNG of 8 and 16 bits, grey and
 // RGBA; and the checkpoints `tripath reference --scene cornell --integrator I --width 4 --height 4
 // --max-depth 3 --spp 2 --checkpoint 1000 --threads 1 --out ref.exr` leaves for mlt (with
-// --bootstrap 300 --chains 1), bdpt, vcm and pt.
+// --bootstrap 300 --chains 1), bdpt, vcm, pt and auto.
 //
 // Contract under test: fuzz/targets.h. Build with -DTRIPATH_FUZZ=ON (clang); run as
 // `scripts/fuzz-gltf.sh SECONDS environment-checkpoint`.

@@ -644,7 +644,7 @@ TEST_F(Cli, ACheckpointIsContinuedOnlyWithItsOwnSettings) {
 // A damaged or edited checkpoint is refused in one line, not continued: a byte flipped in its
 // totals (its checksum), a header number that is not all a number in its range (atoi would read
 // "-5", "abc", "4x" and 99999999999 somehow), a next-pass whose streams would wrap, seconds that
-// are not finite, a chain-bytes the file does not hold, another format version. The checkpoint
+// are not finite, a state-bytes the file does not hold, another format version. The checkpoint
 // as written is continued, so each refusal is the edit's.
 TEST_F(Cli, ADamagedCheckpointIsRefused) {
     const std::string reference = "reference --scene cornell --width 8 --height 8 --spp 4 --checkpoint 100 --out '" +
@@ -670,10 +670,10 @@ TEST_F(Cli, ADamagedCheckpointIsRefused) {
     for (const char* seconds : {"nan", "inf", "-1", "1e300", "0.5s"})
         refusedWith(edited("seconds", seconds),
                     std::string("seconds is '") + seconds + "', not a number from 0 to 1e+09");
-    refusedWith(edited("chain-bytes", "3000000000"), "its header gives chain-bytes=3000000000, but 0 bytes follow");
+    refusedWith(edited("state-bytes", "3000000000"), "its header gives state-bytes=3000000000, but 0 bytes follow");
     refusedWith(written.substr(0, written.size() - 8), "cut short");
     refusedWith("tripath-checkpoint 1" + written.substr(written.find('\n')),
-                "written in format '1', this tripath reads format 2");
+                "written in format '1', this tripath reads format 3");
     std::ofstream(checkpoint, std::ios::binary) << written;
     const Outcome continued = run(reference);
     EXPECT_EQ(continued.exitCode, 0) << continued.err;

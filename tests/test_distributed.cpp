@@ -192,9 +192,10 @@ int killWhenWritten(const std::string& cmd, const std::string& file, const std::
 
 // A --spp render killed (SIGKILL) after its first checkpoint and started again, on two ranks
 // this time, ends bit-identical to an uninterrupted one-process render, and leaves no checkpoint:
-// for mlt, every chain goes on from the state the checkpoint kept.
+// for mlt, every chain goes on from the state the checkpoint kept; auto chooses the same plans
+// from the moments and the schedule the checkpoint kept.
 TEST_F(Distributed, AResumedCheckpointedRenderEqualsAnUninterruptedOne) {
-    for (const std::string integrator : {"bdpt", "mlt"}) {
+    for (const std::string integrator : {"bdpt", "mlt", "auto"}) {
         const std::string args = "render --scene cornell --integrator " + integrator +
                                  " --width 64 --height 64 --spp 120 --threads 1 --out ";
         ASSERT_EQ(tripath(args + path("whole.exr")).exitCode, 0);
@@ -213,9 +214,9 @@ TEST_F(Distributed, AResumedCheckpointedRenderEqualsAnUninterruptedOne) {
 
 // A reference run twice with a checkpoint (8 spp, then 8 more on two ranks) is the 16-spp
 // reference rendered at once, bit for bit: the second run goes on from the first's exact totals
-// (and mlt's from its chains' states).
+// (mlt's from its chains' states, auto's from its moments and plans).
 TEST_F(Distributed, AReferenceAddsToItsCheckpointExactly) {
-    for (const std::string integrator : {"bdpt", "mlt"}) {
+    for (const std::string integrator : {"bdpt", "mlt", "auto"}) {
         const std::string args = "reference --scene cornell-spheres --integrator " + integrator +
                                  " --width 24 --height 20 --threads 1 ";
         const std::string once = path(integrator + "-once.exr"), twice = path(integrator + "-twice.exr");

@@ -128,12 +128,14 @@ TEST(PassPlan, AMomentMeasuredUnderOnePlanIsTheMomentUnderAnother) {
 }
 
 // For the candidate that is the measuring plan itself, a camera sample adds to the moment the
-// square of its estimate, Σ_i X_i squared: its contributions' own moments and their cross terms.
-// Two contributions to one pixel (a next-event estimate, a connection) and one to the next pixel,
-// with sums as a path's technique sums are (the own class's term counts 1). Fails if the cross
-// terms are left out (the moment is then 13.0 instead of 21.6, checked), or a sample's sums run
-// on into the next pixel's (30.6).
-TEST(PassPlan, TheMeasuringPlansMomentIsTheSquareOfEachSamplesEstimate) {
+// square of its estimate, Σ_i X_i squared: its contributions' own moments and their cross terms;
+// and the tile's moment leaves out its largest such square. Two contributions to one pixel (a
+// next-event estimate, a connection), one to the next pixel, then a pass later one of 10 to the
+// first, with sums as a path's technique sums are (the own class's term counts 1). Fails if the
+// cross terms are left out (the moment is then 13.0 instead of 21.6, checked), if a sample's sums
+// run on into the next pixel's (51.2), or if the largest square is kept (121.6) or the smallest
+// left out instead (120.6).
+TEST(PassPlan, TheMeasuringPlansMomentIsTheSquareOfEachSamplesEstimateLessTheLargest) {
     PlanMoments moments(2, 1, 16, 1);
     const TechniqueSums all{1, 1, 1, 1};
     moments.setFactors({all});
@@ -146,9 +148,11 @@ TEST(PassPlan, TheMeasuringPlansMomentIsTheSquareOfEachSamplesEstimate) {
     const double a = add(0, 2, {1, 0.5f, 0, 0}, TechniqueClass::Unidirectional);
     const double b = add(0, 4, {0.25f, 1, 0, 0}, TechniqueClass::Connection);
     const double c = add(1, 1, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
+    const double d = add(0, 10, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
     moments.endSample(sample);
     moments.endBlock();
     const PlanEvidence e = moments.evidence(Film(2, 1), 1, 1);
+    EXPECT_GT(d * d, (a + b) * (a + b));
     EXPECT_NEAR(e.moments[0][0], (a + b) * (a + b) + c * c, 1e-4);
 }
 

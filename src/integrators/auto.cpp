@@ -28,12 +28,15 @@
 // vcm's radius schedule (--radius, --radius-factor, --alpha); the weights are the balance
 // heuristic's, the estimator whose moments the choice reads, whatever --mis says. The plans of each
 // stretch of passes, the candidates' estimates at the last choice and each tile's classes go to the
-// EXR's metadata and to --stats. Not yet: checkpoints.
+// EXR's metadata and to --stats. A checkpoint keeps the moments, the plans and where the
+// schedule is (AutoState), so that a resumed render chooses as the uninterrupted one.
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <cstring>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "core/error.h"
@@ -116,10 +119,74 @@ std::string choiceName(const std::vector<PassPlan>& tiles, double pixels) {
     return fmt::format("N_L={:g}/px {}", tiles.front().lightPaths / pixels, fmt::join(parts, ", "));
 }
 
+// What a checkpoint keeps of auto to choose as the uninterrupted render would: the render's first
+// pass (a continued reference's next passes come after it), the blocks done
+// (the passes are contiguous at a checkpoint, render.h), the passes that measured, the plans of
+// each stretch so far, the current choice, the last choice's estimates (for the report) and the
+// moments' totals. Text lines, the doubles in hexadecimal, then the moments' bytes.
+struct AutoState {
+    uint64_t first = 0;  // the render's first pass
+    uint64_t blocks = 0, measured = 0;
+    std::vector<std::pair<uint64_t, std::string>> stretches;
+    std::vector<size_t> tiles;
+    std::vector<PlanEstimate> estimates;
+    std::string moments;
+
+    std::string write() const {
+        std::string out = fmt::format("{} {} {} {} {} {}\n", first, blocks, measured, stretches.size(),
+                                      estimates.size(), moments.size());
+        for (const auto& [first, name] : stretches) out += fmt::format("{} {}\n", first, name);
+        out += fmt::format("{}\n", fmt::join(tiles, " "));
+        for (const PlanEstimate& e : estimates)
+            out += fmt::format("{:a} {:a} {:d} {}\n", e.relativeMoment, e.cost, e.uncovered, e.plan);
+        return out + moments;
+    }
+    // A checkpoint's state, from rank 0 to every rank of `team`.
+    static AutoState read(std::string bytes, Team& team) {
+        team.broadcast(bytes);
+        auto damaged = [] { return InputError("a checkpoint's state of auto is damaged (remove it to start afresh)"); };
+        AutoState state;
+        std::istringstream in(bytes);
+        size_t stretches = 0, estimates = 0, moments = 0;
+        if (!(in >> state.first >> state.blocks >> state.measured >> stretches >> estimates >> moments) || stretches > bytes.size() ||
+            estimates > bytes.size() || moments > bytes.size())
+            throw damaged();
+        std::string line;
+        std::getline(in, line);
+        for (size_t i = 0; i < stretches; ++i) {
+            uint64_t first = 0;
+            if (!(in >> first) || !std::getline(in, line) || line.empty()) throw damaged();
+            state.stretches.push_back({first, line.substr(1)});
+        }
+        if (!std::getline(in, line)) throw damaged();
+        std::istringstream tiles(line);
+        for (size_t k; tiles >> k;) state.tiles.push_back(k);
+        for (size_t i = 0; i < estimates; ++i) {
+            PlanEstimate e;
+            if (!std::getline(in, line)) throw damaged();
+            char* rest = nullptr;
+            e.relativeMoment = std::strtod(line.c_str(), &rest);
+            e.cost = std::strtod(rest, &rest);
+            int uncovered = 0, used = 0;
+            if (std::sscanf(rest, " %d %n", &uncovered, &used) != 1) throw damaged();
+            e.uncovered = uncovered != 0;
+            e.plan = std::string(rest + used);
+            state.estimates.push_back(std::move(e));
+        }
+        const auto at = static_cast<size_t>(in.tellg());
+        if (in.fail() || bytes.size() - at != moments) throw damaged();
+        state.moments = bytes.substr(at);
+        return state;
+    }
+};
+
 class AutoPasses final : public TilePasses {
 public:
-    AutoPasses(const Scene& scene, const PixelSampleIntegrator& full, const RenderSettings& settings, uint64_t firstPass)
-        : TilePasses(scene, full, settings, firstPass), scene_(scene), settings_(full.settings()),
+    // Resumed from `state` when given, with the render it went on from (`settings.resume`);
+    // `settings.firstPass` is the first pass of the render as it was started.
+    AutoPasses(const Scene& scene, const PixelSampleIntegrator& full, const RenderSettings& settings,
+               std::optional<AutoState> state)
+        : TilePasses(scene, full, settings, settings.firstPass), scene_(scene), settings_(full.settings()),
           pixels_(double(scene.camera().width()) * scene.camera().height()),
           tiles_(size_t(((scene.camera().width() + kTileSize - 1) / kTileSize) *
                         ((scene.camera().height() + kTileSize - 1) / kTileSize))),
@@ -127,41 +194,70 @@ public:
           everything_(size_t(std::find(candidates_.begin(), candidates_.end(),
                                        PassPlan{full.lightPaths(scene), true, true, true, true}) - candidates_.begin())),
           work_(surveyWork(scene, full, settings)),
-          moments_(scene.camera().width(), scene.camera().height(), kTileSize, candidates_.size()) {
-        choose(std::vector<size_t>(tiles_, everything_), 0);
+          moments_(scene.camera().width(), scene.camera().height(), kTileSize, candidates_.size()),
+          resumed_(settings.resume) {
+        if (!state) {
+            choose(std::vector<size_t>(tiles_, everything_), 0);
+            return;
+        }
+        const bool fits = state->tiles.size() == tiles_ &&
+                          std::none_of(state->tiles.begin(), state->tiles.end(), [&](size_t k) { return k >= candidates_.size(); }) &&
+                          (state->estimates.empty() || state->estimates.size() == candidates_.size() + 1) &&
+                          state->moments.size() == moments_.stateSize();
+        if (!fits) throw InputError("a checkpoint's state of auto is damaged (remove it to start afresh)");
+        blocks_ = resumedBlocks_ = state->blocks;
+        resumedMeasured_ = state->measured;
+        if (team_.rank() == 0) {
+            moments_.add(state->moments);
+            estimates_ = std::move(state->estimates);
+        }
+        choose(state->tiles, 0);
+        stretches_ = std::move(state->stretches);
     }
 
-    // The stretch's blocks dealt to the ranks in rounds, as TilePasses deals all of them; a rank
-    // whose block would lie past the stretch's end waits for the choice.
-    std::pair<uint64_t, uint64_t> round(uint64_t round, uint64_t budget) const override {
-        const Place p = place(round);
-        const uint64_t block = stretchStart(p.stretch) + p.round * ranks() + uint64_t(team_.rank());
-        const uint64_t begin = std::min(block, stretchStart(p.stretch + 1)) * kPassesPerBlock;
-        const uint64_t end = block < stretchStart(p.stretch + 1) ? begin + kPassesPerBlock : begin;
-        return {std::min(budget, begin), std::min(budget, end)};
+    // The stretch's blocks from the team's next, one a rank; a rank whose block would lie past the
+    // stretch's end waits for the choice. Offsets count from the render's first pass.
+    std::pair<uint64_t, uint64_t> round(uint64_t, uint64_t budget) const override {
+        const uint64_t block = blocks_ + uint64_t(team_.rank());
+        const uint64_t begin = std::min(block, stretchEnd()) * kPassesPerBlock;
+        const uint64_t end = block < stretchEnd() ? begin + kPassesPerBlock : begin;
+        const uint64_t last = budget == UINT64_MAX ? budget : budget + resumedBlocks_ * kPassesPerBlock;
+        return {std::min(last, begin), std::min(last, end)};
     }
-    bool budgetDone(uint64_t round, uint64_t budget) const override {
-        const Place p = place(round);
-        const uint64_t blocks = std::min(stretchStart(p.stretch) + (p.round + 1) * ranks(), stretchStart(p.stretch + 1));
-        return blocks * kPassesPerBlock >= budget;
+    bool budgetDone(uint64_t, uint64_t budget) const override {
+        return (blocks_ - resumedBlocks_) * kPassesPerBlock >= budget;
     }
     // The first block of each stretch (blocks 0, 1, 2, 4, 8, …) measures; the others render alone.
     void run(uint64_t offset, RenderResult& result) override {
         const uint64_t block = offset / kPassesPerBlock;
-        renderer_.run(*chosen_, firstPass_ + offset, result, (block & (block - 1)) == 0 ? &moments_ : nullptr, tilePlans_);
+        const bool measures = (block & (block - 1)) == 0;
+        measured_ += measures;
+        ++rendered_;
+        renderer_.run(*chosen_, firstPass_ + offset, result, measures ? &moments_ : nullptr, tilePlans_);
+    }
+    // A stretch's first round chooses its plans from every pass before it.
+    void beginRound(Film& film) override {
+        if (blocks_ > 0 && blocks_ == stretchStart(stretchOf(blocks_)) && stretches_.back().first < blocks_ * kPassesPerBlock)
+            decide(film, blocks_ * kPassesPerBlock);
     }
     void endRound(Film& film) override {
         renderer_.endBlock(film);
         moments_.endBlock();
-        const Place p = place(roundsDone_++);
-        if (p.round + 1 == p.rounds)
-            decide(film, stretchStart(p.stretch + 1) * kPassesPerBlock, uint64_t(p.stretch + 1) * kPassesPerBlock);
+        blocks_ = std::min(blocks_ + ranks(), stretchEnd());
     }
     void gather(RenderResult& into, Film& mine, uint64_t local, uint64_t localNext, const RenderResult& counts) override {
+        const std::vector<std::string> all = team_.gather(moments_.state());
+        const uint64_t measured = teamPasses()[1];
         TilePasses::gather(into, mine, local, localNext, counts);
+        if (team_.rank() != 0) return;
+        PlanMoments team = moments_;
+        for (size_t r = 1; r < all.size(); ++r) team.add(all[r]);
+        into.methodState =
+            AutoState{firstPass_, blocks_, measured, stretches_, choice_, estimates_, team.state()}.write();
         into.plans.stretches.clear();
         for (const auto& [first, name] : stretches_)
-            if (first < uint64_t(into.passes)) into.plans.stretches.push_back({first, name});
+            if (first < uint64_t(into.passes) + (resumed_ ? uint64_t(resumed_->passes) : 0))
+                into.plans.stretches.push_back({first, name});
         into.plans.candidates = estimates_;
         into.plans.tiles.clear();
         for (const PassPlan& plan : tilePlans_) into.plans.tiles.push_back(className(plan));
@@ -169,36 +265,34 @@ public:
     }
 
 private:
-    // Where round `round` falls: its stretch, its index there, and the stretch's rounds.
-    struct Place {
-        int stretch;
-        uint64_t round, rounds;
-    };
-    Place place(uint64_t round) const {
-        for (int e = 0;; ++e) {
-            const uint64_t rounds = (stretchStart(e + 1) - stretchStart(e) + ranks() - 1) / ranks();
-            if (round < rounds) return {e, round, rounds};
-            round -= rounds;
-        }
+    // The stretch block `block` is in, and one past the last block of the team's next block's.
+    static int stretchOf(uint64_t block) {
+        int e = 0;
+        while (stretchStart(e + 1) <= block) ++e;
+        return e;
+    }
+    uint64_t stretchEnd() const { return stretchStart(stretchOf(blocks_) + 1); }
+    // The passes rendered and those that measured, over the team and the render it resumed
+    // (collective).
+    std::array<uint64_t, 2> teamPasses() {
+        std::array<uint64_t, 2> passes{rendered_, measured_};
+        team_.sum(passes);
+        return {passes[0] + (resumed_ ? uint64_t(resumed_->passes) : 0), passes[1] + resumedMeasured_};
     }
 
-    // The team's choice after `passes` passes, `measured` of them measuring: rank 0 gathers the
-    // moments and the film, chooses, and tells the others.
-    void decide(Film& film, uint64_t passes, uint64_t measured) {
-        const std::span<const uint64_t> words = moments_.totals().words();
-        const std::string mine(reinterpret_cast<const char*>(words.data()), words.size_bytes());
-        const std::vector<std::string> all = team_.gather(mine);
+    // The team's choice for the stretch from pass `next` on: rank 0 gathers the moments and the
+    // film (with the render it resumed), chooses, and tells the others.
+    void decide(Film& film, uint64_t next) {
+        const std::vector<std::string> all = team_.gather(moments_.state());
+        const auto [passes, measured] = teamPasses();
         std::optional<Film> copy;
-        if (team_.size() > 1 && team_.rank() == 0) copy.emplace(film);
+        if ((team_.size() > 1 || resumed_) && team_.rank() == 0) copy.emplace(film);
         team_.reduce(copy ? *copy : film);
         std::string choice;
         if (team_.rank() == 0) {
+            if (resumed_) copy->add(resumed_->film);
             PlanMoments team = moments_;
-            for (size_t r = 1; r < all.size(); ++r) {
-                ExactSums other(team.totals().size());
-                std::memcpy(other.words().data(), all[r].data(), std::min(all[r].size(), other.words().size_bytes()));
-                team.totals().add(other);
-            }
+            for (size_t r = 1; r < all.size(); ++r) team.add(all[r]);
             const PlanEvidence evidence =
                 team.evidence(copy ? *copy : film, static_cast<int>(passes), static_cast<int>(measured));
             const std::vector<std::vector<double>> moments = relativeMoments(evidence);
@@ -210,7 +304,7 @@ private:
         std::vector<size_t> tiles;
         std::istringstream in(choice);
         for (size_t k; in >> k;) tiles.push_back(k);
-        choose(tiles, passes);
+        choose(tiles, next);
     }
     // What --stats and the EXR show of a choice: each candidate as if every tile ran it, then the
     // choice itself.
@@ -228,6 +322,7 @@ private:
         estimates_.push_back({"chosen: " + choiceName(plans, pixels_), chosen.relativeMoment, chosen.cost, false});
     }
     void choose(const std::vector<size_t>& tiles, uint64_t firstPass) {
+        choice_ = tiles;
         tilePlans_.clear();
         for (size_t k : tiles) tilePlans_.push_back(candidates_[k]);
         chosen_ = makePlannedPasses(unionOf(tilePlans_), settings_);
@@ -245,9 +340,13 @@ private:
     const size_t everything_;  // the candidate of every class at one light path per pixel: the first plan
     const PassWork work_;
     PlanMoments moments_;
+    const RenderResult* resumed_;                    // the render this one goes on from, if any
+    std::vector<size_t> choice_;                     // the candidate of each tile
     std::vector<PassPlan> tilePlans_;                // the choice, per tile
     std::unique_ptr<PixelSampleIntegrator> chosen_;  // the passes of its union
-    uint64_t roundsDone_ = 0;
+    uint64_t blocks_ = 0;                            // the team's next block: the blocks done before it
+    uint64_t resumedBlocks_ = 0, resumedMeasured_ = 0;
+    uint64_t rendered_ = 0, measured_ = 0;           // the passes this rank rendered, and measured in
     std::vector<std::pair<uint64_t, std::string>> stretches_;  // (first pass, choice)
     std::vector<PlanEstimate> estimates_;                      // at the last choice, on rank 0
 };
@@ -264,12 +363,16 @@ public:
         return makePlannedPasses({4 * unit(scene), true, true, true, true}, settings());
     }
     RenderResult render(const Scene& scene, const RenderSettings& settings) const override {
-        if (settings.resume || settings.checkpointSeconds > 0)
-            throw InputError("auto does not write or resume checkpoints yet: leave out --checkpoint");
         RenderResult result = startRender(scene, *this, settings);
         const auto full = makePlannedPasses({unit(scene), true, true, true, true}, this->settings());
-        AutoPasses passes(scene, *full, settings, settings.firstPass);
-        return runPasses(settings, passes, std::move(result));
+        std::optional<AutoState> state;
+        RenderSettings render = settings;
+        if (settings.resume) {
+            state = AutoState::read(settings.resume->methodState, settings.team ? *settings.team : solo());
+            render.firstPass = state->first;
+        }
+        AutoPasses passes(scene, *full, render, std::move(state));
+        return runPasses(render, passes, std::move(result));
     }
 
 private:

@@ -280,7 +280,7 @@ public:
         layout_ = std::move(*bootstrapped);
         layout_.stepsPerPass = layout_.chains() > 0 ? static_cast<int>(std::ceil(pixels_ / layout_.chains())) : 0;
         renderer_.emplace(cr_, layout_, team_);
-        std::string states = settings_.resume ? settings_.resume->metropolis.chainStates : std::string();
+        std::string states = settings_.resume ? settings_.resume->methodState : std::string();
         team_.broadcast(states);
         if (settings_.resume)
             renderer_->resume(states);
@@ -314,7 +314,7 @@ public:
         into.metropolis.run = cr_.run;
         into.metropolis.bootstrapSamples = uint64_t(ms_.bootstrap);
         into.metropolis.lengths = renderer_->lengths(team_);
-        into.metropolis.chainStates = renderer_->states(team_);
+        into.methodState = renderer_->states(team_);
         team_.reduce(team_.rank() == 0 ? into.film : mine);
     }
 

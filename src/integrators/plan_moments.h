@@ -6,7 +6,16 @@
 //
 // The tiles are the render loop's: one thread writes a tile's camera contributions in a pass, and
 // the splats come after the pass in tile order, as the film's do.
+//
+// Beside each total, the largest share of it any one estimate gave (a camera sample's square, a
+// splat's): the choice reads each moment without it (PlanEvidence). A moment of a few thousand
+// estimates can rest on one of them, a path that its strategies sample once in thousands and
+// weigh heavily; taken at its word it outweighs every other tile of the image, and the choice
+// then buys the cheapest plans everywhere else. Without it, a heavy path counts once it is seen
+// twice. A maximum is the same whatever order the estimates come in, so the totals stay exact.
 #pragma once
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/vec.h"
@@ -35,20 +44,22 @@ public:
     // walk), which the diagonal alone does not see.
     struct Sample {
         int pixel = -1;
-        std::vector<double> sum, squares;
+        std::vector<double> moment, sum, squares;  // moment: the diagonal, Σ_i F · U / D'
     };
     // A contribution of `sample` (of class `sampled`) to its pixel: its moment and its count of
     // paths it cannot sample as a splat's, and its value to the sample's sums.
     void add(Sample& sample, int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums,
              TechniqueClass sampled);
-    // Adds a finished sample's cross terms, (Σ_i X_k,i)² − Σ_i X_k,i², to each candidate's moment
-    // in its pixel's tile, and clears it.
+    // Adds a finished sample's square, its diagonal and its cross terms (Σ_i X_k,i)² − Σ_i X_k,i²,
+    // to each candidate's moment in its pixel's tile, and clears it.
     void endSample(Sample& sample);
     // Adds the block's sums to the exact totals and clears them.
     void endBlock();
-    // The exact totals, in a fixed order: what the team gathers and adds.
-    ExactSums& totals() { return totals_; }
-    const ExactSums& totals() const { return totals_; }
+    // The totals and maxima of the finished blocks, as bytes: what a team gathers and adds, and a
+    // checkpoint keeps; add() takes bytes of stateSize() only.
+    std::string state() const;
+    size_t stateSize() const { return totals_.words().size_bytes() + largest_.size() * sizeof(double); }
+    void add(std::string_view state);
 
     // What the choice reads after `passes` passes whose film (a team's, all its passes) is `film`,
     // `measured` of them measuring.
@@ -57,7 +68,7 @@ public:
 private:
     // Per tile and candidate: its moment, its count of paths it cannot sample.
     static constexpr size_t kSums = 2;
-    // A contribution's moment for each candidate, and its value to `sample` if given.
+    // A contribution's moment for each candidate (to `sample`'s if given, with its value).
     void add(Sample* sample, int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums,
              TechniqueClass sampled);
     size_t sumIndex(int tile, size_t candidate, size_t which) const {
@@ -69,6 +80,7 @@ private:
     std::vector<TechniqueSums> factors_;
     std::vector<double> block_;
     ExactSums totals_;
+    std::vector<double> largest_;  // per tile and candidate: the largest moment of one estimate
 };
 
 }  // namespace tripath

@@ -92,7 +92,6 @@ struct MetropolisReport {
     uint64_t run = 0;               // the pass index the chains started at: their streams' identity
     uint64_t bootstrapSamples = 0;  // N, over all lengths
     std::vector<MetropolisLength> lengths;
-    std::string chainStates;        // on rank 0: every chain's state, in chain order (checkpoints)
 };
 
 // What auto chose (integrators/auto.cpp): the plan of each stretch of passes, from the offset of
@@ -135,6 +134,9 @@ struct RenderResult {
     // stops in its bootstrap; the other loops finish their first pass): the result then holds
     // nothing, not even the render it resumed, and has no image to write nor state to checkpoint.
     bool interruptedBeforeAnyPass = false;
+    // On rank 0, the method's state to go on from (checkpoints): mlt's chains, in chain order;
+    // auto's moments and plans. Empty for the other methods.
+    std::string methodState{};
     MetropolisReport metropolis{};  // mlt only
     PlanReport plans{};             // auto only
     MemoryEstimate memory{};        // what the render was estimated to need before it started

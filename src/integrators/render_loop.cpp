@@ -46,6 +46,7 @@ RenderResult runPasses(const RenderSettings& settings, PassSource& source, Rende
     uint64_t localNext = 0;  // one past the highest pass offset this rank used
     const uint64_t budget = settings.spp > 0 ? uint64_t(settings.spp) : UINT64_MAX;
     for (uint64_t round = 0;; ++round) {
+        source.beginRound(result.film);
         const auto [begin, end] = source.round(round, budget);
         bool halted = false;  // by the clock or by a stop request, before the round's end
         for (uint64_t p = begin; p < end; ++p) {

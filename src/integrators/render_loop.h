@@ -24,6 +24,9 @@ public:
     // Work done once before the first round, on the render's clock (mlt's bootstrap); false when
     // a stop request ended it, on every rank alike, before there was any pass to render.
     virtual bool start(RenderResult&) { return true; }
+    // Before each round, on every rank together (collective): auto chooses there the plans of a
+    // stretch that starts with the round, so that no choice is made for passes that never come.
+    virtual void beginRound(Film&) {}
     // This rank's passes in round `round`, as offsets [begin, end) from the render's first pass,
     // clipped to `budget` passes (UINT64_MAX: no bound).
     virtual std::pair<uint64_t, uint64_t> round(uint64_t round, uint64_t budget) const = 0;

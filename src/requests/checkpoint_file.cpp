@@ -20,7 +20,7 @@ namespace tripath {
 namespace {
 
 constexpr const char* kFormat = "tripath-checkpoint";
-constexpr int kVersion = 2;
+constexpr int kVersion = 3;
 static_assert(std::endian::native == std::endian::little, "checkpoints store the totals as little-endian words");
 
 // The most seconds a checkpoint may give: the command line (apps/checkpoint.h) sends them to the
@@ -39,18 +39,18 @@ void writeCheckpoint(const std::string& path, const Metadata& settings, const Re
     std::string header;
     for (const auto& [key, value] : settings) header += key + "=" + value + "\n";
     header += fmt::format("passes={}\nnext-pass={}\nseconds={:.6f}\ndropped-samples={}\nguarded-weights={}\n"
-                          "values={}\nchain-run={}\nchain-bytes={}\n",
+                          "values={}\nchain-run={}\nstate-bytes={}\n",
                           r.passes, r.nextPass, r.seconds, r.droppedSamples, r.guardedWeights, wordCount(r.film),
-                          r.metropolis.run, r.metropolis.chainStates.size());
+                          r.metropolis.run, r.methodState.size());
     Fnv1a sum;
     sum.add(header);
     for (const ExactSums* t : r.film.totals()) sum.add(t->words().data(), t->words().size_bytes());
-    sum.add(r.metropolis.chainStates.data(), r.metropolis.chainStates.size());
+    sum.add(r.methodState.data(), r.methodState.size());
     writeFileAtomically(path, [&](std::ostream& f) {
         f << kFormat << " " << kVersion << "\n" << header << "checksum=" << hashText(sum.value()) << "\n\n";
         for (const ExactSums* t : r.film.totals())
             f.write(reinterpret_cast<const char*>(t->words().data()), std::streamsize(t->words().size_bytes()));
-        f.write(r.metropolis.chainStates.data(), std::streamsize(r.metropolis.chainStates.size()));
+        f.write(r.methodState.data(), std::streamsize(r.methodState.size()));
     });
 }
 
@@ -119,24 +119,24 @@ std::optional<RenderResult> readCheckpoint(const std::string& path, const Metada
     r.metropolis.run = number("chain-run", UINT64_MAX);
     const size_t words = wordCount(width, height, layers);
     if (number("values", UINT64_MAX) != words) throw bad("its film has another size or other layers");
-    // The chains' states are what follows the totals: their size is checked against the file's
-    // before anything is allocated for them.
-    const uint64_t chainBytes = number("chain-bytes", UINT64_MAX);
+    // The method's state is what follows the totals: its size is checked against the file's
+    // before anything is allocated for it.
+    const uint64_t stateBytes = number("state-bytes", UINT64_MAX);
     const uint64_t fileSize = std::filesystem::file_size(path, ec);
     if (ec) throw bad("cannot read it (" + ec.message() + ")");
     const uint64_t totalsEnd = uint64_t(std::streamoff(f.tellg())) + words * sizeof(uint64_t);
     if (fileSize < totalsEnd) throw bad("cut short");
-    if (fileSize - totalsEnd != chainBytes)
-        throw bad(fmt::format("its header gives chain-bytes={}, but {} bytes follow its totals", chainBytes,
+    if (fileSize - totalsEnd != stateBytes)
+        throw bad(fmt::format("its header gives state-bytes={}, but {} bytes follow its totals", stateBytes,
                               fileSize - totalsEnd));
     for (ExactSums* t : r.film.totals()) {
         if (!f.read(reinterpret_cast<char*>(t->words().data()), std::streamsize(t->words().size_bytes())))
             throw bad("cut short");
         sum.add(t->words().data(), t->words().size_bytes());
     }
-    r.metropolis.chainStates.resize(chainBytes);
-    if (!f.read(r.metropolis.chainStates.data(), std::streamsize(chainBytes))) throw bad("cut short");
-    sum.add(r.metropolis.chainStates.data(), chainBytes);
+    r.methodState.resize(stateBytes);
+    if (!f.read(r.methodState.data(), std::streamsize(stateBytes))) throw bad("cut short");
+    sum.add(r.methodState.data(), stateBytes);
     if (text("checksum") != hashText(sum.value()))
         throw bad("its contents do not match its checksum: the file is damaged (remove it to start afresh)");
     return r;

@@ -2,15 +2,16 @@
 // settings that must match to continue (as EXR metadata pairs), the pass counts, and the film's
 // exact totals (film.h) word for word, so that a resumed --spp render equals the uninterrupted one
 // bit for bit: totals add exactly, and checkpoints are taken at round boundaries, where every
-// canonical block before nextPass is finished (render.h). For mlt it also holds every Markov
-// chain's state (integrators/metropolis_render.h), taken between passes, so that each chain goes
-// on where it stopped. The command line writes one beside its EXR and resumes from it
+// canonical block before nextPass is finished (render.h). It also holds the method's state
+// (RenderResult::methodState), taken between passes: for mlt every Markov chain's
+// (integrators/metropolis_render.h), so that each chain goes on where it stopped; for auto its
+// moments and plans (integrators/auto.cpp), so that it chooses as the uninterrupted render would. The command line writes one beside its EXR and resumes from it
 // (apps/checkpoint.h).
 //
-// Format: the line "tripath-checkpoint 2", then "key=value" lines (the settings, then passes,
-// next-pass, seconds, dropped-samples, guarded-weights, values, chain-run, chain-bytes and
-// checksum), a blank line, the totals as little-endian 64-bit words, then the chains' states
-// (chain-bytes bytes). The checksum is the 64-bit FNV-1a, in 16 hex digits, of the other header
+// Format: the line "tripath-checkpoint 3", then "key=value" lines (the settings, then passes,
+// next-pass, seconds, dropped-samples, guarded-weights, values, chain-run, state-bytes and
+// checksum), a blank line, the totals as little-endian 64-bit words, then the method's state
+// (state-bytes bytes). The checksum is the 64-bit FNV-1a, in 16 hex digits, of the other header
 // lines after the first and of everything after the blank line. Written to a temporary file and
 // renamed over the target, so a job killed at any moment leaves the previous checkpoint whole.
 #pragma once
