@@ -80,7 +80,10 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
                        "photon merges at every non-delta camera vertex, one MIS); bpm: bidirectional photon "
                        "mapping (merges only); ppm: progressive photon mapping (one merge where the camera path "
                        "first meets a non-delta surface); mlt: multiplexed Metropolis light transport (Markov chains "
-                       "over bdpt's paths and connections, for light that independent samples rarely find)")
+                       "over bdpt's paths and connections, for light that independent samples rarely find); auto: "
+                       "vcm's strategies, choosing while it renders the light paths per pass and, per 16x16 tile, "
+                       "which classes of them pay (efficiency-aware MIS; what it chose is in the EXR and --stats): "
+                       "pick it when you do not know which method wins")
             ->capture_default_str();
     // Functions rather than plain bindings: a given value is checked, whatever it is (even 0 or -1).
     auto* spp = cmd.add_option_function<int>(

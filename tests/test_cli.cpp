@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "integrators/integrator.h"
 #include "scenes/builtin_scenes.h"
 #include "io/gltf_writer.h"
 #include "image/image.h"
@@ -289,6 +290,17 @@ TEST_F(Cli, ACompareOverItsMemoryLimitIsRefusedBeforeItsFirstRender) {
     EXPECT_NE(o.err.find("report"), std::string::npos) << o.err;
     EXPECT_FALSE(fs::exists(path("c")));
     EXPECT_EQ(run(compare + "--memory-limit 1G").exitCode, 0);
+}
+
+// --integrator's help explains every method the flag accepts. Fails if one is left out, as auto
+// was when it came.
+TEST_F(Cli, TheIntegratorsHelpNamesEveryMethod) {
+    const Outcome help = run("render --help");
+    const size_t start = help.out.find("--integrator");
+    ASSERT_NE(start, std::string::npos) << help.out;
+    const std::string text = help.out.substr(start, help.out.find("\n  --", start) - start);
+    for (const std::string& name : kIntegratorNames)
+        EXPECT_NE(text.find(" " + name + ": "), std::string::npos) << name << " missing from: " << text;
 }
 
 // --help's limits are the limits: each side from 1 to 16384 renders, 0 and 16385 are refused. Fails
