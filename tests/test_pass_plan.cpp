@@ -139,6 +139,7 @@ TEST(PassPlan, TheMeasuringPlansMomentIsTheSquareOfEachSamplesEstimateLessTheLar
     PlanMoments moments(2, 1, 16, 1);
     const TechniqueSums all{1, 1, 1, 1};
     moments.setFactors({all});
+    moments.setWeights({1, 1});
     PlanMoments::Sample sample;
     auto add = [&](int pixel, float unweighted, const TechniqueSums& sums, TechniqueClass c) {
         const float weight = classWeight(all, c, sums).value;
@@ -154,6 +155,34 @@ TEST(PassPlan, TheMeasuringPlansMomentIsTheSquareOfEachSamplesEstimateLessTheLar
     const PlanEvidence e = moments.evidence(Film(2, 1), 1, 1);
     EXPECT_GT(d * d, (a + b) * (a + b));
     EXPECT_NEAR(e.moments[0][0], (a + b) * (a + b) + c * c, 1e-4);
+}
+
+// The estimate left out of a tile's moments is the one of the largest square under the plan the
+// tile ran, for every candidate alike: a connection that a path-tracing candidate would have had
+// to find by next-event estimation (its square 396 there, 3.9 under the running plan) is evidence
+// against that candidate, and stays; a next-event estimate of square 100 under both is the
+// outlier. Fails if each candidate left out its own largest square (the path-tracing candidate's
+// moment is then 100, not 396).
+TEST(PassPlan, TheOutlierIsTheRunningPlansAndLeavesEveryCandidate) {
+    PlanMoments moments(2, 1, 16, 2);
+    const TechniqueSums all{1, 1, 1, 1}, pathTracing{1, 0, 0, 0};
+    moments.setFactors({all, pathTracing});
+    moments.setRunning({0});
+    moments.setWeights({1, 1});
+    PlanMoments::Sample sample;
+    auto add = [&](int pixel, float unweighted, const TechniqueSums& sums, TechniqueClass c) {
+        const float weight = classWeight(all, c, sums).value;
+        moments.add(sample, pixel, Spectrum(weight * unweighted), Spectrum(unweighted), sums, c);
+        return weight * unweighted;
+    };
+    const double connection = add(0, 2, {0.01f, 1, 0, 0}, TechniqueClass::Connection);
+    const double nee = add(1, 10, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
+    moments.endSample(sample);
+    moments.endBlock();
+    const PlanEvidence e = moments.evidence(Film(2, 1), 1, 1);
+    EXPECT_NEAR(nee, 10, 1e-6);
+    EXPECT_NEAR(e.moments[0][0], connection * 2 / 1.01, 1e-3);  // the running plan's: the connection's own
+    EXPECT_NEAR(e.moments[1][0], connection * 2 / 0.01, 1e-1);  // path tracing's: F · U / D' with D' = 0.01
 }
 
 }  // namespace

@@ -10,10 +10,12 @@
 // in, whichever sample traced it. The first passes run every class with one light path per pixel
 // in every tile. The first block of passes after each choice (passes 0-3, 4-7, 8-11, 16-19, …)
 // measures, under the plans chosen, the second moment each candidate's estimator would have,
-// tile by tile (plan_moments.h); the other blocks render without the measuring's cost. After 4, 8,
-// 16, 32, … passes of the render, the team chooses from the totals of every measuring pass so far
-// the plans of least relative second moment × cost for the passes up to the next choice
-// (plan_choice.h).
+// tile by tile (plan_moments.h), each pixel's share weighed by 1 / (I² + 0.01) with I its mean in a
+// blurred image of the passes before, as relMSE weighs its error; the other blocks render without
+// the measuring's cost (and, where no tile traces light to the sensor, without the technique sums:
+// the running sums' balance weights are the same). After 4, 8, 16, 32, … passes of the render,
+// the team chooses from the totals of every measuring pass since its first choice the plans of
+// least relative second moment × cost for the passes up to the next choice (plan_choice.h).
 //
 // Unbiased: a pass's plans depend on the passes before it alone, and every pass weighs the same
 // in the image (the film's average), a weight fixed before the pass; within a pass the weights of
@@ -37,6 +39,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <sstream>
 
 #include "core/error.h"
@@ -123,7 +126,8 @@ std::string choiceName(const std::vector<PassPlan>& tiles, double pixels) {
 // pass (a continued reference's next passes come after it), the blocks done
 // (the passes are contiguous at a checkpoint, render.h), the passes that measured, the plans of
 // each stretch so far, the current choice, the last choice's estimates (for the report) and the
-// moments' totals. Text lines, the doubles in hexadecimal, then the moments' bytes.
+// moments' totals and the pixels' weights in them. Text lines, the doubles in hexadecimal, then
+// the moments' bytes and the weights'.
 struct AutoState {
     uint64_t first = 0;  // the render's first pass
     uint64_t blocks = 0, measured = 0;
@@ -131,15 +135,17 @@ struct AutoState {
     std::vector<size_t> tiles;
     std::vector<PlanEstimate> estimates;
     std::string moments;
+    std::vector<float> weights;
 
     std::string write() const {
-        std::string out = fmt::format("{} {} {} {} {} {}\n", first, blocks, measured, stretches.size(),
-                                      estimates.size(), moments.size());
+        std::string out = fmt::format("{} {} {} {} {} {} {}\n", first, blocks, measured, stretches.size(),
+                                      estimates.size(), moments.size(), weights.size());
         for (const auto& [first, name] : stretches) out += fmt::format("{} {}\n", first, name);
         out += fmt::format("{}\n", fmt::join(tiles, " "));
         for (const PlanEstimate& e : estimates)
             out += fmt::format("{:a} {:a} {:d} {}\n", e.relativeMoment, e.cost, e.uncovered, e.plan);
-        return out + moments;
+        out += moments;
+        return out.append(reinterpret_cast<const char*>(weights.data()), weights.size() * sizeof(float));
     }
     // A checkpoint's state, from rank 0 to every rank of `team`.
     static AutoState read(std::string bytes, Team& team) {
@@ -147,9 +153,9 @@ struct AutoState {
         auto damaged = [] { return InputError("a checkpoint's state of auto is damaged (remove it to start afresh)"); };
         AutoState state;
         std::istringstream in(bytes);
-        size_t stretches = 0, estimates = 0, moments = 0;
-        if (!(in >> state.first >> state.blocks >> state.measured >> stretches >> estimates >> moments) || stretches > bytes.size() ||
-            estimates > bytes.size() || moments > bytes.size())
+        size_t stretches = 0, estimates = 0, moments = 0, weights = 0;
+        if (!(in >> state.first >> state.blocks >> state.measured >> stretches >> estimates >> moments >> weights) ||
+            stretches > bytes.size() || estimates > bytes.size() || moments > bytes.size() || weights > bytes.size())
             throw damaged();
         std::string line;
         std::getline(in, line);
@@ -174,8 +180,10 @@ struct AutoState {
             state.estimates.push_back(std::move(e));
         }
         const auto at = static_cast<size_t>(in.tellg());
-        if (in.fail() || bytes.size() - at != moments) throw damaged();
-        state.moments = bytes.substr(at);
+        if (in.fail() || bytes.size() - at != moments + weights * sizeof(float)) throw damaged();
+        state.moments = bytes.substr(at, moments);
+        state.weights.resize(weights);
+        std::memcpy(state.weights.data(), bytes.data() + at + moments, weights * sizeof(float));
         return state;
     }
 };
@@ -203,10 +211,12 @@ public:
         const bool fits = state->tiles.size() == tiles_ &&
                           std::none_of(state->tiles.begin(), state->tiles.end(), [&](size_t k) { return k >= candidates_.size(); }) &&
                           (state->estimates.empty() || state->estimates.size() == candidates_.size() + 1) &&
-                          state->moments.size() == moments_.stateSize();
+                          state->moments.size() == moments_.stateSize() &&
+                          (state->weights.empty() || state->weights.size() == size_t(camera_.width()) * camera_.height());
         if (!fits) throw InputError("a checkpoint's state of auto is damaged (remove it to start afresh)");
         blocks_ = resumedBlocks_ = state->blocks;
         resumedMeasured_ = state->measured;
+        if (!state->weights.empty()) moments_.setWeights(std::move(state->weights));
         if (team_.rank() == 0) {
             moments_.add(state->moments);
             estimates_ = std::move(state->estimates);
@@ -233,7 +243,8 @@ public:
         const bool measures = (block & (block - 1)) == 0;
         measured_ += measures;
         ++rendered_;
-        renderer_.run(*chosen_, firstPass_ + offset, result, measures ? &moments_ : nullptr, tilePlans_);
+        const PixelSampleIntegrator& passes = measures || !unmeasured_ ? *chosen_ : *unmeasured_;
+        renderer_.run(passes, firstPass_ + offset, result, measures ? &moments_ : nullptr, tilePlans_);
     }
     // A stretch's first round chooses its plans from every pass before it.
     void beginRound(Film& film) override {
@@ -253,7 +264,7 @@ public:
         PlanMoments team = moments_;
         for (size_t r = 1; r < all.size(); ++r) team.add(all[r]);
         into.methodState =
-            AutoState{firstPass_, blocks_, measured, stretches_, choice_, estimates_, team.state()}.write();
+            AutoState{firstPass_, blocks_, measured, stretches_, choice_, estimates_, team.state(), moments_.weights()}.write();
         into.plans.stretches.clear();
         for (const auto& [first, name] : stretches_)
             if (first < uint64_t(into.passes) + (resumed_ ? uint64_t(resumed_->passes) : 0))
@@ -288,7 +299,7 @@ private:
         std::optional<Film> copy;
         if ((team_.size() > 1 || resumed_) && team_.rank() == 0) copy.emplace(film);
         team_.reduce(copy ? *copy : film);
-        std::string choice;
+        std::string choice, weights;
         if (team_.rank() == 0) {
             if (resumed_) copy->add(resumed_->film);
             PlanMoments team = moments_;
@@ -299,8 +310,15 @@ private:
             const PlanChoice chosen = choosePlans(moments, evidence, candidates_, work_, everything_);
             for (size_t tile : chosen.tiles) choice += std::to_string(tile) + " ";
             report(moments, evidence, chosen);
+            const std::vector<float> w = PlanMoments::relativeWeights((copy ? *copy : film).image(int(passes)));
+            weights.assign(reinterpret_cast<const char*>(w.data()), w.size() * sizeof(float));
         }
         team_.broadcast(choice);
+        team_.broadcast(weights);
+        if (moments_.weights().empty()) measured_ = resumedMeasured_ = 0;
+        std::vector<float> w(weights.size() / sizeof(float));
+        std::memcpy(w.data(), weights.data(), weights.size());
+        moments_.setWeights(std::move(w));
         std::vector<size_t> tiles;
         std::istringstream in(choice);
         for (size_t k; in >> k;) tiles.push_back(k);
@@ -325,10 +343,13 @@ private:
         choice_ = tiles;
         tilePlans_.clear();
         for (size_t k : tiles) tilePlans_.push_back(candidates_[k]);
-        chosen_ = makePlannedPasses(unionOf(tilePlans_), settings_);
+        const PassPlan all = unionOf(tilePlans_);
+        chosen_ = makePlannedPasses(all, settings_);
+        unmeasured_ = all.lightTraces ? nullptr : makePlannedPasses(all, settings_, false);
         std::vector<TechniqueSums> factors;
         for (const PassPlan& c : candidates_) factors.push_back(c.factors(chosen_->lightPaths(scene_)));
         moments_.setFactors(std::move(factors));
+        moments_.setRunning(choice_);
         stretches_.push_back({firstPass, choiceName(tilePlans_, pixels_)});
     }
 
@@ -344,6 +365,9 @@ private:
     std::vector<size_t> choice_;                     // the candidate of each tile
     std::vector<PassPlan> tilePlans_;                // the choice, per tile
     std::unique_ptr<PixelSampleIntegrator> chosen_;  // the passes of its union
+    // The same passes where they do not measure, when they splat nowhere: each contribution weighed
+    // as it comes, without technique sums.
+    std::unique_ptr<PixelSampleIntegrator> unmeasured_;
     uint64_t blocks_ = 0;                            // the team's next block: the blocks done before it
     uint64_t resumedBlocks_ = 0, resumedMeasured_ = 0;
     uint64_t rendered_ = 0, measured_ = 0;           // the passes this rank rendered, and measured in

@@ -97,6 +97,8 @@ public:
         for (size_t i = 0; i < v_.size(); ++i) v_[i] += o.v_[i];
     }
     double value(size_t i) const { return v_[i].toDouble(); }
+    // Sets sum i back to zero.
+    void clear(size_t i) { v_[i] = Fixed192{}; }
     // The raw words, 3 per value: what processes exchange and checkpoints store.
     std::span<uint64_t> words() { return {reinterpret_cast<uint64_t*>(v_.data()), 3 * v_.size()}; }
     std::span<const uint64_t> words() const { return {reinterpret_cast<const uint64_t*>(v_.data()), 3 * v_.size()}; }

@@ -43,26 +43,31 @@ namespace {
 
 class PlannedPasses final : public PixelSampleIntegrator {
 public:
-    PlannedPasses(const PassPlan& plan, IntegratorSettings settings)
-        : PixelSampleIntegrator(withLightPaths(settings, plan)), plan_(plan) {}
+    PlannedPasses(const PassPlan& plan, IntegratorSettings settings, bool measures)
+        : PixelSampleIntegrator(withLightPaths(settings, plan, measures)), plan_(plan), measures_(measures) {}
     std::string name() const override { return "auto"; }
     StrategySet strategies() const override { return plan_.strategies(); }
-    std::optional<StrategySet> measuredStrategies() const override { return tripath::measuredStrategies(); }
+    std::optional<StrategySet> measuredStrategies() const override {
+        return measures_ ? std::optional(tripath::measuredStrategies()) : std::nullopt;
+    }
 
 private:
     // The plan's N_L; a plan without light paths keeps the default N_L of the pass's constants
     // (one per pixel), the unit its technique sums are measured in.
-    static IntegratorSettings withLightPaths(IntegratorSettings s, const PassPlan& plan) {
+    static IntegratorSettings withLightPaths(IntegratorSettings s, const PassPlan& plan, bool measures) {
         s.lightPaths = plan.lightPaths > 0 ? std::optional<int64_t>(static_cast<int64_t>(plan.lightPaths)) : std::nullopt;
+        if (!measures) s.mis = MisHeuristic::Balance;
         return s;
     }
     PassPlan plan_;
+    bool measures_;
 };
 
 }  // namespace
 
-std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings) {
-    return std::make_unique<PlannedPasses>(plan, settings);
+std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings,
+                                                         bool measures) {
+    return std::make_unique<PlannedPasses>(plan, settings, measures);
 }
 
 }  // namespace tripath

@@ -31,10 +31,6 @@ constexpr double kMergeSearch = 0.3;
 constexpr double kMerge = 1.45;
 constexpr double kGridEntry = 0.2;
 
-// The relMSE's offset of a pixel's squared mean (evaluation/metrics.h): a black pixel's
-// error counts as absolute.
-constexpr double kRelativeOffset = 1e-2;
-
 // At most this many sweeps of the choice over the tiles.
 constexpr int kSweeps = 8;
 
@@ -89,12 +85,13 @@ double passCost(const PassPlan& plan, const PassWork& work, double pixels) {
 }
 
 std::vector<std::vector<double>> relativeMoments(const PlanEvidence& e) {
+    double pixels = 0;
+    for (int n : e.tilePixels) pixels += n;
     std::vector<std::vector<double>> out;
     for (size_t k = 0; k < e.moments.size(); ++k) {
         std::vector<double> tiles;
         for (size_t tile = 0; tile < e.moments[k].size(); ++tile) {
-            const double n = e.tilePixels[tile], mean = e.tileMean[tile] / n;
-            tiles.push_back(e.moments[k][tile] / (n * (mean * mean + kRelativeOffset)));
+            tiles.push_back(e.moments[k][tile] / pixels);
         }
         out.push_back(std::move(tiles));
     }

@@ -12,9 +12,9 @@
 // from light paths independent of the camera sample and of one another, add only products of
 // means, left out as a variance leaves out the squared mean. (With them in, or with the camera
 // sample's squared mean taken out, the choices measured worse on docs/failures.md's rows.)
-// Relative as the benchmark's relMSE is (evaluation/metrics.h): over the tile's squared mean plus
-// 0.01, so that a bright tile does not outvote a dark one, nor a black one count infinitely;
-// summed over the tiles. Its cost is a pass's work in units of a traced ray, from counts a survey
+// Relative as the benchmark's relMSE is (evaluation/metrics.h): each pixel's share over its
+// squared mean plus 0.01 (plan_moments.h), so that a bright pixel does not outvote a dark one,
+// nor a black one count infinitely; averaged over the image. Its cost is a pass's work in units of a traced ray, from counts a survey
 // of the scene gives before the first pass (traced from fixed streams, so that the choice is the
 // same on every run, thread count and rank count): the light paths' vertices, their joins to the
 // sensor and their places in the merge grid, shared by the image; and each tile's camera
@@ -33,6 +33,10 @@
 #include "integrators/pass_plan.h"
 
 namespace tripath {
+
+// The relMSE's offset of a pixel's squared mean (evaluation/metrics.h): a black pixel's error
+// counts as absolute.
+inline constexpr double kRelativeOffset = 1e-2;
 
 // The candidates a tile chooses among, for an image of `pixels` pixels: path tracing alone, and
 // with N_L of a quarter, one or four light paths per pixel every non-empty set of classes.
@@ -54,18 +58,18 @@ struct PassWork {
 // The cost of one pass of `plan` over `pixels` pixels, in traced rays: in every tile alike.
 double passCost(const PassPlan& plan, const PassWork& work, double pixels);
 
-// What the choice reads, per tile of the image (in the order the moments were kept): the sum of
-// its pixels' means, and per candidate the tile's moment per pass and whether a pass found light
-// in the tile on a path the candidate cannot sample.
+// What the choice reads, per tile of the image (in the order the moments were kept): its pixels,
+// and per candidate the tile's relative moment per pass (its pixels' shares
+// weighed as plan_moments.h says) and whether a pass found light in the tile on a path the
+// candidate cannot sample.
 struct PlanEvidence {
-    std::vector<double> tileMean;              // Σ_p I_p over the tile's pixels
     std::vector<int> tilePixels;               // pixels in the tile
-    std::vector<std::vector<double>> moments;  // [candidate][tile]: Σ_p M_p, per pass
+    std::vector<std::vector<double>> moments;  // [candidate][tile]: Σ_p M_p / (I_p² + 0.01), per pass
     std::vector<std::vector<bool>> uncovered;  // [candidate][tile]
 };
 
-// Each candidate's relative second moment per pass in each tile ([candidate][tile], see the top
-// of this file).
+// Each candidate's relative second moment per pass in each tile, as its share of the image's
+// average ([candidate][tile], see the top of this file).
 std::vector<std::vector<double>> relativeMoments(const PlanEvidence& evidence);
 
 // A choice: the candidate of each tile (all of one N_L), and the image's relative moment and

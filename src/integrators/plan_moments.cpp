@@ -8,7 +8,8 @@ namespace tripath {
 PlanMoments::PlanMoments(int width, int height, int tileSize, size_t candidates)
     : width_(width), height_(height), tileSize_(tileSize), tilesX_((width + tileSize - 1) / tileSize),
       tiles_(tilesX_ * ((height + tileSize - 1) / tileSize)), candidates_(candidates),
-      block_(size_t(tiles_) * candidates * kSums, 0.0), totals_(block_.size()), largest_(size_t(tiles_) * candidates, 0.0) {}
+      block_(size_t(tiles_) * candidates * kSums, 0.0), totals_(block_.size()),
+      outliers_(size_t(tiles_) * (candidates + 1), 0.0), running_(size_t(tiles_), 0), scratch_(candidates) {}
 
 int PlanMoments::tileOf(int pixel) const {
     return (pixel / width_ / tileSize_) * tilesX_ + (pixel % width_) / tileSize_;
@@ -35,6 +36,7 @@ void PlanMoments::add(Sample* sample, int pixel, Spectrum weighted, Spectrum unw
     const double u = luminance(unweighted), fu = double(luminance(weighted)) * u;
     if (!(fu > 0)) return;
     const int tile = tileOf(pixel);
+    if (!sample) std::fill(scratch_.begin(), scratch_.end(), 0.0);
     for (size_t k = 0; k < candidates_; ++k) {
         const float d = techniqueDenominator(factors_[k], sums);
         if (!(d > 0)) {
@@ -42,8 +44,8 @@ void PlanMoments::add(Sample* sample, int pixel, Spectrum weighted, Spectrum unw
             continue;
         }
         if (!sample) {
-            block_[sumIndex(tile, k, 0)] += fu / d;
-            largest_[size_t(tile) * candidates_ + k] = std::max(largest_[size_t(tile) * candidates_ + k], fu / d);
+            scratch_[k] = weightOf(pixel) * fu / d;
+            block_[sumIndex(tile, k, 0)] += scratch_[k];
             continue;
         }
         sample->moment[k] += fu / d;
@@ -51,18 +53,61 @@ void PlanMoments::add(Sample* sample, int pixel, Spectrum weighted, Spectrum unw
         sample->sum[k] += x;
         sample->squares[k] += x * x;
     }
+    if (!sample) offerOutlier(tile, scratch_.data());
+}
+
+void PlanMoments::offerOutlier(int tile, const double* squares) {
+    keepOutlier(tile, squares[running_[size_t(tile)]], squares);
+}
+
+void PlanMoments::keepOutlier(int tile, double key, const double* squares) {
+    double* kept = &outliers_[size_t(tile) * (candidates_ + 1)];
+    // The larger key; of two equal, the lexicographically larger squares, so that the order the
+    // estimates come in does not matter.
+    if (key < kept[0] || (key == kept[0] && !std::lexicographical_compare(kept + 1, kept + 1 + candidates_, squares,
+                                                                            squares + candidates_)))
+        return;
+    kept[0] = key;
+    std::copy(squares, squares + candidates_, kept + 1);
 }
 
 void PlanMoments::endSample(Sample& sample) {
     if (sample.pixel >= 0) {
         const int tile = tileOf(sample.pixel);
         for (size_t k = 0; k < sample.sum.size(); ++k) {
-            const double square = sample.moment[k] + sample.sum[k] * sample.sum[k] - sample.squares[k];
-            block_[sumIndex(tile, k, 0)] += square;
-            largest_[size_t(tile) * candidates_ + k] = std::max(largest_[size_t(tile) * candidates_ + k], square);
+            sample.moment[k] =
+                weightOf(sample.pixel) * (sample.moment[k] + sample.sum[k] * sample.sum[k] - sample.squares[k]);
+            block_[sumIndex(tile, k, 0)] += sample.moment[k];
         }
+        offerOutlier(tile, sample.moment.data());
     }
     sample.pixel = -1;
+}
+
+void PlanMoments::setWeights(std::vector<float> weights) {
+    if (weights_.empty()) {
+        for (int tile = 0; tile < tiles_; ++tile)
+            for (size_t k = 0; k < candidates_; ++k) totals_.clear(sumIndex(tile, k, 0));
+        std::fill(outliers_.begin(), outliers_.end(), 0.0);
+    }
+    weights_ = std::move(weights);
+}
+
+std::vector<float> PlanMoments::relativeWeights(const Image& mean) {
+    std::vector<float> w(size_t(mean.width) * size_t(mean.height));
+    for (int y = 0; y < mean.height; ++y)
+        for (int x = 0; x < mean.width; ++x) {
+            double sum = 0;
+            int n = 0;
+            for (int v = std::max(0, y - 1); v <= std::min(mean.height - 1, y + 1); ++v)
+                for (int u = std::max(0, x - 1); u <= std::min(mean.width - 1, x + 1); ++u, ++n) {
+                    const float* rgb = mean.at(u, v);
+                    sum += luminance(Spectrum(rgb[0], rgb[1], rgb[2]));
+                }
+            const double blurred = sum / n;
+            w[size_t(y) * size_t(mean.width) + size_t(x)] = float(1 / (blurred * blurred + kRelativeOffset));
+        }
+    return w;
 }
 
 void PlanMoments::endBlock() {
@@ -73,7 +118,7 @@ void PlanMoments::endBlock() {
 std::string PlanMoments::state() const {
     const std::span<const uint64_t> words = totals_.words();
     std::string bytes(reinterpret_cast<const char*>(words.data()), words.size_bytes());
-    bytes.append(reinterpret_cast<const char*>(largest_.data()), largest_.size() * sizeof(double));
+    bytes.append(reinterpret_cast<const char*>(outliers_.data()), outliers_.size() * sizeof(double));
     return bytes;
 }
 
@@ -82,30 +127,36 @@ void PlanMoments::add(std::string_view state) {
     const std::span<uint64_t> words = other.words();
     std::memcpy(words.data(), state.data(), words.size_bytes());
     totals_.add(other);
-    std::vector<double> largest(largest_.size());
-    std::memcpy(largest.data(), state.data() + words.size_bytes(), largest.size() * sizeof(double));
-    for (size_t i = 0; i < largest.size(); ++i) largest_[i] = std::max(largest_[i], largest[i]);
+    std::vector<double> outliers(outliers_.size());
+    std::memcpy(outliers.data(), state.data() + words.size_bytes(), outliers.size() * sizeof(double));
+    for (int tile = 0; tile < tiles_; ++tile) {
+        const double* other = &outliers[size_t(tile) * (candidates_ + 1)];
+        keepOutlier(tile, other[0], other + 1);
+    }
 }
 
 PlanEvidence PlanMoments::evidence(const Film& film, int passes, int measured) const {
     PlanEvidence e;
-    e.tileMean.assign(size_t(tiles_), 0.0);
     e.tilePixels.assign(size_t(tiles_), 0);
+    // Without weights yet, every pixel of a tile weighs as the tile's mean would.
+    std::vector<double> scale(size_t(tiles_), 0.0);
     const Image image = film.image(passes);
-    for (int y = 0; y < height_; ++y)
-        for (int x = 0; x < width_; ++x) {
-            const float* rgb = image.at(x, y);
-            const double mean = luminance(Spectrum(rgb[0], rgb[1], rgb[2]));
-            const int tile = tileOf(y * width_ + x);
-            e.tileMean[size_t(tile)] += mean;
-            ++e.tilePixels[size_t(tile)];
-        }
+    for (int p = 0; p < width_ * height_; ++p) {
+        const float* rgb = image.at(p % width_, p / width_);
+        scale[size_t(tileOf(p))] += luminance(Spectrum(rgb[0], rgb[1], rgb[2]));
+        ++e.tilePixels[size_t(tileOf(p))];
+    }
+    for (int tile = 0; tile < tiles_; ++tile) {
+        const double mean = scale[size_t(tile)] / std::max(1, e.tilePixels[size_t(tile)]);
+        scale[size_t(tile)] = weights_.empty() ? 1 / (mean * mean + kRelativeOffset) : 1.0;
+    }
     e.moments.assign(candidates_, std::vector<double>(size_t(tiles_), 0.0));
     e.uncovered.assign(candidates_, std::vector<bool>(size_t(tiles_), false));
     for (int tile = 0; tile < tiles_; ++tile)
         for (size_t k = 0; k < candidates_; ++k) {
-            const double moment = totals_.value(sumIndex(tile, k, 0)) - largest_[size_t(tile) * candidates_ + k];
-            e.moments[k][size_t(tile)] = std::max(0.0, moment) / measured;
+            const double moment =
+                totals_.value(sumIndex(tile, k, 0)) - outliers_[size_t(tile) * (candidates_ + 1) + 1 + k];
+            e.moments[k][size_t(tile)] = scale[size_t(tile)] * std::max(0.0, moment) / measured;
             e.uncovered[k][size_t(tile)] = totals_.value(sumIndex(tile, k, 1)) > 0;
         }
     return e;

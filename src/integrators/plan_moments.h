@@ -7,12 +7,19 @@
 // The tiles are the render loop's: one thread writes a tile's camera contributions in a pass, and
 // the splats come after the pass in tile order, as the film's do.
 //
-// Beside each total, the largest share of it any one estimate gave (a camera sample's square, a
-// splat's): the choice reads each moment without it (PlanEvidence). A moment of a few thousand
-// estimates can rest on one of them, a path that its strategies sample once in thousands and
-// weigh heavily; taken at its word it outweighs every other tile of the image, and the choice
-// then buys the cheapest plans everywhere else. Without it, a heavy path counts once it is seen
-// twice. A maximum is the same whatever order the estimates come in, so the totals stay exact.
+// Relative: each estimate's square is weighed by its pixel's weight, 1 / (I² + 0.01) with I the
+// pixel's mean in a blurred image of the passes before (setWeights), as relMSE weighs a pixel's
+// error; before the first weights, every pixel of a tile weighs as the tile's mean would.
+//
+// Beside each tile's totals, its outlier: the estimate (a camera sample, a splat) of the largest
+// square under the plan the tile ran, with its square for every candidate; the choice reads each
+// moment without it (PlanEvidence). A moment of a few thousand estimates can rest on one of them,
+// a path that the running strategies sample once in thousands and weigh heavily; taken at its
+// word it outweighs every other tile of the image, and the choice then buys the cheapest plans
+// everywhere else. Without it, a heavy path counts once it is seen twice. The outlier is chosen by
+// the running plan's square, not each candidate's own largest: a path the running plan samples
+// well and a candidate badly is evidence against the candidate, kept. Of two estimates, the
+// outlier is the same whatever order they come in, so the choice stays exact.
 #pragma once
 #include <string>
 #include <string_view>
@@ -31,6 +38,17 @@ public:
 
     // The candidates' factors over the constants of the passes to come (PassPlan::factors).
     void setFactors(std::vector<TechniqueSums> factors) { factors_ = std::move(factors); }
+    // The candidate each tile runs in the passes to come: an estimate's outlier key is its square
+    // under it.
+    void setRunning(std::vector<size_t> running) { running_ = std::move(running); }
+    // Each pixel's weight in the moments to come, 1 / (I_p² + 0.01) with I_p the pixel's mean as
+    // relMSE weighs its error (relativeWeights), so that the moments are relative pixel by pixel.
+    // The first weights let go of the moments so far, which were measured without (not of the
+    // paths found that a candidate cannot sample). Between blocks only.
+    void setWeights(std::vector<float> weights);
+    const std::vector<float>& weights() const { return weights_; }
+    // The weights from an image of the pixels' means, blurred over 3 × 3 pixels.
+    static std::vector<float> relativeWeights(const Image& mean);
     // A splat to `pixel` as the film takes it (its weighted and unweighted values, already divided
     // by N_L) and its path's technique sums: for each candidate, F · U / D' to its moment, or 1 to
     // its count of paths it cannot sample (D' = 0, F · U > 0).
@@ -58,7 +76,7 @@ public:
     // The totals and maxima of the finished blocks, as bytes: what a team gathers and adds, and a
     // checkpoint keeps; add() takes bytes of stateSize() only.
     std::string state() const;
-    size_t stateSize() const { return totals_.words().size_bytes() + largest_.size() * sizeof(double); }
+    size_t stateSize() const { return totals_.words().size_bytes() + outliers_.size() * sizeof(double); }
     void add(std::string_view state);
 
     // What the choice reads after `passes` passes whose film (a team's, all its passes) is `film`,
@@ -75,12 +93,20 @@ private:
         return (size_t(tile) * candidates_ + candidate) * kSums + which;
     }
     int tileOf(int pixel) const;
+    // An estimate's squares, one per candidate, as the tile's outlier if its square under the
+    // plan the tile runs (its key) is the largest yet.
+    void offerOutlier(int tile, const double* squares);
+    void keepOutlier(int tile, double key, const double* squares);
+    double weightOf(int pixel) const { return weights_.empty() ? 1.0 : double(weights_[size_t(pixel)]); }
     int width_, height_, tileSize_, tilesX_, tiles_;
     size_t candidates_;
     std::vector<TechniqueSums> factors_;
     std::vector<double> block_;
     ExactSums totals_;
-    std::vector<double> largest_;  // per tile and candidate: the largest moment of one estimate
+    std::vector<double> outliers_;  // per tile: the outlier's key, then its square per candidate
+    std::vector<size_t> running_;   // per tile: the candidate it runs
+    std::vector<double> scratch_;   // a splat's squares
+    std::vector<float> weights_;    // per pixel; none: 1
 };
 
 }  // namespace tripath

@@ -42,13 +42,14 @@ namespace {
 // to the moments when the pass measures; splats are kept in order and merged after the pass,
 // tile by tile, so floating-point sums are added in the same order whatever the thread count.
 // With plans per tile, each contribution is weighed by the classes of the plan of the tile it
-// lands in.
+// lands in, from its technique sums, unless the pass measures none (it splats nowhere, and its
+// own weights are those).
 class TileSink final : public ContributionSink {
 public:
-    TileSink(Film& film, PlanMoments* moments, std::span<const PassPlan> plans, const Camera& camera, double lightPaths,
-             TileOutput& out, uint64_t pass)
-        : film_(film), moments_(moments), plans_(plans), camera_(camera), out_(out), lightPaths_(lightPaths),
-          splatShare_(static_cast<float>(1.0 / lightPaths)), pass_(pass) {}
+    TileSink(Film& film, PlanMoments* moments, std::span<const PassPlan> plans, bool byClass, const Camera& camera,
+             double lightPaths, TileOutput& out, uint64_t pass)
+        : film_(film), moments_(moments), plans_(plans), byClass_(byClass), camera_(camera), out_(out),
+          lightPaths_(lightPaths), splatShare_(static_cast<float>(1.0 / lightPaths)), pass_(pass) {}
     void setPixel(int pixel) { pixel_ = pixel; }
     // The tile is done: the last sample's cross terms go to the moments.
     void finish() {
@@ -57,9 +58,9 @@ public:
     void add(Strategy st, const Connection& c) override {
         const bool splat = !st.merge && st.t == 1;
         const int pixel = splat ? landing(*c.raster) : pixel_;
-        const MisWeight weight = plans_.empty() ? MisWeight{c.weight, c.weightGuarded}
-                                                : classWeight(plans_[tileOf(pixel)].factors(lightPaths_),
-                                                              techniqueClass(st.s, st.t, st.merge), c.techniques);
+        const MisWeight weight = !byClass_ ? MisWeight{c.weight, c.weightGuarded}
+                                           : classWeight(plans_[tileOf(pixel)].factors(lightPaths_),
+                                                         techniqueClass(st.s, st.t, st.merge), c.techniques);
         if (weight.guarded) ++out_.guardedWeights;
         const Spectrum w = c.unweighted * weight.value;
         if (!isFinite(w) || !isFinite(c.unweighted)) {
@@ -89,6 +90,7 @@ private:
     Film& film_;
     PlanMoments* moments_;
     std::span<const PassPlan> plans_;
+    const bool byClass_;  // weighs each contribution by its landing tile's classes, from its technique sums
     const Camera& camera_;
     TileOutput& out_;
     const double lightPaths_;
@@ -130,7 +132,8 @@ void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, con
     const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
     thread_local PathBuffers paths;
     const Pass pass = plans.empty() ? wholePass : tilePass(wholePass, integrator, plans[size_t(tile)]);
-    TileSink sink(film, moments, plans, cam, pass.mis.constants.lightPaths, out, pass.index);
+    TileSink sink(film, moments, plans, !plans.empty() && pass.mis.measure.on, cam, pass.mis.constants.lightPaths, out,
+                  pass.index);
     enrolThread();
     const PhaseScope scope(Phase::CameraSamples);
     const bool packets = pass.mis.strategies.walksCamera();
