@@ -26,9 +26,10 @@
 // for any thread count and any team of ranks. mlt is not among the plans: its chains are no MIS
 // technique.
 //
-// Parameters: --max-depth, --rr-depth (default 2), --light-paths (the unit of the plans' N_L) and
-// vcm's radius schedule (--radius, --radius-factor, --alpha); the weights are the balance
-// heuristic's, the estimator whose moments the choice reads, whatever --mis says. The plans of each
+// Parameters: --max-depth, --rr-depth (default 2; one vertex later in passes without light paths,
+// as pt's default is one later than the light-path methods', for the reason integrator.h gives),
+// --light-paths (the unit of the plans' N_L) and vcm's radius schedule (--radius, --radius-factor,
+// --alpha); the weights are the balance heuristic's, the estimator whose moments the choice reads, whatever --mis says. The plans of each
 // stretch of passes, the candidates' estimates at the last choice and each tile's classes go to the
 // EXR's metadata and to --stats. A checkpoint keeps the moments, the plans and where the
 // schedule is (AutoState), so that a resumed render chooses as the uninterrupted one.
@@ -344,8 +345,10 @@ private:
         tilePlans_.clear();
         for (size_t k : tiles) tilePlans_.push_back(candidates_[k]);
         const PassPlan all = unionOf(tilePlans_);
-        chosen_ = makePlannedPasses(all, settings_);
-        unmeasured_ = all.lightTraces ? nullptr : makePlannedPasses(all, settings_, false);
+        IntegratorSettings s = settings_;
+        if (all.lightPaths == 0) ++s.walk.rrDepth;  // as pt's roulette starts one vertex after the others'
+        chosen_ = makePlannedPasses(all, s);
+        unmeasured_ = all.lightTraces ? nullptr : makePlannedPasses(all, s, false);
         std::vector<TechniqueSums> factors;
         for (const PassPlan& c : candidates_) factors.push_back(c.factors(chosen_->lightPaths(scene_)));
         moments_.setFactors(std::move(factors));

@@ -24,7 +24,8 @@ std::string none(const RenderRequest&) { return ""; }
 const std::vector<IntegratorParameter> kParameters{
     {"rr-depth", "an integrator whose walks play Russian roulette",
      "Russian roulette starts once a subpath has this many vertices (default, measured at equal time: 3 for pt, 2 for "
-     "the methods with light subpaths; 0 also means the default)",
+     "the methods with light subpaths; auto's passes without light paths start one vertex later, as pt does; 0 also "
+     "means the default)",
      playsRoulette, [](const RenderRequest& r) { return r.rrDepth > 0; }, none, true},
     {"radius", "an integrator that merges", "merge radius of the first pass in world units", merges,
      [](const RenderRequest& r) { return r.radiusGiven; }, none, true},
