@@ -293,7 +293,8 @@ private:
     }
 
     // The team's choice for the stretch from pass `next` on: rank 0 gathers the moments and the
-    // film (with the render it resumed), chooses, and tells the others.
+    // film (with the render it resumed), chooses, and tells the others; it keeps the team's
+    // moments from then on, and the others start theirs afresh.
     void decide(Film& film, uint64_t next) {
         const std::vector<std::string> all = team_.gather(moments_.state());
         const auto [passes, measured] = teamPasses();
@@ -301,6 +302,7 @@ private:
         if ((team_.size() > 1 || resumed_) && team_.rank() == 0) copy.emplace(film);
         team_.reduce(copy ? *copy : film);
         std::string choice, weights;
+        std::vector<double> scales;
         if (team_.rank() == 0) {
             if (resumed_) copy->add(resumed_->film);
             PlanMoments team = moments_;
@@ -313,13 +315,16 @@ private:
             report(moments, evidence, chosen);
             const std::vector<float> w = PlanMoments::relativeWeights((copy ? *copy : film).image(int(passes)));
             weights.assign(reinterpret_cast<const char*>(w.data()), w.size() * sizeof(float));
+            scales = team.tileScales(copy ? *copy : film, static_cast<int>(passes));
+            moments_ = std::move(team);
+        } else {
+            moments_.clearTotals();
         }
         team_.broadcast(choice);
         team_.broadcast(weights);
-        if (moments_.weights().empty()) measured_ = resumedMeasured_ = 0;
         std::vector<float> w(weights.size() / sizeof(float));
         std::memcpy(w.data(), weights.data(), weights.size());
-        moments_.setWeights(std::move(w));
+        moments_.setWeights(std::move(w), scales);
         std::vector<size_t> tiles;
         std::istringstream in(choice);
         for (size_t k; in >> k;) tiles.push_back(k);

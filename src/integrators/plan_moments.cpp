@@ -84,13 +84,39 @@ void PlanMoments::endSample(Sample& sample) {
     sample.pixel = -1;
 }
 
-void PlanMoments::setWeights(std::vector<float> weights) {
-    if (weights_.empty()) {
-        for (int tile = 0; tile < tiles_; ++tile)
-            for (size_t k = 0; k < candidates_; ++k) totals_.clear(sumIndex(tile, k, 0));
-        std::fill(outliers_.begin(), outliers_.end(), 0.0);
-    }
+void PlanMoments::setWeights(std::vector<float> weights, std::span<const double> tileScales) {
+    if (weights_.empty() && !tileScales.empty())
+        for (int tile = 0; tile < tiles_; ++tile) {
+            const double scale = tileScales[size_t(tile)];
+            for (size_t k = 0; k < candidates_; ++k) {
+                const double moment = totals_.value(sumIndex(tile, k, 0));
+                totals_.clear(sumIndex(tile, k, 0));
+                totals_.add(sumIndex(tile, k, 0), moment * scale);
+            }
+            for (size_t i = 0; i <= candidates_; ++i) outliers_[size_t(tile) * (candidates_ + 1) + i] *= scale;
+        }
     weights_ = std::move(weights);
+}
+
+void PlanMoments::clearTotals() {
+    totals_ = ExactSums(totals_.size());
+    std::fill(outliers_.begin(), outliers_.end(), 0.0);
+}
+
+std::vector<double> PlanMoments::tileScales(const Film& film, int passes) const {
+    std::vector<double> sum(size_t(tiles_), 0.0), pixels(size_t(tiles_), 0.0);
+    const Image image = film.image(passes);
+    for (int p = 0; p < width_ * height_; ++p) {
+        const float* rgb = image.at(p % width_, p / width_);
+        sum[size_t(tileOf(p))] += luminance(Spectrum(rgb[0], rgb[1], rgb[2]));
+        pixels[size_t(tileOf(p))] += 1;
+    }
+    std::vector<double> scales;
+    for (int tile = 0; tile < tiles_; ++tile) {
+        const double mean = sum[size_t(tile)] / std::max(1.0, pixels[size_t(tile)]);
+        scales.push_back(1 / (mean * mean + kRelativeOffset));
+    }
+    return scales;
 }
 
 std::vector<float> PlanMoments::relativeWeights(const Image& mean) {
@@ -138,18 +164,9 @@ void PlanMoments::add(std::string_view state) {
 PlanEvidence PlanMoments::evidence(const Film& film, int passes, int measured) const {
     PlanEvidence e;
     e.tilePixels.assign(size_t(tiles_), 0);
+    for (int p = 0; p < width_ * height_; ++p) ++e.tilePixels[size_t(tileOf(p))];
     // Without weights yet, every pixel of a tile weighs as the tile's mean would.
-    std::vector<double> scale(size_t(tiles_), 0.0);
-    const Image image = film.image(passes);
-    for (int p = 0; p < width_ * height_; ++p) {
-        const float* rgb = image.at(p % width_, p / width_);
-        scale[size_t(tileOf(p))] += luminance(Spectrum(rgb[0], rgb[1], rgb[2]));
-        ++e.tilePixels[size_t(tileOf(p))];
-    }
-    for (int tile = 0; tile < tiles_; ++tile) {
-        const double mean = scale[size_t(tile)] / std::max(1, e.tilePixels[size_t(tile)]);
-        scale[size_t(tile)] = weights_.empty() ? 1 / (mean * mean + kRelativeOffset) : 1.0;
-    }
+    const std::vector<double> scale = weights_.empty() ? tileScales(film, passes) : std::vector<double>(size_t(tiles_), 1.0);
     e.moments.assign(candidates_, std::vector<double>(size_t(tiles_), 0.0));
     e.uncovered.assign(candidates_, std::vector<bool>(size_t(tiles_), false));
     for (int tile = 0; tile < tiles_; ++tile)

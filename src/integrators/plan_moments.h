@@ -21,6 +21,7 @@
 // well and a candidate badly is evidence against the candidate, kept. Of two estimates, the
 // outlier is the same whatever order they come in, so the choice stays exact.
 #pragma once
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,9 +44,14 @@ public:
     void setRunning(std::vector<size_t> running) { running_ = std::move(running); }
     // Each pixel's weight in the moments to come, 1 / (I_p² + 0.01) with I_p the pixel's mean as
     // relMSE weighs its error (relativeWeights), so that the moments are relative pixel by pixel.
-    // The first weights let go of the moments so far, which were measured without (not of the
-    // paths found that a candidate cannot sample). Between blocks only.
-    void setWeights(std::vector<float> weights);
+    // The first weights turn the moments so far, measured without, relative tile by tile: each
+    // tile's by `tileScales` (tileScales()). Between blocks only.
+    void setWeights(std::vector<float> weights, std::span<const double> tileScales = {});
+    // Per tile, 1 / (m² + 0.01) with m the mean of its pixels in `film` after `passes` passes:
+    // how a pixel of the tile weighs before there are weights.
+    std::vector<double> tileScales(const Film& film, int passes) const;
+    // Back to no moments: a rank whose totals another took over.
+    void clearTotals();
     const std::vector<float>& weights() const { return weights_; }
     // The weights from an image of the pixels' means, blurred over 3 × 3 pixels.
     static std::vector<float> relativeWeights(const Image& mean);
