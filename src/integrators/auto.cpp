@@ -14,8 +14,9 @@
 // blurred image of the passes before, as relMSE weighs its error; the other blocks render without
 // the measuring's cost (and, where no tile traces light to the sensor, without the technique sums:
 // the running sums' balance weights are the same). After 4, 8, 16, 32, … passes of the render,
-// the team chooses from the totals of every measuring pass since its first choice the plans of
-// least relative second moment × cost for the passes up to the next choice (plan_choice.h).
+// the team chooses from the totals of every measuring pass so far (those before the first
+// weights turned relative tile by tile) the plans of least relative second moment × cost for the
+// passes up to the next choice (plan_choice.h).
 //
 // Unbiased: a pass's plans depend on the passes before it alone, and every pass weighs the same
 // in the image (the film's average), a weight fixed before the pass; within a pass the weights of
@@ -29,10 +30,11 @@
 // Parameters: --max-depth, --rr-depth (default 2; one vertex later in passes without light paths,
 // as pt's default is one later than the light-path methods', for the reason integrator.h gives),
 // --light-paths (the unit of the plans' N_L) and vcm's radius schedule (--radius, --radius-factor,
-// --alpha); the weights are the balance heuristic's, the estimator whose moments the choice reads, whatever --mis says. The plans of each
-// stretch of passes, the candidates' estimates at the last choice and each tile's classes go to the
-// EXR's metadata and to --stats. A checkpoint keeps the moments, the plans and where the
-// schedule is (AutoState), so that a resumed render chooses as the uninterrupted one.
+// --alpha); the weights are the balance heuristic's, the estimator whose moments the choice reads,
+// whatever --mis says. The plans of each stretch of passes, the candidates' estimates at the last
+// choice and each tile's classes go to the EXR's metadata and to --stats. A checkpoint keeps the
+// moments, the plans and where the schedule is (AutoState), so that a resumed render chooses as
+// the uninterrupted one.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -124,11 +126,11 @@ std::string choiceName(const std::vector<PassPlan>& tiles, double pixels) {
 }
 
 // What a checkpoint keeps of auto to choose as the uninterrupted render would: the render's first
-// pass (a continued reference's next passes come after it), the blocks done
-// (the passes are contiguous at a checkpoint, render.h), the passes that measured, the plans of
-// each stretch so far, the current choice, the last choice's estimates (for the report) and the
-// moments' totals and the pixels' weights in them. Text lines, the doubles in hexadecimal, then
-// the moments' bytes and the weights'.
+// pass (a continued reference's next passes come after it), the blocks done (the passes are
+// contiguous at a checkpoint, render.h), the passes that measured, the plans of each stretch so
+// far, the current choice, the last choice's estimates (for the report), the moments' totals and
+// the pixels' weights in them. Text lines, the doubles in hexadecimal, then the moments' bytes and
+// the weights'.
 struct AutoState {
     uint64_t first = 0;  // the render's first pass
     uint64_t blocks = 0, measured = 0;
@@ -148,15 +150,17 @@ struct AutoState {
         out += moments;
         return out.append(reinterpret_cast<const char*>(weights.data()), weights.size() * sizeof(float));
     }
-    // A checkpoint's state, from rank 0 to every rank of `team`.
-    static AutoState read(std::string bytes, Team& team) {
+    // A checkpoint's state, from rank 0 to every rank of `team`, for a render resumed at pass
+    // `nextPass`.
+    static AutoState read(std::string bytes, Team& team, uint64_t nextPass) {
         team.broadcast(bytes);
         auto damaged = [] { return InputError("a checkpoint's state of auto is damaged (remove it to start afresh)"); };
         AutoState state;
         std::istringstream in(bytes);
         size_t stretches = 0, estimates = 0, moments = 0, weights = 0;
         if (!(in >> state.first >> state.blocks >> state.measured >> stretches >> estimates >> moments >> weights) ||
-            stretches > bytes.size() || estimates > bytes.size() || moments > bytes.size() || weights > bytes.size())
+            state.first > nextPass || state.blocks > kMaxFirstPass / kPassesPerBlock || stretches > bytes.size() ||
+            estimates > bytes.size() || moments > bytes.size() || weights > bytes.size())
             throw damaged();
         std::string line;
         std::getline(in, line);
@@ -400,7 +404,8 @@ public:
         std::optional<AutoState> state;
         RenderSettings render = settings;
         if (settings.resume) {
-            state = AutoState::read(settings.resume->methodState, settings.team ? *settings.team : solo());
+            state = AutoState::read(settings.resume->methodState, settings.team ? *settings.team : solo(),
+                                    settings.resume->nextPass);
             render.firstPass = state->first;
         }
         AutoPasses passes(scene, *full, render, std::move(state));

@@ -79,7 +79,7 @@ public:
     void endSample(Sample& sample);
     // Adds the block's sums to the exact totals and clears them.
     void endBlock();
-    // The totals and maxima of the finished blocks, as bytes: what a team gathers and adds, and a
+    // The totals and outliers of the finished blocks, as bytes: what a team gathers and adds, and a
     // checkpoint keeps; add() takes bytes of stateSize() only.
     std::string state() const;
     size_t stateSize() const { return totals_.words().size_bytes() + outliers_.size() * sizeof(double); }
