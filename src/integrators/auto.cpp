@@ -188,7 +188,7 @@ struct AutoState {
         if (in.fail() || bytes.size() - at != moments + weights * sizeof(float)) throw damaged();
         state.moments = bytes.substr(at, moments);
         state.weights.resize(weights);
-        std::memcpy(state.weights.data(), bytes.data() + at + moments, weights * sizeof(float));
+        if (weights > 0) std::memcpy(state.weights.data(), bytes.data() + at + moments, weights * sizeof(float));
         return state;
     }
 };
