@@ -193,10 +193,13 @@ int killWhenWritten(const std::string& cmd, const std::string& file, const std::
 // A --spp render killed (SIGKILL) after its first checkpoint and started again, on two ranks
 // this time, ends bit-identical to an uninterrupted one-process render, and leaves no checkpoint:
 // for mlt, every chain goes on from the state the checkpoint kept; auto chooses the same plans
-// from the moments and the schedule the checkpoint kept.
+// from the moments, the pixel weights and the schedule the checkpoint kept (on the caustic, it
+// fails with the moments or the weights not restored, checked).
 TEST_F(Distributed, AResumedCheckpointedRenderEqualsAnUninterruptedOne) {
     for (const std::string integrator : {"bdpt", "mlt", "auto"}) {
-        const std::string args = "render --scene cornell --integrator " + integrator +
+        // auto on the caustic, where its choices depend on every piece of the state it keeps.
+        const std::string scene = integrator == "auto" ? "caustic" : "cornell";
+        const std::string args = "render --scene " + scene + " --integrator " + integrator +
                                  " --width 64 --height 64 --spp 120 --threads 1 --out ";
         ASSERT_EQ(tripath(args + path("whole.exr")).exitCode, 0);
         const std::string out = path(integrator + "-cut.exr"), checkpoint = out + ".checkpoint";
