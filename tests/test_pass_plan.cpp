@@ -127,6 +127,31 @@ TEST(PassPlan, AMomentMeasuredUnderOnePlanIsTheMomentUnderAnother) {
     agreement.expectNoBias();
 }
 
+// A two-pixel tile's moments under candidates `factors` (the first the measuring plan, which runs
+// every class), each pixel weighed 1; add() gives a camera sample's contribution as the
+// measuring plan weighs it and returns that value.
+struct TwoPixelMoments {
+    explicit TwoPixelMoments(std::vector<TechniqueSums> factors) : moments(2, 1, 16, factors.size()) {
+        moments.setFactors(std::move(factors));
+        moments.setRunning({0});
+        moments.setWeights({1, 1});
+    }
+    double add(int pixel, float unweighted, const TechniqueSums& sums, TechniqueClass c) {
+        const float weight = classWeight(kEveryClass, c, sums).value;
+        moments.add(sample, pixel, Spectrum(weight * unweighted), Spectrum(unweighted), sums, c);
+        return weight * unweighted;
+    }
+    // The evidence after the samples so far, as one measuring pass.
+    PlanEvidence evidence() {
+        moments.endSample(sample);
+        moments.endBlock();
+        return moments.evidence(Film(2, 1).image(1), 1);
+    }
+    static constexpr TechniqueSums kEveryClass{1, 1, 1, 1};
+    PlanMoments moments;
+    PlanMoments::Sample sample;
+};
+
 // For the candidate that is the measuring plan itself, a camera sample adds to the moment the
 // square of its estimate, Σ_i X_i squared: its contributions' own moments and their cross terms;
 // and the tile's moment leaves out its largest such square. Two contributions to one pixel (a
@@ -136,23 +161,12 @@ TEST(PassPlan, AMomentMeasuredUnderOnePlanIsTheMomentUnderAnother) {
 // run on into the next pixel's (51.2), or if the largest square is kept (121.6) or the smallest
 // left out instead (120.6).
 TEST(PassPlan, TheMeasuringPlansMomentIsTheSquareOfEachSamplesEstimateLessTheLargest) {
-    PlanMoments moments(2, 1, 16, 1);
-    const TechniqueSums all{1, 1, 1, 1};
-    moments.setFactors({all});
-    moments.setWeights({1, 1});
-    PlanMoments::Sample sample;
-    auto add = [&](int pixel, float unweighted, const TechniqueSums& sums, TechniqueClass c) {
-        const float weight = classWeight(all, c, sums).value;
-        moments.add(sample, pixel, Spectrum(weight * unweighted), Spectrum(unweighted), sums, c);
-        return weight * unweighted;
-    };
-    const double a = add(0, 2, {1, 0.5f, 0, 0}, TechniqueClass::Unidirectional);
-    const double b = add(0, 4, {0.25f, 1, 0, 0}, TechniqueClass::Connection);
-    const double c = add(1, 1, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
-    const double d = add(0, 10, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
-    moments.endSample(sample);
-    moments.endBlock();
-    const PlanEvidence e = moments.evidence(Film(2, 1), 1, 1);
+    TwoPixelMoments tile({TwoPixelMoments::kEveryClass});
+    const double a = tile.add(0, 2, {1, 0.5f, 0, 0}, TechniqueClass::Unidirectional);
+    const double b = tile.add(0, 4, {0.25f, 1, 0, 0}, TechniqueClass::Connection);
+    const double c = tile.add(1, 1, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
+    const double d = tile.add(0, 10, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
+    const PlanEvidence e = tile.evidence();
     EXPECT_GT(d * d, (a + b) * (a + b));
     EXPECT_NEAR(e.moments[0][0], (a + b) * (a + b) + c * c, 1e-4);
 }
@@ -164,22 +178,10 @@ TEST(PassPlan, TheMeasuringPlansMomentIsTheSquareOfEachSamplesEstimateLessTheLar
 // outlier. Fails if each candidate left out its own largest square (the path-tracing candidate's
 // moment is then 100, not 396).
 TEST(PassPlan, TheOutlierIsTheRunningPlansAndLeavesEveryCandidate) {
-    PlanMoments moments(2, 1, 16, 2);
-    const TechniqueSums all{1, 1, 1, 1}, pathTracing{1, 0, 0, 0};
-    moments.setFactors({all, pathTracing});
-    moments.setRunning({0});
-    moments.setWeights({1, 1});
-    PlanMoments::Sample sample;
-    auto add = [&](int pixel, float unweighted, const TechniqueSums& sums, TechniqueClass c) {
-        const float weight = classWeight(all, c, sums).value;
-        moments.add(sample, pixel, Spectrum(weight * unweighted), Spectrum(unweighted), sums, c);
-        return weight * unweighted;
-    };
-    const double connection = add(0, 2, {0.01f, 1, 0, 0}, TechniqueClass::Connection);
-    const double nee = add(1, 10, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
-    moments.endSample(sample);
-    moments.endBlock();
-    const PlanEvidence e = moments.evidence(Film(2, 1), 1, 1);
+    TwoPixelMoments tile({TwoPixelMoments::kEveryClass, {1, 0, 0, 0}});  // and path tracing alone
+    const double connection = tile.add(0, 2, {0.01f, 1, 0, 0}, TechniqueClass::Connection);
+    const double nee = tile.add(1, 10, {1, 0, 0, 0}, TechniqueClass::Unidirectional);
+    const PlanEvidence e = tile.evidence();
     EXPECT_NEAR(nee, 10, 1e-6);
     EXPECT_NEAR(e.moments[0][0], connection * 2 / 1.01, 1e-3);  // the running plan's: the connection's own
     EXPECT_NEAR(e.moments[1][0], connection * 2 / 0.01, 1e-1);  // path tracing's: F · U / D' with D' = 0.01

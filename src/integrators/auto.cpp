@@ -311,15 +311,15 @@ private:
             if (resumed_) copy->add(resumed_->film);
             PlanMoments team = moments_;
             for (size_t r = 1; r < all.size(); ++r) team.add(all[r]);
-            const PlanEvidence evidence =
-                team.evidence(copy ? *copy : film, static_cast<int>(passes), static_cast<int>(measured));
+            const Image mean = (copy ? *copy : film).image(static_cast<int>(passes));
+            const PlanEvidence evidence = team.evidence(mean, static_cast<int>(measured));
             const std::vector<std::vector<double>> moments = relativeMoments(evidence);
             const PlanChoice chosen = choosePlans(moments, evidence, candidates_, work_, everything_);
             for (size_t tile : chosen.tiles) choice += std::to_string(tile) + " ";
             report(moments, evidence, chosen);
-            const std::vector<float> w = PlanMoments::relativeWeights((copy ? *copy : film).image(int(passes)));
+            const std::vector<float> w = PlanMoments::relativeWeights(mean);
             weights.assign(reinterpret_cast<const char*>(w.data()), w.size() * sizeof(float));
-            scales = team.tileScales(copy ? *copy : film, static_cast<int>(passes));
+            scales = team.tileScales(mean);
             moments_ = std::move(team);
         } else {
             moments_.clearTotals();

@@ -103,11 +103,10 @@ void PlanMoments::clearTotals() {
     std::fill(outliers_.begin(), outliers_.end(), 0.0);
 }
 
-std::vector<double> PlanMoments::tileScales(const Film& film, int passes) const {
+std::vector<double> PlanMoments::tileScales(const Image& mean) const {
     std::vector<double> sum(size_t(tiles_), 0.0), pixels(size_t(tiles_), 0.0);
-    const Image image = film.image(passes);
     for (int p = 0; p < width_ * height_; ++p) {
-        const float* rgb = image.at(p % width_, p / width_);
+        const float* rgb = mean.at(p % width_, p / width_);
         sum[size_t(tileOf(p))] += luminance(Spectrum(rgb[0], rgb[1], rgb[2]));
         pixels[size_t(tileOf(p))] += 1;
     }
@@ -161,12 +160,12 @@ void PlanMoments::add(std::string_view state) {
     }
 }
 
-PlanEvidence PlanMoments::evidence(const Film& film, int passes, int measured) const {
+PlanEvidence PlanMoments::evidence(const Image& mean, int measured) const {
     PlanEvidence e;
     e.tilePixels.assign(size_t(tiles_), 0);
     for (int p = 0; p < width_ * height_; ++p) ++e.tilePixels[size_t(tileOf(p))];
     // Without weights yet, every pixel of a tile weighs as the tile's mean would.
-    const std::vector<double> scale = weights_.empty() ? tileScales(film, passes) : std::vector<double>(size_t(tiles_), 1.0);
+    const std::vector<double> scale = weights_.empty() ? tileScales(mean) : std::vector<double>(size_t(tiles_), 1.0);
     e.moments.assign(candidates_, std::vector<double>(size_t(tiles_), 0.0));
     e.uncovered.assign(candidates_, std::vector<bool>(size_t(tiles_), false));
     for (int tile = 0; tile < tiles_; ++tile)

@@ -47,9 +47,9 @@ public:
     // The first weights turn the moments so far, measured without, relative tile by tile: each
     // tile's by `tileScales` (tileScales()). Between blocks only.
     void setWeights(std::vector<float> weights, std::span<const double> tileScales = {});
-    // Per tile, 1 / (m² + 0.01) with m the mean of its pixels in `film` after `passes` passes:
-    // how a pixel of the tile weighs before there are weights.
-    std::vector<double> tileScales(const Film& film, int passes) const;
+    // Per tile, 1 / (m² + 0.01) with m the mean of its pixels in `mean` (the image of the passes so
+    // far): how a pixel of the tile weighs before there are weights.
+    std::vector<double> tileScales(const Image& mean) const;
     // Back to no moments: a rank whose totals another took over.
     void clearTotals();
     const std::vector<float>& weights() const { return weights_; }
@@ -85,9 +85,9 @@ public:
     size_t stateSize() const { return totals_.words().size_bytes() + outliers_.size() * sizeof(double); }
     void add(std::string_view state);
 
-    // What the choice reads after `passes` passes whose film (a team's, all its passes) is `film`,
+    // What the choice reads, `mean` the image of the passes so far (a team's, all of them),
     // `measured` of them measuring.
-    PlanEvidence evidence(const Film& film, int passes, int measured) const;
+    PlanEvidence evidence(const Image& mean, int measured) const;
 
 private:
     // Per tile and candidate: its moment, its count of paths it cannot sample.
