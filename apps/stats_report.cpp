@@ -27,10 +27,10 @@ std::string planReport(const PlanReport& plans) {
         }
     }
     if (plans.candidates.empty()) return out;
-    out += "  the candidates at the last choice (relative second moment per pass, cost per pass in traced rays, their product):\n";
+    out += "  the candidates at the last choice (relative variance per pass, cost per pass in traced rays, their product):\n";
     for (const PlanEstimate& c : plans.candidates)
-        out += fmt::format("    {:<34}{:>12.4g}{:>12.4g}{:>12.4g}{}\n", c.plan, c.relativeMoment, c.cost,
-                           c.relativeMoment * c.cost, c.uncovered ? "  cannot sample some light" : "");
+        out += fmt::format("    {:<34}{:>12.4g}{:>12.4g}{:>12.4g}{}\n", c.plan, c.relativeVariance, c.cost,
+                           c.relativeVariance * c.cost, c.uncovered ? "  cannot sample some light" : "");
     return out;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "integrators/pass_plan.h"
+#include "integrators/plan_choice.h"
 #include "integrators/tile_passes.h"
 #include "scenes/builtin_scenes.h"
 #include "support.h"
@@ -43,11 +44,13 @@ TEST(Auto, AgreesWithBdptWhateverItChooses) {
 }
 
 // `passes` passes of the 32×32 cornell box whose four 16×16 tiles run `plans` (N_L of the first),
-// as auto's passes render a choice (tile_passes.h), with `seed`.
-Image renderTilePlans(const Scene& scene, const std::vector<PassPlan>& plans, int passes, uint64_t seed) {
+// as auto's passes render a choice (tile_passes.h), with `seed`; measuring, or weighed as they
+// come.
+Image renderTilePlans(const Scene& scene, const std::vector<PassPlan>& plans, int passes, uint64_t seed,
+                      bool measures = true) {
     IntegratorSettings is;
     is.walk = {6, 2};
-    const auto method = makePlannedPasses(unionOf(plans), is);
+    const auto method = makePlannedPasses(unionOf(plans), is, measures);
     RenderSettings settings;
     settings.seed = seed;
     settings.threads = 2;
@@ -87,6 +90,27 @@ TEST(Auto, TilesOfDifferentPlansEachAgreeWithBdpt) {
     test::BlockAgreement agreement;
     agreement.compare(runs, test::blockRuns(scene, b, 12, 1000, tiles), "tiles of four plans against bdpt");
     agreement.expectNoBias();
+}
+
+// A pass that does not measure weighs each contribution as it comes, from the walk's running
+// sums, where a pass that measures weighs it by its technique sums and the classes of the tile it
+// lands in. Where every tile runs one plan the two weights are the same balance heuristic: from
+// the same streams, the same image but for rounding, pixel by pixel, for plans with light
+// tracing (whose splats land anywhere), connections and merges. Fails if the unmeasured passes
+// weigh by another heuristic (the power heuristic fails both plans of more than one class,
+// checked).
+TEST(Auto, APassOfOnePlanWeighsAsItsMeasuringPass) {
+    const Scene scene(builtinScene("cornell"), 32, 32);
+    const double n = 32 * 32;
+    for (const PassPlan& plan : {PassPlan{n, false, true, false, true}, PassPlan{n / 4, true, true, true, true},
+                                 PassPlan{4 * n, false, true, false, false}}) {
+        const std::vector<PassPlan> plans(4, plan);
+        const Image measured = renderTilePlans(scene, plans, 2, 31), weighed = renderTilePlans(scene, plans, 2, 31, false);
+        double largest = 0;
+        for (size_t i = 0; i < measured.rgb.size(); ++i)
+            largest = std::max(largest, std::abs(double(measured.rgb[i]) - weighed.rgb[i]) / (std::abs(measured.rgb[i]) + 1e-3));
+        EXPECT_LT(largest, 1e-3) << className(plan);
+    }
 }
 
 // The same image and the same plans on 1, 2 and 3 threads: the moments the plans are chosen from

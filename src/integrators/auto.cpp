@@ -9,13 +9,13 @@
 // classes the tile it lands in runs (classWeight, mis.h): a splat by those of the tile it falls
 // in, whichever sample traced it. The first passes run every class with one light path per pixel
 // in every tile. The first block of passes after each choice (passes 0-3, 4-7, 8-11, 16-19, …)
-// measures, under the plans chosen, the second moment each candidate's estimator would have,
-// tile by tile (plan_moments.h), each pixel's share weighed by 1 / (I² + 0.01) with I its mean in a
+// measures, under the plans chosen, the variance each candidate's estimator would have, tile by
+// tile (plan_moments.h), each pixel's share weighed by 1 / (I² + 0.01) with I its mean in a
 // blurred image of the passes before, as relMSE weighs its error; the other blocks render without
-// the measuring's cost (and, where no tile traces light to the sensor, without the technique sums:
-// the running sums' balance weights are the same). After 4, 8, 16, 32, … passes of the render,
+// the measuring's cost (and, where every tile runs the same plan or none traces light to the
+// sensor, without the technique sums: the running sums' balance weights are the same). After 4, 8, 16, 32, … passes of the render,
 // the team chooses from the totals of every measuring pass so far (those before the first
-// weights turned relative tile by tile) the plans of least relative second moment × cost for the
+// weights turned relative tile by tile) the plans of least relative variance × cost for the
 // passes up to the next choice (plan_choice.h).
 //
 // Unbiased: a pass's plans depend on the passes before it alone, and every pass weighs the same
@@ -146,7 +146,7 @@ struct AutoState {
         for (const auto& [first, name] : stretches) out += fmt::format("{} {}\n", first, name);
         out += fmt::format("{}\n", fmt::join(tiles, " "));
         for (const PlanEstimate& e : estimates)
-            out += fmt::format("{:a} {:a} {:d} {}\n", e.relativeMoment, e.cost, e.uncovered, e.plan);
+            out += fmt::format("{:a} {:a} {:d} {}\n", e.relativeVariance, e.cost, e.uncovered, e.plan);
         out += moments;
         return out.append(reinterpret_cast<const char*>(weights.data()), weights.size() * sizeof(float));
     }
@@ -176,7 +176,7 @@ struct AutoState {
             PlanEstimate e;
             if (!std::getline(in, line)) throw damaged();
             char* rest = nullptr;
-            e.relativeMoment = std::strtod(line.c_str(), &rest);
+            e.relativeVariance = std::strtod(line.c_str(), &rest);
             e.cost = std::strtod(rest, &rest);
             int uncovered = 0, used = 0;
             if (std::sscanf(rest, " %d %n", &uncovered, &used) != 1) throw damaged();
@@ -313,10 +313,10 @@ private:
             for (size_t r = 1; r < all.size(); ++r) team.add(all[r]);
             const Image mean = (copy ? *copy : film).image(static_cast<int>(passes));
             const PlanEvidence evidence = team.evidence(mean, static_cast<int>(measured));
-            const std::vector<std::vector<double>> moments = relativeMoments(evidence);
-            const PlanChoice chosen = choosePlans(moments, evidence, candidates_, work_, everything_);
+            const std::vector<std::vector<double>> variances = relativeVariances(evidence);
+            const PlanChoice chosen = choosePlans(variances, evidence, candidates_, work_, everything_);
             for (size_t tile : chosen.tiles) choice += std::to_string(tile) + " ";
-            report(moments, evidence, chosen);
+            report(variances, evidence, chosen);
             const std::vector<float> w = PlanMoments::relativeWeights(mean);
             weights.assign(reinterpret_cast<const char*>(w.data()), w.size() * sizeof(float));
             scales = team.tileScales(mean);
@@ -336,18 +336,18 @@ private:
     }
     // What --stats and the EXR show of a choice: each candidate as if every tile ran it, then the
     // choice itself.
-    void report(const std::vector<std::vector<double>>& moments, const PlanEvidence& evidence, const PlanChoice& chosen) {
+    void report(const std::vector<std::vector<double>>& variances, const PlanEvidence& evidence, const PlanChoice& chosen) {
         estimates_.clear();
         for (size_t k = 0; k < candidates_.size(); ++k) {
-            double moment = 0;
-            for (double m : moments[k]) moment += m;
+            double variance = 0;
+            for (double v : variances[k]) variance += v;
             const bool uncovered = std::find(evidence.uncovered[k].begin(), evidence.uncovered[k].end(), true) !=
                                    evidence.uncovered[k].end();
-            estimates_.push_back({planName(candidates_[k], pixels_), moment, passCost(candidates_[k], work_, pixels_), uncovered});
+            estimates_.push_back({planName(candidates_[k], pixels_), variance, passCost(candidates_[k], work_, pixels_), uncovered});
         }
         std::vector<PassPlan> plans;
         for (size_t k : chosen.tiles) plans.push_back(candidates_[k]);
-        estimates_.push_back({"chosen: " + choiceName(plans, pixels_), chosen.relativeMoment, chosen.cost, false});
+        estimates_.push_back({"chosen: " + choiceName(plans, pixels_), chosen.relativeVariance, chosen.cost, false});
     }
     void choose(const std::vector<size_t>& tiles, uint64_t firstPass) {
         choice_ = tiles;
@@ -357,7 +357,8 @@ private:
         IntegratorSettings s = settings_;
         if (all.lightPaths == 0) ++s.walk.rrDepth;  // as pt's roulette starts one vertex after the others'
         chosen_ = makePlannedPasses(all, s);
-        unmeasured_ = all.lightTraces ? nullptr : makePlannedPasses(all, s, false);
+        const bool alike = std::all_of(tilePlans_.begin(), tilePlans_.end(), [&](const PassPlan& p) { return p == all; });
+        unmeasured_ = all.lightTraces && !alike ? nullptr : makePlannedPasses(all, s, false);
         std::vector<TechniqueSums> factors;
         for (const PassPlan& c : candidates_) factors.push_back(c.factors(chosen_->lightPaths(scene_)));
         moments_.setFactors(std::move(factors));
@@ -377,8 +378,9 @@ private:
     std::vector<size_t> choice_;                     // the candidate of each tile
     std::vector<PassPlan> tilePlans_;                // the choice, per tile
     std::unique_ptr<PixelSampleIntegrator> chosen_;  // the passes of its union
-    // The same passes where they do not measure, when they splat nowhere: each contribution weighed
-    // as it comes, without technique sums.
+    // The same passes where they do not measure, when a splat is weighed alike in every tile (every
+    // tile runs the same plan, or none traces light to the sensor): each contribution weighed as it
+    // comes, without technique sums.
     std::unique_ptr<PixelSampleIntegrator> unmeasured_;
     uint64_t blocks_ = 0;                            // the team's next block: the blocks done before it
     uint64_t resumedBlocks_ = 0, resumedMeasured_ = 0;

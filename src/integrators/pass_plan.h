@@ -52,9 +52,10 @@ StrategySet measuredStrategies();
 // A method that renders every pass with `plan` (an auto pass): its connections and merges carry
 // their technique sums over vcm's strategies, and each is weighed by the classes the plan runs
 // where it lands (classWeight, mis.h; tile_passes.h's plans per tile). `settings` give the walks
-// and the radius schedule; the plan, N_L. Without `measures`, a pass that splats nowhere: each
-// contribution carries its weight, the balance heuristic over its tile's strategies, from the
-// walk's running sums (the same weight, without the technique sums' cost).
+// and the radius schedule; the plan, N_L. Without `measures`, a pass of one plan in every tile,
+// or that splats nowhere: each contribution carries its weight, the balance heuristic over the
+// plan's strategies, from the walk's running sums (the same weight, without the technique sums'
+// cost).
 std::unique_ptr<PixelSampleIntegrator> makePlannedPasses(const PassPlan& plan, const IntegratorSettings& settings,
                                                          bool measures = true);
 

@@ -84,21 +84,21 @@ double passCost(const PassPlan& plan, const PassWork& work, double pixels) {
     return sharedCost(plan.lightPaths, plan.lightTraces, plan.merges, work) + cameraCost(plan, work, pixels);
 }
 
-std::vector<std::vector<double>> relativeMoments(const PlanEvidence& e) {
+std::vector<std::vector<double>> relativeVariances(const PlanEvidence& e) {
     double pixels = 0;
     for (int n : e.tilePixels) pixels += n;
     std::vector<std::vector<double>> out;
-    for (size_t k = 0; k < e.moments.size(); ++k) {
+    for (size_t k = 0; k < e.variances.size(); ++k) {
         std::vector<double> tiles;
-        for (size_t tile = 0; tile < e.moments[k].size(); ++tile) {
-            tiles.push_back(e.moments[k][tile] / pixels);
+        for (size_t tile = 0; tile < e.variances[k].size(); ++tile) {
+            tiles.push_back(e.variances[k][tile] / pixels);
         }
         out.push_back(std::move(tiles));
     }
     return out;
 }
 
-PlanChoice choosePlans(const std::vector<std::vector<double>>& rm, const PlanEvidence& e,
+PlanChoice choosePlans(const std::vector<std::vector<double>>& rv, const PlanEvidence& e,
                        const std::vector<PassPlan>& candidates, const PassWork& work, size_t fallback) {
     const size_t tiles = e.tilePixels.size();
     auto tileCost = [&](size_t k, size_t tile) { return cameraCost(candidates[k], work, e.tilePixels[tile]); };
@@ -121,33 +121,33 @@ PlanChoice choosePlans(const std::vector<std::vector<double>>& rm, const PlanEvi
                     if (!e.uncovered[k][tile] && (pick[tile] == candidates.size() || classes(candidates[k]) > classes(candidates[pick[tile]])))
                         pick[tile] = k;
             if (std::find(pick.begin(), pick.end(), candidates.size()) != pick.end()) continue;  // a tile it cannot cover
-            double moment = 0, cost = 0;
+            double variance = 0, cost = 0;
             int merging = 0;
             for (size_t tile = 0; tile < tiles; ++tile) {
-                moment += rm[pick[tile]][tile];
+                variance += rv[pick[tile]][tile];
                 cost += tileCost(pick[tile], tile);
                 merging += candidates[pick[tile]].merges;
             }
-            auto efficiency = [&](double m, double c, int merges) {
-                return m * (c + sharedCost(lightPaths, traces, merges > 0, work));
+            auto efficiency = [&](double v, double c, int merges) {
+                return v * (c + sharedCost(lightPaths, traces, merges > 0, work));
             };
             for (int sweep = 0; sweep < kSweeps; ++sweep) {
                 bool changed = false;
                 for (size_t tile = 0; tile < tiles; ++tile) {
                     const size_t now = pick[tile];
                     size_t then = now;
-                    double least = efficiency(moment, cost, merging);
+                    double least = efficiency(variance, cost, merging);
                     for (size_t k : options) {
                         if (e.uncovered[k][tile]) continue;
-                        const double m = moment - rm[now][tile] + rm[k][tile], c = cost - tileCost(now, tile) + tileCost(k, tile);
-                        const double f = efficiency(m, c, merging - candidates[now].merges + candidates[k].merges);
+                        const double v = variance - rv[now][tile] + rv[k][tile], c = cost - tileCost(now, tile) + tileCost(k, tile);
+                        const double f = efficiency(v, c, merging - candidates[now].merges + candidates[k].merges);
                         if (f < least) {
                             least = f;
                             then = k;
                         }
                     }
                     if (then == now) continue;
-                    moment += rm[then][tile] - rm[now][tile];
+                    variance += rv[then][tile] - rv[now][tile];
                     cost += tileCost(then, tile) - tileCost(now, tile);
                     merging += candidates[then].merges - candidates[now].merges;
                     pick[tile] = then;
@@ -155,10 +155,10 @@ PlanChoice choosePlans(const std::vector<std::vector<double>>& rm, const PlanEvi
                 }
                 if (!changed) break;
             }
-            const double f = efficiency(moment, cost, merging);
+            const double f = efficiency(variance, cost, merging);
             if (f < bestEfficiency) {
                 bestEfficiency = f;
-                best = {pick, moment, cost + sharedCost(lightPaths, traces, merging > 0, work)};
+                best = {pick, variance, cost + sharedCost(lightPaths, traces, merging > 0, work)};
             }
         }
     // Nothing seen yet: every choice is as good, and the plan stays.

@@ -2,16 +2,18 @@
 // costs, and the choice, tile by tile, from the moments the passes before measured.
 //
 // A candidate is a number of light paths N_L and the classes a tile runs with them. Its
-// efficiency is its relative error times its cost (Grittmann et al. 2022), the error taken as a
-// second moment of a pixel's estimate per pass, as the paper takes it. The estimate is the sum of
-// the pixel's camera sample's contributions X_i and of the splats that land in it, each weighed by
+// efficiency is its relative error times its cost (Grittmann et al. 2022), the error taken as the
+// variance of a pixel's estimate per pass, as relMSE takes it. The estimate is the sum of the
+// pixel's camera sample's contributions X_i and of the splats that land in it, each weighed by
 // the balance heuristic over the candidate's classes. The measuring passes give (plan_moments.h)
 // the diagonal of its square, ∫ f² / Σ n'_i p_i, and the cross terms of the camera sample's
 // contributions, whose strategies share the camera subpath's throughput: without them the merges
-// with many light vertices, and more light paths, look far better than they render. The splats,
-// from light paths independent of the camera sample and of one another, add only products of
-// means, left out as a variance leaves out the squared mean. (With them in, or with the camera
-// sample's squared mean taken out, the choices measured worse on docs/failures.md's rows.)
+// with many light vertices, and more light paths, look far better than they render. The camera
+// sample's squared mean is taken out; the splats, from light paths independent of the camera
+// sample and of one another, add only products of means, which the variance leaves out. (The
+// second moment itself, the paper's measure, counts each pixel's squared mean in every
+// candidate: on contact it made path tracing look 2.5× worse against plans that trace light,
+// whose light tracing carries part of the mean out of the square, than their variances are.)
 // Relative as the benchmark's relMSE is (evaluation/metrics.h): each pixel's share over its
 // squared mean plus 0.01 (plan_moments.h), so that a bright pixel does not outvote a dark one,
 // nor a black one count infinitely; averaged over the image. Its cost is a pass's work in units of a traced ray, from counts a survey
@@ -22,7 +24,7 @@
 //
 // The choice: for each N_L, and with light tracing allowed or not, every tile starts with every
 // class it may run, then takes in turn, sweep after sweep, the classes that least make the image's
-// relative moment times its cost, until no tile changes; the best of those is the plan. A
+// relative variance times its cost, until no tile changes; the best of those is the plan. A
 // tile never runs classes that cannot sample a path some pass found light on in it: it would lose
 // that light.
 #pragma once
@@ -59,29 +61,29 @@ struct PassWork {
 double passCost(const PassPlan& plan, const PassWork& work, double pixels);
 
 // What the choice reads, per tile of the image (in the order the moments were kept): its pixels,
-// and per candidate the tile's relative moment per pass (its pixels' shares
-// weighed as plan_moments.h says) and whether a pass found light in the tile on a path the
-// candidate cannot sample.
+// and per candidate the tile's relative variance per pass (its pixels' shares weighed as
+// plan_moments.h says) and whether a pass found light in the tile on a path the candidate cannot
+// sample.
 struct PlanEvidence {
-    std::vector<int> tilePixels;               // pixels in the tile
-    std::vector<std::vector<double>> moments;  // [candidate][tile]: Σ_p M_p / (I_p² + 0.01), per pass
+    std::vector<int> tilePixels;                 // pixels in the tile
+    std::vector<std::vector<double>> variances;  // [candidate][tile]: Σ_p V_p / (I_p² + 0.01), per pass
     std::vector<std::vector<bool>> uncovered;  // [candidate][tile]
 };
 
-// Each candidate's relative second moment per pass in each tile, as its share of the image's
+// Each candidate's relative variance per pass in each tile, as its share of the image's
 // average ([candidate][tile], see the top of this file).
-std::vector<std::vector<double>> relativeMoments(const PlanEvidence& evidence);
+std::vector<std::vector<double>> relativeVariances(const PlanEvidence& evidence);
 
-// A choice: the candidate of each tile (all of one N_L), and the image's relative moment and
+// A choice: the candidate of each tile (all of one N_L), and the image's relative variance and
 // cost per pass under it.
 struct PlanChoice {
     std::vector<size_t> tiles;
-    double relativeMoment = 0, cost = 0;
+    double relativeVariance = 0, cost = 0;
 };
 
-// The plans of least relative moment × cost (see the top of this file); `fallback` in every tile
+// The plans of least relative variance × cost (see the top of this file); `fallback` in every tile
 // when no choice samples every path seen.
-PlanChoice choosePlans(const std::vector<std::vector<double>>& relativeMoment, const PlanEvidence& evidence,
+PlanChoice choosePlans(const std::vector<std::vector<double>>& relativeVariance, const PlanEvidence& evidence,
                        const std::vector<PassPlan>& candidates, const PassWork& work, size_t fallback);
 
 }  // namespace tripath

@@ -1,6 +1,7 @@
 #include "integrators/plan_moments.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace tripath {
@@ -40,12 +41,12 @@ void PlanMoments::add(Sample* sample, int pixel, Spectrum weighted, Spectrum unw
     for (size_t k = 0; k < candidates_; ++k) {
         const float d = techniqueDenominator(factors_[k], sums);
         if (!(d > 0)) {
-            block_[sumIndex(tile, k, 1)] += 1;
+            block_[sumIndex(tile, k, kUncovered)] += 1;
             continue;
         }
         if (!sample) {
             scratch_[k] = weightOf(pixel) * fu / d;
-            block_[sumIndex(tile, k, 0)] += scratch_[k];
+            block_[sumIndex(tile, k, kMoment)] += scratch_[k];
             continue;
         }
         sample->moment[k] += fu / d;
@@ -77,22 +78,40 @@ void PlanMoments::endSample(Sample& sample) {
         for (size_t k = 0; k < sample.sum.size(); ++k) {
             sample.moment[k] =
                 weightOf(sample.pixel) * (sample.moment[k] + sample.sum[k] * sample.sum[k] - sample.squares[k]);
-            block_[sumIndex(tile, k, 0)] += sample.moment[k];
+            block_[sumIndex(tile, k, kMoment)] += sample.moment[k];
         }
         offerOutlier(tile, sample.moment.data());
+        // The neighbour: the pixel to the left in the tile; the first column's is its right one,
+        // whose product is added when that one ends. A neighbour without contributions never
+        // ended, and its product is 0.
+        const int column = (sample.pixel % width_) % tileSize_;
+        if (column > 0 && sample.previous == sample.pixel - 1) {
+            addSquaredMean(sample.pixel, sample.previous, sample.sum, sample.previousSum);
+            if (column == 1) addSquaredMean(sample.previous, sample.pixel, sample.sum, sample.previousSum);
+        }
+        sample.previous = sample.pixel;
+        sample.previousSum = sample.sum;
     }
     sample.pixel = -1;
+}
+
+void PlanMoments::addSquaredMean(int pixel, int neighbourPixel, const std::vector<double>& sum,
+                                 const std::vector<double>& neighbour) {
+    const int tile = tileOf(pixel);
+    const double weight = std::sqrt(weightOf(pixel) * weightOf(neighbourPixel));
+    for (size_t k = 0; k < sum.size(); ++k) block_[sumIndex(tile, k, kSquaredMean)] += weight * sum[k] * neighbour[k];
 }
 
 void PlanMoments::setWeights(std::vector<float> weights, std::span<const double> tileScales) {
     if (weights_.empty() && !tileScales.empty())
         for (int tile = 0; tile < tiles_; ++tile) {
             const double scale = tileScales[size_t(tile)];
-            for (size_t k = 0; k < candidates_; ++k) {
-                const double moment = totals_.value(sumIndex(tile, k, 0));
-                totals_.clear(sumIndex(tile, k, 0));
-                totals_.add(sumIndex(tile, k, 0), moment * scale);
-            }
+            for (size_t k = 0; k < candidates_; ++k)
+                for (Sum which : {kMoment, kSquaredMean}) {
+                    const double value = totals_.value(sumIndex(tile, k, which));
+                    totals_.clear(sumIndex(tile, k, which));
+                    totals_.add(sumIndex(tile, k, which), value * scale);
+                }
             for (size_t i = 0; i <= candidates_; ++i) outliers_[size_t(tile) * (candidates_ + 1) + i] *= scale;
         }
     weights_ = std::move(weights);
@@ -166,14 +185,15 @@ PlanEvidence PlanMoments::evidence(const Image& mean, int measured) const {
     for (int p = 0; p < width_ * height_; ++p) ++e.tilePixels[size_t(tileOf(p))];
     // Without weights yet, every pixel of a tile weighs as the tile's mean would.
     const std::vector<double> scale = weights_.empty() ? tileScales(mean) : std::vector<double>(size_t(tiles_), 1.0);
-    e.moments.assign(candidates_, std::vector<double>(size_t(tiles_), 0.0));
+    e.variances.assign(candidates_, std::vector<double>(size_t(tiles_), 0.0));
     e.uncovered.assign(candidates_, std::vector<bool>(size_t(tiles_), false));
     for (int tile = 0; tile < tiles_; ++tile)
         for (size_t k = 0; k < candidates_; ++k) {
-            const double moment =
-                totals_.value(sumIndex(tile, k, 0)) - outliers_[size_t(tile) * (candidates_ + 1) + 1 + k];
-            e.moments[k][size_t(tile)] = scale[size_t(tile)] * std::max(0.0, moment) / measured;
-            e.uncovered[k][size_t(tile)] = totals_.value(sumIndex(tile, k, 1)) > 0;
+            const double variance = totals_.value(sumIndex(tile, k, kMoment)) -
+                                    outliers_[size_t(tile) * (candidates_ + 1) + 1 + k] -
+                                    totals_.value(sumIndex(tile, k, kSquaredMean));
+            e.variances[k][size_t(tile)] = scale[size_t(tile)] * std::max(0.0, variance) / measured;
+            e.uncovered[k][size_t(tile)] = totals_.value(sumIndex(tile, k, kUncovered)) > 0;
         }
     return e;
 }

@@ -11,6 +11,17 @@
 // pixel's mean in a blurred image of the passes before (setWeights), as relMSE weighs a pixel's
 // error; before the first weights, every pixel of a tile weighs as the tile's mean would.
 //
+// A variance, as relMSE is one: each camera sample's square less its squared mean. The mean's
+// square is the product of the sample's estimate with its neighbour's in the same pass (the
+// pixel to its left in the tile, the first column's to its right), an independent estimate of
+// nearly the same mean: no image of means is needed, and the sample's noise cancels in the
+// difference as it would not against a squared mean of the passes before. The product is
+// weighed by the geometric mean of the two pixels' weights: where their means differ (an edge) it
+// falls short of the square, never past it, and the variance errs upward, alike for every
+// candidate whose camera strategies carry the pixel's mean. The splats need no such term:
+// they come from light paths independent of the camera sample and of one another, so their
+// squares are their variance but for a part in N_L.
+//
 // Beside each tile's totals, its outlier: the estimate (a camera sample, a splat) of the largest
 // square under the plan the tile ran, with its square for every candidate; the choice reads each
 // moment without it (PlanEvidence). A moment of a few thousand estimates can rest on one of them,
@@ -69,13 +80,16 @@ public:
     struct Sample {
         int pixel = -1;
         std::vector<double> moment, sum, squares;  // moment: the diagonal, Σ_i F · U / D'
+        int previous = -1;                         // the last pixel that ended, and its sums
+        std::vector<double> previousSum;
     };
     // A contribution of `sample` (of class `sampled`) to its pixel: its moment and its count of
     // paths it cannot sample as a splat's, and its value to the sample's sums.
     void add(Sample& sample, int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums,
              TechniqueClass sampled);
     // Adds a finished sample's square, its diagonal and its cross terms (Σ_i X_k,i)² − Σ_i X_k,i²,
-    // to each candidate's moment in its pixel's tile, and clears it.
+    // to each candidate's moment in its pixel's tile, and its product with its neighbour's estimate
+    // (ended before it in the tile's row order) to the squared means; and clears it.
     void endSample(Sample& sample);
     // Adds the block's sums to the exact totals and clears them.
     void endBlock();
@@ -86,12 +100,18 @@ public:
     void add(std::string_view state);
 
     // What the choice reads, `mean` the image of the passes so far (a team's, all of them),
-    // `measured` of them measuring.
+    // `measured` of them measuring: per tile and candidate, the moment less the squared means.
     PlanEvidence evidence(const Image& mean, int measured) const;
 
 private:
-    // Per tile and candidate: its moment, its count of paths it cannot sample.
-    static constexpr size_t kSums = 2;
+    // Per tile and candidate: its moment, its count of paths it cannot sample, and the camera
+    // samples' products with their neighbours'.
+    static constexpr size_t kSums = 3;
+    enum Sum : size_t { kMoment, kUncovered, kSquaredMean };
+    // Adds the products of `sum` and `neighbour`'s, candidate by candidate, to the squared means of
+    // `pixel`'s tile, at the geometric mean of the two pixels' weights.
+    void addSquaredMean(int pixel, int neighbourPixel, const std::vector<double>& sum,
+                        const std::vector<double>& neighbour);
     // A contribution's moment for each candidate (to `sample`'s if given, with its value).
     void add(Sample* sample, int pixel, Spectrum weighted, Spectrum unweighted, const TechniqueSums& sums,
              TechniqueClass sampled);

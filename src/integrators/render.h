@@ -96,11 +96,11 @@ struct MetropolisReport {
 
 // What auto chose (integrators/auto.cpp): the plan of each stretch of passes, from the offset of
 // its first pass in the render, and each candidate's estimates at the last choice, as if every
-// tile ran it (plan_choice.h): its relative second moment per pass, its cost per pass in traced
+// tile ran it (plan_choice.h): its relative variance per pass, its cost per pass in traced
 // rays, and whether it cannot sample a path some pass found light on; the choice itself last.
 struct PlanEstimate {
     std::string plan;
-    double relativeMoment = 0, cost = 0;
+    double relativeVariance = 0, cost = 0;
     bool uncovered = false;
 };
 struct PlanReport {
