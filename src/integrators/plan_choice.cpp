@@ -113,7 +113,7 @@ PlanChoice choosePlans(const std::vector<std::vector<double>>& rv, const PlanEvi
             if (traces && lightPaths == 0) continue;
             std::vector<size_t> options;
             for (size_t k = 0; k < candidates.size(); ++k)
-                if (candidates[k].lightPaths == lightPaths && (traces || !candidates[k].lightTraces)) options.push_back(k);
+                if (candidates[k].lightPaths == lightPaths && traces == candidates[k].lightTraces) options.push_back(k);
             // Each tile starts with the most classes it may run.
             std::vector<size_t> pick(tiles, candidates.size());
             for (size_t tile = 0; tile < tiles; ++tile)
