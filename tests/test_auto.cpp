@@ -105,10 +105,13 @@ TEST(Auto, APassOfOnePlanWeighsAsItsMeasuringPass) {
     for (const PassPlan& plan : {PassPlan{n, false, true, false, true}, PassPlan{n / 4, true, true, true, true},
                                  PassPlan{4 * n, false, true, false, false}}) {
         const std::vector<PassPlan> plans(4, plan);
-        const Image measured = renderTilePlans(scene, plans, 2, 31), weighed = renderTilePlans(scene, plans, 2, 31, false);
+        const Image measured = renderTilePlans(scene, plans, 2, 31);
+        const Image weighed = renderTilePlans(scene, plans, 2, 31, false);
         double largest = 0;
-        for (size_t i = 0; i < measured.rgb.size(); ++i)
-            largest = std::max(largest, std::abs(double(measured.rgb[i]) - weighed.rgb[i]) / (std::abs(measured.rgb[i]) + 1e-3));
+        for (size_t i = 0; i < measured.rgb.size(); ++i) {
+            const double difference = std::abs(double(measured.rgb[i]) - weighed.rgb[i]);
+            largest = std::max(largest, difference / (std::abs(measured.rgb[i]) + 1e-3));
+        }
         EXPECT_LT(largest, 1e-3) << className(plan);
     }
 }

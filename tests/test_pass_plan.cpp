@@ -158,7 +158,8 @@ struct RowMoments {
 // For the candidate that is the measuring plan itself, a camera sample adds to the moment the
 // square of its estimate, Σ_i X_i squared: its contributions' own moments and their cross terms;
 // and the tile's moment leaves out its largest such square. Two contributions to one pixel (a
-// next-event estimate, a connection), one to pixel 2, then a pass later one of 10 to the first, with sums as a path's technique sums are (the own class's term counts 1). Fails if the
+// next-event estimate, a connection), one to pixel 2, then a pass later one of 10 to the first,
+// with sums as a path's technique sums are (the own class's term counts 1). Fails if the
 // cross terms are left out (the moment is then 13.0 instead of 21.6, checked), if a sample's sums
 // run on into the other pixel's (51.2), or if the largest square is kept (121.6) or the smallest
 // left out instead (120.6).

@@ -13,10 +13,10 @@
 // tile (plan_moments.h), each pixel's share weighed by 1 / (I² + 0.01) with I its mean in a
 // blurred image of the passes before, as relMSE weighs its error; the other blocks render without
 // the measuring's cost (and, where every tile runs the same plan or none traces light to the
-// sensor, without the technique sums: the running sums' balance weights are the same). After 4, 8, 16, 32, … passes of the render,
-// the team chooses from the totals of every measuring pass so far (those before the first
-// weights turned relative tile by tile) the plans of least relative variance × cost for the
-// passes up to the next choice (plan_choice.h).
+// sensor, without the technique sums: the running sums' balance weights are the same). After 4,
+// 8, 16, 32, … passes of the render, the team chooses from the totals of every measuring pass so
+// far (those before the first weights turned relative tile by tile) the plans of least relative
+// variance × cost for the passes up to the next choice (plan_choice.h).
 //
 // Unbiased: a pass's plans depend on the passes before it alone, and every pass weighs the same
 // in the image (the film's average), a weight fixed before the pass; within a pass the weights of

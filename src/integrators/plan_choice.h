@@ -16,11 +16,12 @@
 // whose light tracing carries part of the mean out of the square, than their variances are.)
 // Relative as the benchmark's relMSE is (evaluation/metrics.h): each pixel's share over its
 // squared mean plus 0.01 (plan_moments.h), so that a bright pixel does not outvote a dark one,
-// nor a black one count infinitely; averaged over the image. Its cost is a pass's work in units of a traced ray, from counts a survey
-// of the scene gives before the first pass (traced from fixed streams, so that the choice is the
-// same on every run, thread count and rank count): the light paths' vertices, their joins to the
-// sensor and their places in the merge grid, shared by the image; and each tile's camera
-// vertices, next-event estimates, connections, merge searches and merges.
+// nor a black one count infinitely; averaged over the image. Its cost is a pass's work in units
+// of a traced ray, from counts a survey of the scene gives before the first pass (traced from
+// fixed streams, so that the choice is the same on every run, thread count and rank count): the
+// light paths' vertices, their joins to the sensor and their places in the merge grid, shared by
+// the image; and each tile's camera vertices, next-event estimates, connections, merge searches
+// and merges.
 //
 // The choice: for each N_L, and with light tracing in every tile or in none, every tile starts
 // with every class it may run, then takes in turn, sweep after sweep, the classes that least make
@@ -28,8 +29,8 @@
 // plan. Light tracing is all tiles' or none's: once the light paths join the sensor, a tile's
 // splats cost it nothing, and a tile that dropped them on a variance measured without the rare
 // path only they sample well (a caustic seen where the measuring passes found none) showed it as
-// a firefly (caustic, 128²: one tile of 64 held 60-74 % of two runs' error). A tile never runs classes
-// that cannot sample a path some pass found light on in it: it would lose that light.
+// a firefly (caustic, 128²: one tile of 64 held 60-74 % of two runs' error). A tile never runs
+// classes that cannot sample a path some pass found light on in it: it would lose that light.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -70,7 +71,7 @@ double passCost(const PassPlan& plan, const PassWork& work, double pixels);
 struct PlanEvidence {
     std::vector<int> tilePixels;                 // pixels in the tile
     std::vector<std::vector<double>> variances;  // [candidate][tile]: Σ_p V_p / (I_p² + 0.01), per pass
-    std::vector<std::vector<bool>> uncovered;  // [candidate][tile]
+    std::vector<std::vector<bool>> uncovered;    // [candidate][tile]
 };
 
 // Each candidate's relative variance per pass in each tile, as its share of the image's
