@@ -265,12 +265,6 @@ TechniqueSums mergeTechniqueSums(std::span<const Vertex> light, int s, std::span
     return sums;
 }
 
-float techniqueDenominator(const TechniqueSums& factors, const TechniqueSums& sums) {
-    float d = 0;
-    for (int c = 0; c < kTechniqueClasses; ++c) d += factors[c] * sums[c];
-    return d;
-}
-
 MisWeight classWeight(const TechniqueSums& factors, TechniqueClass sampled, const TechniqueSums& sums) {
     const float own = factors[static_cast<int>(sampled)];
     if (own == 0) return {0.0f, false};

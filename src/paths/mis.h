@@ -238,8 +238,13 @@ TechniqueSums mergeTechniqueSums(std::span<const Vertex> light, int s, std::span
 
 // Σ_class factors[class] · sums[class]: the balance heuristic's denominator of a path, over the
 // pdf of the strategy that sampled it, for a render that runs factors[class] times as many samples
-// of each class as the technique sums were measured with (0: a class it does not run).
-float techniqueDenominator(const TechniqueSums& factors, const TechniqueSums& sums);
+// of each class as the technique sums were measured with (0: a class it does not run). Inline:
+// auto's measuring passes take it for every candidate of every contribution.
+inline float techniqueDenominator(const TechniqueSums& factors, const TechniqueSums& sums) {
+    float d = 0;
+    for (int c = 0; c < kTechniqueClasses; ++c) d += factors[c] * sums[c];
+    return d;
+}
 // The balance heuristic's weight of a path sampled by a strategy of class `sampled`, in a render
 // with those factors: factors[sampled] / techniqueDenominator; 0 where the render does not run the
 // class, and 0 and guarded where the sums are not finite.
