@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace tripath {
 
@@ -90,7 +91,7 @@ void PlanMoments::endSample(Sample& sample) {
             if (column == 1) addSquaredMean(sample.previous, sample.pixel, sample.sum, sample.previousSum);
         }
         sample.previous = sample.pixel;
-        sample.previousSum = sample.sum;
+        std::swap(sample.previousSum, sample.sum);  // the next sample starts its sums afresh
     }
     sample.pixel = -1;
 }
