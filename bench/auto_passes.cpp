@@ -24,6 +24,7 @@
 #include "integrators/plan_choice.h"
 #include "integrators/plan_moments.h"
 #include "integrators/tile_passes.h"
+#include "pass_timing.h"
 
 namespace tripath::bench {
 
@@ -75,13 +76,10 @@ const bool registered = [] {
     for (const char* scene : {"cornell", "caustic"})
         for (const auto& [name, variant] : {std::pair{"vcm", Variant::Vcm}, {"measuring", Variant::Measuring},
                                             {"planned", Variant::Planned}, {"weighed", Variant::Weighed}})
-            benchmark::RegisterBenchmark(("auto_pass/" + std::string(name) + "/" + scene).c_str(),
-                                         [scene = std::string(scene), variant = variant](benchmark::State& st) {
-                                             runPasses(st, scene, variant);
-                                         })
-                ->Unit(benchmark::kMillisecond)
-                ->UseRealTime()
-                ->MeasureProcessCPUTime();
+            registerPasses("auto_pass/" + std::string(name) + "/" + scene,
+                           [scene = std::string(scene), variant = variant](benchmark::State& st) {
+                               runPasses(st, scene, variant);
+                           });
     return true;
 }();
 

@@ -48,13 +48,10 @@ std::vector<std::pair<std::string, std::string>> passScenes() {
 const bool registered = [] {
     for (const auto& [label, key] : passScenes())
         for (const char* integrator : {"pt", "bdpt", "vcm", "mlt"})
-            benchmark::RegisterBenchmark(("integrator_pass/" + std::string(integrator) + "/" + label).c_str(),
-                                         [integrator = std::string(integrator), key = key](benchmark::State& st) {
-                                             runPass(st, integrator, key);
-                                         })
-                ->Unit(benchmark::kMillisecond)
-                ->UseRealTime()
-                ->MeasureProcessCPUTime();
+            registerPasses("integrator_pass/" + std::string(integrator) + "/" + label,
+                           [integrator = std::string(integrator), key = key](benchmark::State& st) {
+                               runPass(st, integrator, key);
+                           });
     return true;
 }();
 

@@ -1,7 +1,10 @@
-// Whole passes of a method timed by Google Benchmark: what integrator_pass/ (integrator_passes.cpp)
-// and merging/pass/ (merging.cpp) share.
+// Whole passes of a method timed by Google Benchmark: what integrator_pass/ (integrator_passes.cpp),
+// merging/pass/ (merging.cpp) and auto_pass/ (auto_passes.cpp) share.
 #pragma once
 #include <benchmark/benchmark.h>
+
+#include <string>
+#include <utility>
 
 #include "bench_scenes.h"
 #include "integrators/render.h"
@@ -23,6 +26,16 @@ inline void timePasses(benchmark::State& state, const Scene& scene, const Integr
     }
     using C = benchmark::Counter;
     state.counters["samples_per_s"] = C(double(samples), C::kIsRate);
+}
+
+// Registers `run` (a function of the benchmark's state) as `name`: whole passes, in milliseconds
+// of the wall clock, with the process's CPU time beside it.
+template <class Run>
+void registerPasses(const std::string& name, Run run) {
+    benchmark::RegisterBenchmark(name.c_str(), std::move(run))
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->MeasureProcessCPUTime();
 }
 
 }  // namespace tripath::bench
