@@ -98,7 +98,8 @@ TEST(Auto, TilesOfDifferentPlansEachAgreeWithBdpt) {
 // the same streams, the same image but for rounding, pixel by pixel, for plans with light
 // tracing (whose splats land anywhere), connections and merges. Fails if the unmeasured passes
 // weigh by another heuristic (the power heuristic fails both plans of more than one class,
-// checked).
+// checked), or if a plan's strategies keep the camera walk's when it drops them (the light tracer's
+// plan fails, checked).
 TEST(Auto, APassOfOnePlanWeighsAsItsMeasuringPass) {
     const Scene scene(builtinScene("cornell"), 32, 32);
     const double n = 32 * 32;
