@@ -49,7 +49,7 @@ void validate(const RenderCommand& c) {
 }
 
 void write(const RenderCommand& c, const RenderSettings& rs, const Metadata& meta, const RenderResult& r) {
-    writeExr(c.out, r.image(), meta);
+    writeExr(c.out, r.image(), meta, classChannels(r.plans, r.film.width(), r.film.height()));
     if (!c.png.empty()) writePreviewPng(c.png, r.image(), c.exposure);
     for (int k = 1; k <= rs.layers.depthImages; ++k) writeExr(sibling(c.out, fmt::format("-k{}", k)), r.film.depthImage(k, r.passes), meta);
     for (const Strategy& st : r.film.strategies()) {

@@ -17,11 +17,13 @@ std::string planReport(const PlanReport& plans) {
     if (!plans.tiles.empty() && plans.tilesAcross > 0) {
         // Each tile's classes by their initials: p the camera walk's, c connections, t light
         // tracing, m merges.
-        out += "  the classes of each 16x16 tile in the last stretch (p: pt's, c: connect, t: trace, m: merge):\n";
+        out += fmt::format("  the classes of each {0}x{0} tile in the last stretch (p: pt's, c: connect, t: trace, m: merge):\n",
+                           plans.tileSize);
         for (size_t t = 0; t < plans.tiles.size(); ++t) {
+            const std::string name = classesName(plans.tiles[t]);
             std::string initials;
-            for (size_t i = 0; i < plans.tiles[t].size(); ++i)
-                if (i == 0 || plans.tiles[t][i - 1] == '+') initials += plans.tiles[t][i];
+            for (size_t i = 0; i < name.size(); ++i)
+                if (i == 0 || name[i - 1] == '+') initials += name[i];
             out += fmt::format("{}{:<5}", t % size_t(plans.tilesAcross) == 0 ? "    " : "", initials);
             if ((t + 1) % size_t(plans.tilesAcross) == 0 || t + 1 == plans.tiles.size()) out += "\n";
         }

@@ -2,6 +2,8 @@
 // for any thread count, and each pass's plan chosen from the passes before it alone.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <map>
 #include <string>
 
 #include "integrators/pass_plan.h"
@@ -113,7 +115,7 @@ TEST(Auto, APassOfOnePlanWeighsAsItsMeasuringPass) {
             const double difference = std::abs(double(measured.rgb[i]) - weighed.rgb[i]);
             largest = std::max(largest, difference / (std::abs(measured.rgb[i]) + 1e-3));
         }
-        EXPECT_LT(largest, 1e-3) << className(plan);
+        EXPECT_LT(largest, 1e-3) << classesName(plan.classes());
     }
 }
 
@@ -132,6 +134,34 @@ TEST(Auto, TheSameRenderWhateverTheThreadCount) {
         EXPECT_EQ(one.image().rgb, other.image().rgb) << threads << " threads";
         EXPECT_EQ(plansOf(one), plansOf(other)) << threads << " threads";
     }
+}
+
+// The channels of auto's classes (plan_report.h) give each pixel its tile's classes: 16-pixel tiles,
+// three to a row, on a 40×20 image whose last column and row of tiles are cut short. Fails with the
+// tiles read column by column, a row counted at the image's width, or a class's bit mixed up.
+TEST(Auto, ItsClassChannelsGiveEachPixelItsTilesClasses) {
+    PlanReport plans;
+    plans.tileSize = 16;
+    plans.tilesAcross = 3;
+    plans.tiles = {kCameraWalkClass, kTraceClass, kCameraWalkClass | kMergeClass,
+                   kConnectClass | kTraceClass, kCameraWalkClass | kConnectClass | kTraceClass | kMergeClass, kMergeClass};
+    const std::vector<ExrChannel> channels = classChannels(plans, 40, 20);
+    ASSERT_EQ(channels.size(), 4u);
+    std::map<std::string, const ExrChannel*> byName;
+    for (const ExrChannel& c : channels) byName[c.name] = &c;
+    // (x, y) and the classes on there: pt, connect, trace, merge.
+    const std::vector<std::pair<std::pair<int, int>, std::array<float, 4>>> expected{
+        {{0, 0}, {1, 0, 0, 0}},   {{15, 15}, {1, 0, 0, 0}}, {{16, 0}, {0, 0, 1, 0}},  {{39, 0}, {1, 0, 0, 1}},
+        {{32, 15}, {1, 0, 0, 1}}, {{0, 16}, {0, 1, 1, 0}},  {{15, 19}, {0, 1, 1, 0}}, {{16, 16}, {1, 1, 1, 1}},
+        {{31, 19}, {1, 1, 1, 1}}, {{39, 19}, {0, 0, 0, 1}}};
+    const std::array<const char*, 4> names{"auto.pt", "auto.connect", "auto.trace", "auto.merge"};
+    for (const auto& [at, classes] : expected)
+        for (size_t k = 0; k < names.size(); ++k) {
+            ASSERT_TRUE(byName.count(names[k])) << names[k];
+            EXPECT_EQ(byName[names[k]]->values[size_t(at.second * 40 + at.first)], classes[k])
+                << names[k] << " at " << at.first << "," << at.second;
+        }
+    EXPECT_TRUE(classChannels(PlanReport{}, 40, 20).empty());
 }
 
 // The plans of a render's first 12 passes do not depend on how many passes come after them.

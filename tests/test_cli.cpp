@@ -13,8 +13,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <sstream>
+#include <iterator>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -273,6 +274,41 @@ TEST_F(Cli, StatsReportWhatTheRenderDidAndWhereTheTimeWent) {
         EXPECT_NE(o.err.find(line), std::string::npos) << line << " missing from:\n" << o.err;
     const Outcome plain = run(render("--width 32 --height 32 --spp 2 " + out()));
     EXPECT_EQ(plain.err.find("closest-hit rays"), std::string::npos) << "without --stats, no report:\n" << plain.err;
+}
+
+// auto's EXR holds its classes per pixel beside the image (channels auto.pt, auto.connect,
+// auto.trace, auto.merge): 1 where the pixel's 16×16 tile ran the class in the last stretch, as
+// tripath:auto-tiles names them (a row of tiles per "; "). At 40×24 the last column and row of
+// tiles are cut short. Fails if the render command leaves the channels out or writes them for a
+// tile other than the pixel's; another method's EXR has none.
+TEST_F(Cli, AutosExrSaysPerPixelWhichClassesItsTileRan) {
+    const Outcome o = run(render("--integrator auto --width 40 --height 24 --spp 20 " + out()));
+    ASSERT_EQ(o.exitCode, 0) << o.err;
+    Metadata meta;
+    std::vector<ExrChannel> channels;
+    readExr(path("out.exr"), &meta, &channels);
+    std::vector<std::vector<std::string>> tiles;  // the classes' names of each tile, row by row
+    std::istringstream rows(metaValue(meta, "tripath:auto-tiles"));
+    for (std::string row; std::getline(rows, row, ';');) {
+        std::istringstream names(row);
+        tiles.emplace_back(std::istream_iterator<std::string>(names), std::istream_iterator<std::string>());
+    }
+    ASSERT_EQ(tiles.size(), 2u) << metaValue(meta, "tripath:auto-tiles");
+    ASSERT_EQ(channels.size(), 4u);
+    for (const ExrChannel& c : channels) {
+        const std::string name = c.name.substr(c.name.find('.') + 1);
+        ASSERT_EQ(c.values.size(), 40u * 24u) << c.name;
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 40; ++x) {
+                ASSERT_EQ(tiles[size_t(y / 16)].size(), 3u);
+                const std::string& tile = tiles[size_t(y / 16)][size_t(x / 16)];
+                const bool runs = ("+" + tile + "+").find("+" + name + "+") != std::string::npos;
+                ASSERT_EQ(c.values[size_t(y * 40 + x)], runs ? 1.0f : 0.0f) << c.name << " at " << x << "," << y << ": " << tile;
+            }
+    }
+    ASSERT_EQ(run(render("--integrator bdpt --width 40 --height 24 --spp 1 " + out())).exitCode, 0);
+    readExr(path("out.exr"), &meta, &channels);
+    EXPECT_TRUE(channels.empty());
 }
 
 // A comparison is held to its budget as a whole, before its first render: pt at 512² fits 250 MiB

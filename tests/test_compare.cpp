@@ -803,8 +803,9 @@ TEST(CompareCommand, WritesTheReportAndErrorFallsWithTime) {
 TEST(CompareCommand, IndexHtmlLoadsInHeadlessChromium) {
     TempDir dir;
     const std::string out = dir / "out";
-    // No --reference: the command renders its own, which this also covers.
-    const Outcome o = tripathCli(dir, "compare " + kSmall + " --integrators pt,lt,bdpt --time 0.1 --out " + out);
+    // No --reference: the command renders its own, which this also covers. auto adds the view of
+    // its classes per tile.
+    const Outcome o = tripathCli(dir, "compare " + kSmall + " --integrators pt,lt,bdpt,auto --time 0.1 --out " + out);
     ASSERT_EQ(o.exitCode, 0) << o.err;
     EXPECT_NE(o.err.find("no reference given"), std::string::npos) << o.err;
     Metadata refMeta;
@@ -822,8 +823,10 @@ TEST(CompareCommand, IndexHtmlLoadsInHeadlessChromium) {
     ASSERT_EQ(std::system(cmd.c_str()), 0) << readFile(log);
     const std::string html = readFile(dom), messages = readFile(log);
     EXPECT_NE(html.find("data-images=\"loaded\""), std::string::npos) << html.substr(0, 2000);
-    // chart, reference, 3 methods, their 3 error maps, the error scale, the sheet
-    EXPECT_NE(html.find("data-image-count=\"10\""), std::string::npos);
+    // chart, reference, 4 methods, their 4 error maps, auto's classes, the error scale, the sheet
+    EXPECT_NE(html.find("data-image-count=\"13\""), std::string::npos);
+    EXPECT_NE(html.find("src=\"auto-classes.png\""), std::string::npos);
+    EXPECT_EQ(html.find("src=\"bdpt-classes.png\""), std::string::npos);
     EXPECT_NE(html.find("id=\"chart\" src=\"error-vs-time.svg\""), std::string::npos);
     EXPECT_NE(html.find("<pre id=\"console-errors\"></pre>"), std::string::npos) << html;
     EXPECT_EQ(html.find("data-errors"), std::string::npos);

@@ -134,6 +134,31 @@ TEST_F(ImageIoTest, ExrRoundTripIsBitExactWithMetadata) {
     EXPECT_EQ(back, expected);
 }
 
+// Channels beside R, G and B come back under their names, each pixel's value its own, and leave
+// the image read as RGB untouched: a layer written alphabetically before "R" ("A", "Z.x" after
+// "B" and "G" but before "R" in OpenEXR's order) must not take R's place. Fails with the channels
+// interleaved by channel instead of by pixel, or their names not set (OpenImageIO would call them
+// "channel3", …).
+TEST_F(ImageIoTest, ExrChannelsBesideRgbComeBackByName) {
+    Image img(3, 2);
+    for (std::size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = float(i) + 0.5f;
+    const std::vector<ExrChannel> channels{{"auto.merge", {1, 0, 0, 1, 1, 0}}, {"A.x", {0.25f, 2, 3, 4, 5, 6}}};
+    const std::string p = path("channels.exr");
+    writeExr(p, img, {{"tripath:integrator", "auto"}}, channels);
+
+    std::vector<ExrChannel> back;
+    const Image r = readExr(p, nullptr, &back);
+    EXPECT_EQ(r.rgb, img.rgb);
+    ASSERT_EQ(back.size(), 2u);
+    for (const ExrChannel& c : channels) {
+        const auto it = std::find_if(back.begin(), back.end(), [&](const ExrChannel& b) { return b.name == c.name; });
+        ASSERT_NE(it, back.end()) << c.name;
+        EXPECT_EQ(it->values, c.values) << c.name;
+    }
+    expectInputError([&] { writeExr(path("short.exr"), img, {}, {{"auto.pt", {1, 0}}}); }, "auto.pt has 2 values for 6");
+    expectInputError([&] { writeExr(path("r.exr"), img, {}, {{"R", std::vector<float>(6)}}); }, "named 'R'");
+}
+
 TEST_F(ImageIoTest, ExrUsesZipCompression) {
     const std::string p = path("zip.exr");
     writeExr(p, filled(8, 8, 0.25f, 0.5f, 1.5f), {});

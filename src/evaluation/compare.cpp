@@ -26,18 +26,19 @@ std::vector<std::string> renderingIntegrators(const CompareRequest& r) {
     return all;
 }
 
-// Run 0's images (also written as <dir>/<method>.exr and .png, at the comparison's exposure, when
-// there is a directory), and every image the outputs carry, by method in run order.
+// Run 0's images and channels (also written as <dir>/<method>.exr and .png, at the comparison's
+// exposure, when there is a directory), and every image the outputs carry, by method in run order.
 void keepRuns(std::vector<RunOutput>& outputs, const std::string& dir, Comparison& c) {
     for (RunOutput& out : outputs) {
         const std::string& m = out.run.method;
         if (!out.image.rgb.empty()) c.everyImage[m].push_back(out.image);
         if (out.run.index == 0) {
             if (!dir.empty()) {
-                writeExr((fs::path(dir) / (m + ".exr")).string(), out.image, out.meta);
+                writeExr((fs::path(dir) / (m + ".exr")).string(), out.image, out.meta, out.channels);
                 writePng((fs::path(dir) / (m + ".png")).string(), out.image, c.exposureStops);
             }
             c.images[m] = std::move(out.image);
+            if (!out.channels.empty()) c.channels[m] = std::move(out.channels);
         }
         c.runs.push_back(std::move(out.run));
     }

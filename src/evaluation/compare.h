@@ -145,6 +145,9 @@ struct Comparison {
     std::vector<Run> runs;                        // run-major: run 0 of every method, then run 1, ...
     std::map<std::string, Image> images;          // run 0 of each method, finished
     std::map<std::string, std::vector<Image>> everyImage;  // every run's, by method in run order (when asked)
+    // Run 0's channels beside R, G, B, by method: auto's classes per pixel (plan_report.h); none
+    // for the other methods.
+    std::map<std::string, std::vector<ExrChannel>> channels;
     std::vector<Curve> curves;                    // per method, in the request's order
     std::vector<MethodSummary> summaries;         // likewise
     // The exposure of every preview of the comparison (reference.png, <method>.png, the side-by-side
@@ -181,6 +184,7 @@ struct RunOutput {
     Run run;
     Image image;    // the finished render
     Metadata meta;  // its settings, for its EXR
+    std::vector<ExrChannel> channels;  // its EXR's channels beside R, G, B (auto's classes)
 };
 // Runs one method once (run `index`, seed + index), alone on this rank, and measures it against
 // the reference.
@@ -208,6 +212,7 @@ struct Report {
     const Reference& reference;
     const std::vector<Run>& runs;
     const std::map<std::string, Image>& images;
+    const std::map<std::string, std::vector<ExrChannel>>& channels;
     const std::vector<Curve>& curves;
     const std::vector<MethodSummary>& summaries;
     Region inset;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 
+#include "evaluation/class_map.h"
 #include "evaluation/compare.h"
 #include "evaluation/markup.h"
 
@@ -118,6 +119,13 @@ std::string viewer(const Report& r) {
                                "(run 0; scale below)\">{0} error</button>",
                                escape(x.method));
         images += fmt::format("<img data-view=\"{0}-error\" src=\"{0}-error.png\" alt=\"{0} error map\">\n", escape(x.method));
+    }
+    // What auto chose where (class_map.h), as one more view of each method that says it.
+    for (const auto& [method, channels] : r.channels) {
+        buttons += fmt::format("<button data-view=\"{0}-classes\" data-caption=\"{0} (run 0): {1}\">{0} classes</button>",
+                               escape(method), escape(kClassMapLegend));
+        images += fmt::format("<img data-view=\"{0}-classes\" src=\"{0}-classes.png\" alt=\"{0}'s classes per tile\">\n",
+                              escape(method));
     }
     return "<div id=\"buttons\">" + buttons + "</div>\n<div id=\"viewer\">\n" + images +
            "</div>\n<p id=\"caption\"></p>\n<img id=\"error-scale\" src=\"error-scale.png\" alt=\"error map colour scale\">\n";

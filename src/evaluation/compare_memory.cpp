@@ -41,10 +41,13 @@ MemoryEstimate comparisonMemory(const CompareRequest& r, const Scene& scene, boo
 
     const double pixels = double(r.render.width) * r.render.height;
     const size_t kept = 1 + r.methods.size() * size_t(everyImage ? r.runs : 1);
+    // auto's run 0 keeps its classes beside its image: four channels of a float (plan_report.h).
+    const size_t classBytes = size_t(std::ranges::count(r.methods, "auto")) * 4 * sizeof(float);
     MemoryEstimate e;
     e.add(sceneMemory(scene));
     e.add(std::move(largest));
-    e.add({{"images kept", static_cast<uint64_t>(double(kept * kImageBytesPerPixel) * pixels), {"width/height"}, Throughout}});
+    e.add({{"images kept", static_cast<uint64_t>(double(kept * kImageBytesPerPixel + classBytes) * pixels), {"width/height"},
+            Throughout}});
     if (!r.outDir.empty())
         e.add({{"report",
                 static_cast<uint64_t>(double(kReportBase + kReportPerMethod * r.methods.size()) * pixels),

@@ -23,6 +23,8 @@ void put(WireWriter& w, const RunOutput& out) {
     put(w, out.image);
     w.put(uint64_t(out.meta.size()));
     for (const auto& [key, value] : out.meta) w.put(key).put(value);
+    w.put(uint64_t(out.channels.size()));
+    for (const ExrChannel& c : out.channels) w.put(c.name).put(c.values);
 }
 
 RunOutput unpack(WireReader& r) {
@@ -38,6 +40,9 @@ RunOutput unpack(WireReader& r) {
     r.get(n);
     out.meta.resize(n);
     for (auto& [key, value] : out.meta) r.get(key), r.get(value);
+    r.get(n);
+    out.channels.resize(n);
+    for (ExrChannel& c : out.channels) r.get(c.name), r.get(c.values);
     return out;
 }
 
@@ -65,7 +70,10 @@ std::vector<RunOutput> runEverywhere(const CompareRequest& o, const Scene& scene
     WireWriter mine;
     for (int j = me; j < jobs && !(o.stop && o.stop->load()); j += ranks) {
         RunOutput out = runMethod(o, scene, o.methods[j % o.methods.size()], j / int(o.methods.size()), reference);
-        if (out.run.index > 0 && !allImages) out.image = Image{};  // only run 0's images are written; keep messages small
+        if (out.run.index > 0 && !allImages) {  // only run 0's images are written; keep messages small
+            out.image = Image{};
+            out.channels.clear();
+        }
         mine.put(j);
         put(mine, out);
     }

@@ -11,6 +11,7 @@
 #include "evaluation/compare.h"
 #include "core/error.h"
 #include "evaluation/chart.h"
+#include "evaluation/class_map.h"
 #include "evaluation/compose.h"
 #include "evaluation/error_map.h"
 #include "evaluation/inset.h"
@@ -183,6 +184,9 @@ void writeSummary(const Report& r, const std::string& path) {
          "merges; as `tripath render --stats` counts them), `error-vs-time.svg`/`.png`, "
          "`side-by-side.png` (and `.pdf`, `.svg` when asked for), `<method>.exr`/`.png` (run 0), "
          "`<method>-crop.png` and `reference-crop.png` (the inset alone, magnified), `index.html`.\n";
+    if (!r.channels.empty())
+        s += "`auto.exr` also holds auto's classes per pixel (channels auto.pt, auto.connect, auto.trace, auto.merge), "
+             "and `auto-classes.png` shows them: " + std::string(kClassMapLegend) + ".\n";
     writeText(path, s);
 }
 
@@ -200,13 +204,16 @@ Region insetRegion(const CompareRequest& o, const Reference& ref, const std::map
 
 void writeReport(const CompareRequest& o, const Comparison& c, const std::string& dir) {
     auto path = [&](const std::string& name) { return (std::filesystem::path(dir) / name).string(); };
-    const Report report{o, c.reference, c.runs, c.images, c.curves, c.summaries, insetRegion(o, c.reference, c.images),
-                        c.exposureStops};
+    const Report report{o, c.reference, c.runs, c.images, c.channels, c.curves, c.summaries,
+                        insetRegion(o, c.reference, c.images), c.exposureStops};
     writeCsv(report, path("error.csv"));
     writeCountersCsv(report, path("counters.csv"));
     writeChart(report, path("error-vs-time.svg"), path("error-vs-time.png"));
     writeSideBySide(report, dir);
     for (const std::string& m : o.methods) writePng(path(m + "-error.png"), errorMap(c.images.at(m), c.reference.image));
+    for (const auto& [m, channels] : c.channels)
+        if (const Image map = classMap(channels, c.reference.image.width, c.reference.image.height); !map.rgb.empty())
+            writePng(path(m + "-classes.png"), map);
     writeSheet(path("error-scale.png"), errorColourBar(512, o.sheet.theme));
     writeSummary(report, path("summary.md"));
     writeIndexHtml(report, path("index.html"));

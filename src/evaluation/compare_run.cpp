@@ -140,7 +140,8 @@ RunOutput runMethod(const CompareRequest& o, const Scene& scene, const std::stri
                                          label, f.error.relMse, f.error.mse, f.error.mae,
                                          perSampleRelVariance(f.error.relMse, f.spp), tailShareText(f.error.tailShare),
                                          run.flip));
-    return {std::move(run), std::move(image), renderMetadata(ro, scene, *integrator, r, o.team->size())};
+    std::vector<ExrChannel> channels = classChannels(r.plans, image.width, image.height);
+    return {std::move(run), std::move(image), renderMetadata(ro, scene, *integrator, r, o.team->size()), std::move(channels)};
 }
 
 }  // namespace tripath::evaluation

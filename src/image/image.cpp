@@ -142,7 +142,8 @@ void checkExrHeaders(const std::string& path, std::size_t maxPixels) {
                                      path, chunk, budget, maxPixels));
 }
 
-Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::size_t maxPixels = SIZE_MAX) {
+Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::size_t maxPixels = SIZE_MAX,
+              std::vector<ExrChannel>* channels = nullptr) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(fmt::format("cannot read '{}': file does not exist", path));
     if (fs::is_directory(path, ec)) throw InputError(fmt::format("cannot read '{}': it is a directory", path));
@@ -186,6 +187,15 @@ Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::siz
             img.rgb[3 * i] = img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = grey[i];
     }
     if (!ok) throw InputError(fmt::format("cannot read '{}': {}", path, oiioError(in.get())));
+    if (channels) {
+        channels->clear();
+        for (int c = 3; c < spec.nchannels; ++c) {
+            ExrChannel channel{spec.channelnames[size_t(c)], std::vector<float>(img.pixelCount())};
+            if (!in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, channel.values.data()))
+                throw InputError(fmt::format("cannot read '{}': {}", path, oiioError(in.get())));
+            channels->push_back(std::move(channel));
+        }
+    }
 
     if (meta) {
         meta->clear();
@@ -202,19 +212,37 @@ Image readAny(const std::string& path, bool requireExr, Metadata* meta, std::siz
 
 }  // namespace
 
-void writeExr(const std::string& path, const Image& img, const Metadata& meta) {
+void writeExr(const std::string& path, const Image& img, const Metadata& meta, const std::vector<ExrChannel>& channels) {
     checkImage(path, img);
     for (const auto& [key, value] : meta)
         if (key.empty()) throw InputError(fmt::format("cannot write '{}': metadata with an empty name", path));
+    for (const ExrChannel& c : channels) {
+        if (c.name.empty() || c.name == "R" || c.name == "G" || c.name == "B")
+            throw InputError(fmt::format("cannot write '{}': a channel beside R, G, B named '{}'", path, c.name.substr(0, 20)));
+        if (c.values.size() != img.pixelCount())
+            throw InputError(fmt::format("cannot write '{}': channel {} has {} values for {} pixels", path,
+                                         c.name.substr(0, 20), c.values.size(), img.pixelCount()));
+    }
 
+    // R, G, B and the channels, interleaved pixel by pixel as OpenImageIO writes them.
+    const size_t n = 3 + channels.size();
+    std::vector<float> pixels;
+    if (!channels.empty()) {
+        pixels.resize(n * img.pixelCount());
+        for (size_t i = 0; i < img.pixelCount(); ++i) {
+            std::copy_n(img.rgb.data() + 3 * i, 3, pixels.data() + n * i);
+            for (size_t c = 0; c < channels.size(); ++c) pixels[n * i + 3 + c] = channels[c].values[i];
+        }
+    }
     atomicWrite(path, "openexr", ".exr", [&](OIIO::ImageOutput& out, const std::string& tmp) {
-        OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT);
+        OIIO::ImageSpec spec(img.width, img.height, int(n), OIIO::TypeDesc::FLOAT);
+        for (size_t c = 0; c < channels.size(); ++c) spec.channelnames[3 + c] = channels[c].name;
         spec.attribute("compression", "zip");
 #ifdef TRIPATH_VERSION
         spec.attribute("Software", "tripath " TRIPATH_VERSION);
 #endif
         for (const auto& [key, value] : meta) spec.attribute(key, value);
-        openAndWrite(out, tmp, path, spec, img.rgb.data());
+        openAndWrite(out, tmp, path, spec, channels.empty() ? img.rgb.data() : pixels.data());
     });
 }
 
@@ -253,7 +281,9 @@ void writePng(const std::string& path, const Image& img, float exposureStops) {
     });
 }
 
-Image readExr(const std::string& path, Metadata* meta) { return readAny(path, true, meta); }
+Image readExr(const std::string& path, Metadata* meta, std::vector<ExrChannel>* channels) {
+    return readAny(path, true, meta, SIZE_MAX, channels);
+}
 
 Image readImage(const std::string& path, std::size_t maxPixels) { return readAny(path, false, nullptr, maxPixels); }
 

@@ -36,13 +36,22 @@ private:
 // Written as EXR string attributes, e.g. {"tripath:integrator", "bdpt"}.
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 
+// A channel of an EXR beside R, G and B: one value per pixel, row by row, under a name such as
+// "auto.merge" (OpenEXR's convention: a layer's name, a dot, the channel's).
+struct ExrChannel {
+    std::string name;
+    std::vector<float> values;
+};
+
 // All writers are atomic: the image goes to a temporary file in the target's
 // directory which is then renamed over the target, so an interrupted or
 // failed write never leaves a truncated file under the real name.
 // Every failure throws InputError with one line naming the path.
 
-// 32-bit float RGB, ZIP compression, plus `meta` as string attributes.
-void writeExr(const std::string& path, const Image& img, const Metadata& meta = {});
+// 32-bit float RGB, ZIP compression, plus `meta` as string attributes and `channels` after R, G, B
+// (each of the image's size, named neither empty nor R, G or B).
+void writeExr(const std::string& path, const Image& img, const Metadata& meta = {},
+              const std::vector<ExrChannel>& channels = {});
 
 // Preview: scale by 2^exposureStops, clamp to [0, 1], apply the sRGB OETF (OpenImageIO's colour
 // conversion), round to 8 bits.
@@ -57,8 +66,9 @@ std::vector<unsigned char> previewBytes(const Image& img);
 // Reads the first three channels of an OpenEXR file (a one- or two-channel
 // file is read as grey). If `meta` is given it receives the string attributes
 // whose names start with "tripath:", sorted by name (OpenEXR keeps header
-// attributes in a sorted map, so the order they were written in is lost).
-Image readExr(const std::string& path, Metadata* meta = nullptr);
+// attributes in a sorted map, so the order they were written in is lost). If `channels` is given
+// it receives the channels after R, G and B (A included), in the file's order: sorted by name.
+Image readExr(const std::string& path, Metadata* meta = nullptr, std::vector<ExrChannel>* channels = nullptr);
 
 // Reads any format OpenImageIO understands as float RGB, without colour
 // conversion: an 8-bit PNG value v comes back as v / 255. A header that claims more than

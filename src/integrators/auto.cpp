@@ -111,7 +111,7 @@ PassWork surveyWork(const Scene& scene, const PixelSampleIntegrator& full, const
 std::string choiceName(const std::vector<PassPlan>& tiles, double pixels) {
     std::vector<std::pair<std::string, int>> counts;
     for (const PassPlan& plan : tiles) {
-        const std::string name = className(plan);
+        const std::string name = classesName(plan.classes());
         auto it = std::find_if(counts.begin(), counts.end(), [&](const auto& c) { return c.first == name; });
         if (it == counts.end())
             counts.push_back({name, 1});
@@ -276,8 +276,9 @@ public:
                 into.plans.stretches.push_back({first, name});
         into.plans.candidates = estimates_;
         into.plans.tiles.clear();
-        for (const PassPlan& plan : tilePlans_) into.plans.tiles.push_back(className(plan));
+        for (const PassPlan& plan : tilePlans_) into.plans.tiles.push_back(plan.classes());
         into.plans.tilesAcross = (camera_.width() + kTileSize - 1) / kTileSize;
+        into.plans.tileSize = kTileSize;
     }
 
 private:

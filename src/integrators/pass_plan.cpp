@@ -16,6 +16,12 @@ StrategySet PassPlan::strategies() const {
     return set;
 }
 
+uint8_t PassPlan::classes() const {
+    if (lightPaths == 0) return kCameraWalkClass;
+    return uint8_t((unidirectional ? kCameraWalkClass : 0) | (connects ? kConnectClass : 0) |
+                   (lightTraces ? kTraceClass : 0) | (merges ? kMergeClass : 0));
+}
+
 TechniqueSums PassPlan::factors(double measuredLightPaths) const {
     const float share = static_cast<float>(lightPaths / measuredLightPaths);
     TechniqueSums f{};

@@ -24,6 +24,7 @@
 #include <span>
 
 #include "integrators/pixel_sample_integrator.h"
+#include "integrators/plan_report.h"
 
 namespace tripath {
 
@@ -35,6 +36,8 @@ struct PassPlan {
     bool unidirectional = true;  // the camera walk's hits on emitters and next-event estimates, s ≤ 1
 
     bool operator==(const PassPlan&) const = default;
+    // The classes it runs, as plan_report.h's ClassBits: the camera walk's alone without light paths.
+    uint8_t classes() const;
     // The strategies it enables: those of the classes it runs.
     StrategySet strategies() const;
     // Its number of samples of each class over that of a pass that runs every class with

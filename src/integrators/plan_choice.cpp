@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <string_view>
@@ -53,7 +54,7 @@ double cameraCost(const PassPlan& plan, const PassWork& work, double pixels) {
 }
 
 // The classes a plan runs, as a count.
-int classes(const PassPlan& p) { return int(p.unidirectional) + int(p.connects) + int(p.lightTraces) + int(p.merges); }
+int classes(const PassPlan& p) { return std::popcount(p.classes()); }
 
 }  // namespace
 
@@ -61,23 +62,14 @@ std::vector<PassPlan> candidatePlans(double pixels) {
     std::vector<PassPlan> plans{{0, false, false, false, true}};
     for (double perPixel : {0.25, 1.0, 4.0})
         for (int bits = 1; bits < 16; ++bits)
-            plans.push_back({std::max(1.0, std::round(perPixel * pixels)), (bits & 2) != 0, (bits & 4) != 0,
-                             (bits & 8) != 0, (bits & 1) != 0});
+            plans.push_back({std::max(1.0, std::round(perPixel * pixels)), (bits & kConnectClass) != 0,
+                             (bits & kTraceClass) != 0, (bits & kMergeClass) != 0, (bits & kCameraWalkClass) != 0});
     return plans;
-}
-
-std::string className(const PassPlan& plan) {
-    if (plan.lightPaths == 0 || (plan.unidirectional && classes(plan) == 1)) return "pt";
-    std::vector<std::string_view> names;
-    for (const auto& [on, name] : {std::pair{plan.unidirectional, "pt"}, {plan.connects, "connect"},
-                                   {plan.lightTraces, "trace"}, {plan.merges, "merge"}})
-        if (on) names.push_back(name);
-    return fmt::format("{}", fmt::join(names, "+"));
 }
 
 std::string planName(const PassPlan& plan, double pixels) {
     if (plan.lightPaths == 0) return "pt";
-    return fmt::format("N_L={:g}/px {}", plan.lightPaths / pixels, className(plan));
+    return fmt::format("N_L={:g}/px {}", plan.lightPaths / pixels, classesName(plan.classes()));
 }
 
 double passCost(const PassPlan& plan, const PassWork& work, double pixels) {

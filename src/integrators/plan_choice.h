@@ -48,9 +48,6 @@ inline constexpr double kRelativeOffset = 1e-2;
 // with N_L of a quarter, one or four light paths per pixel every non-empty set of classes.
 std::vector<PassPlan> candidatePlans(double pixels);
 
-// The classes' names as the output shows them, e.g. "connect+trace+merge", "pt" for the
-// unidirectional class alone.
-std::string className(const PassPlan& plan);
 // The plan's name: "N_L=1/px connect+trace+merge", "pt".
 std::string planName(const PassPlan& plan, double pixels);
 

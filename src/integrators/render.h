@@ -20,6 +20,7 @@
 #include "integrators/film.h"
 #include "integrators/memory_estimate.h"
 #include "integrators/pixel_sample_integrator.h"
+#include "integrators/plan_report.h"
 #include "integrators/team.h"
 
 namespace tripath {
@@ -92,22 +93,6 @@ struct MetropolisReport {
     uint64_t run = 0;               // the pass index the chains started at: their streams' identity
     uint64_t bootstrapSamples = 0;  // N, over all lengths
     std::vector<MetropolisLength> lengths;
-};
-
-// What auto chose (integrators/auto.cpp): the plan of each stretch of passes, from the offset of
-// its first pass in the render, and each candidate's estimates at the last choice, as if every
-// tile ran it (plan_choice.h): its relative variance per pass, its cost per pass in traced
-// rays, and whether it cannot sample a path some pass found light on; the choice itself last.
-struct PlanEstimate {
-    std::string plan;
-    double relativeVariance = 0, cost = 0;
-    bool uncovered = false;
-};
-struct PlanReport {
-    std::vector<std::pair<uint64_t, std::string>> stretches;
-    std::vector<PlanEstimate> candidates;
-    std::vector<std::string> tiles;  // the classes each 16×16 tile runs in the last stretch, in row order
-    int tilesAcross = 0;             // tiles in a row
 };
 
 struct RenderResult {

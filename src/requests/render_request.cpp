@@ -201,12 +201,13 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
         std::vector<std::string> stretches;
         for (const auto& [first, plan] : result.plans.stretches) stretches.push_back(fmt::format("{} {}", first, plan));
         m.push_back({"tripath:auto-plans", fmt::format("{}", fmt::join(stretches, "; "))});
-        // The classes each 16×16 tile ran in the last stretch, a row of tiles per "; ".
+        // The classes each tile ran in the last stretch, a row of tiles per "; ".
         const size_t tilesX = std::max<size_t>(1, result.plans.tilesAcross);
         std::vector<std::string> rows;
-        for (size_t t = 0; t < result.plans.tiles.size(); t += tilesX)
-            rows.push_back(fmt::format("{}", fmt::join(result.plans.tiles.begin() + t,
-                                                       result.plans.tiles.begin() + std::min(t + tilesX, result.plans.tiles.size()), " ")));
+        for (size_t t = 0; t < result.plans.tiles.size(); ++t) {
+            if (t % tilesX == 0) rows.emplace_back();
+            rows.back() += (t % tilesX == 0 ? "" : " ") + classesName(result.plans.tiles[t]);
+        }
         m.push_back({"tripath:auto-tiles", fmt::format("{}", fmt::join(rows, "; "))});
     }
     if (result.memory.total() > 0) m.push_back({"tripath:memory-estimate", std::to_string(result.memory.total())});
