@@ -2,15 +2,16 @@
 # The "where each method fails" table of docs/failures.md, and its contact sheet: one
 # `tripath benchmark` run over the failure scenes and the literature scenes.
 #
-#   scripts/failure-table.sh [SECONDS] [SIZE] [RUNS]     defaults: 3 seconds per run, 128x128, 3 runs
+#   scripts/failure-table.sh [SECONDS] [SIZE] [RUNS]     defaults: 10 seconds per run, 128x128, 4 runs
 #
 # The benchmark (docs/compare.md, "Over many scenes") renders every failure scene
 # (src/scenes/failure_scenes.h), then the four literature scenes (scenes/README.md: glTF files,
-# named by their stems below), with pt, lt, bdpt, vcm, bpm, ppm and mlt, RUNS runs of SECONDS each
-# (equal time), against a vcm reference of 10 x SECONDS per scene (vcm samples every path here,
-# the caustics seen through glass or a mirror included), and tests each method for bias against
-# bdpt's runs. Its report stays in build/failures/ (index.html: the table, a page per scene, the
-# bias maps). From it this writes:
+# named by their stems below), with pt, lt, bdpt, vcm, bpm, ppm, mlt and auto, RUNS runs of SECONDS
+# each (equal time), against a vcm reference of 10 x SECONDS per scene (vcm samples every path
+# here, the caustics seen through glass or a mirror included), and tests each method for bias
+# against bdpt's runs. Its report stays in build/failures/ (index.html: the table, a page per
+# scene, the bias maps); the references stay cached in build/failures/references/ for the next
+# run at the same settings (their names hold them). From it this writes:
 #   docs/failures.md          the benchmark's results.md between the <!-- table:begin/end -->
 #                             markers (the text around them is written by hand and left alone)
 #   docs/images/failures.png  reference and every method's run 0 per scene, each row scaled alike
@@ -19,24 +20,26 @@
 #   docs/images/failures-benchmark.png, failures-page-sds.png: the benchmark's index.html and the
 #                             page of sds as headless Chromium shows them (scripts/install-test-deps.sh
 #                             installs it)
-# Runtime: 15 scenes x (7 x RUNS x SECONDS + 10 x SECONDS), about 24 minutes at the defaults.
+# Runtime: 15 scenes x (8 x RUNS x SECONDS + 10 x SECONDS), about 105 minutes at the defaults
+# (80 with the references cached).
 # Timings are wall-clock: run it on an otherwise idle machine, or the table measures the neighbours.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds="${1:-3}"
+seconds="${1:-10}"
 size="${2:-128}"
-runs="${3:-3}"
+runs="${3:-4}"
 tripath="${TRIPATH:-build/tripath}"
 out=build/failures
 scenes=(caustic caustic-point sds sds-point sds-mirrors door-ajar contact grazing degenerate degenerate-tiny degenerate-far
         scenes/veach-bidir.gltf scenes/lamp-caustic.gltf scenes/box-light-top.gltf scenes/water-caustic.gltf)
 names=("${scenes[@]##*/}")    # what the benchmark names a scene: a built-in's name, a file's stem
 names=("${names[@]%.gltf}")
-methods=(pt lt bdpt vcm bpm ppm mlt)
+methods=(pt lt bdpt vcm bpm ppm mlt auto)
 
 [ -x "$tripath" ] || { echo "error: $tripath not found: build first (scripts/build.sh) or set TRIPATH" >&2; exit 1; }
 mkdir -p docs/images
-rm -rf "$out"
+mkdir -p "$out"
+find "$out" -mindepth 1 -maxdepth 1 ! -name references -exec rm -rf {} +
 "$tripath" benchmark --scenes "$(IFS=,; echo "${scenes[*]}")" --integrators "$(IFS=,; echo "${methods[*]}")" \
   --time "$seconds" --runs "$runs" --width "$size" --height "$size" --reference-integrator vcm --bias-reference bdpt \
   --out "$out"
