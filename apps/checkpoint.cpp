@@ -24,6 +24,7 @@ Metadata checkpointSettings(const RenderOptions& o, const Scene& scene, const In
                         {"tripath:height", std::to_string(o.height)},
                         {"tripath:seed", std::to_string(o.seed)},
                         {"tripath:streams", streamsName(o.domain)},
+                        {"tripath:sampler", o.sampler},
                         {"tripath:embree", embreeDescription()},
                         {"tripath:depth-images", std::to_string(layers.depthImages)},
                         {"tripath:strategy-images", std::to_string(layers.strategyLength)}};

@@ -4,6 +4,8 @@
 //   integrator_pass/<integrator>/<scene>   one pass of render() at 512², max-depth 8, one thread,
 //                                          for pt, bdpt, vcm and mlt: samples/s (mlt: chain steps,
 //                                          one per pixel, its bootstrap inside the time)
+//   integrator_pass/<integrator>-sobol/<scene>  the same for pt, bdpt and vcm under --sampler
+//                                          sobol: what drawing scrambled Sobol points costs
 //
 // The scenes: `cornell` and `veach-mis` (no texture), `sky` (its checkered ground a texture, read
 // at every vertex there), and each .gltf or .glb file in TRIPATH_BENCH_GLTF (colon-separated), lit
@@ -26,12 +28,12 @@ namespace {
 
 constexpr int kDepth = 8;  // the depth bench/README.md states its targets at
 
-void runPass(benchmark::State& state, const std::string& integratorName, const std::string& key) {
+void runPass(benchmark::State& state, const std::string& integratorName, const std::string& key, SamplerKind sampler) {
     const Scene& scene = cachedScene(key);
     IntegratorSettings settings;
     settings.walk.maxDepth = kDepth;
     settings.walk.rrDepth = defaultRouletteDepth(integratorName);  // as the front ends render
-    timePasses(state, scene, *makeIntegrator(integratorName, settings), 1);
+    timePasses(state, scene, *makeIntegrator(integratorName, settings), 1, sampler);
 }
 
 // (label, cache key) of the scenes measured.
@@ -48,10 +50,14 @@ std::vector<std::pair<std::string, std::string>> passScenes() {
 const bool registered = [] {
     for (const auto& [label, key] : passScenes())
         for (const char* integrator : {"pt", "bdpt", "vcm", "mlt"})
-            registerPasses("integrator_pass/" + std::string(integrator) + "/" + label,
-                           [integrator = std::string(integrator), key = key](benchmark::State& st) {
-                               runPass(st, integrator, key);
-                           });
+            for (const SamplerKind sampler : {SamplerKind::Independent, SamplerKind::Sobol}) {
+                if (sampler == SamplerKind::Sobol && std::string(integrator) == "mlt") continue;
+                const std::string suffix = sampler == SamplerKind::Sobol ? "-sobol" : "";
+                registerPasses("integrator_pass/" + std::string(integrator) + suffix + "/" + label,
+                               [integrator = std::string(integrator), key = key, sampler](benchmark::State& st) {
+                                   runPass(st, integrator, key, sampler);
+                               });
+            }
     return true;
 }();
 

@@ -44,7 +44,7 @@ void runLightPhase(benchmark::State& state, const std::string& name, int width, 
     size_t storeBytes = 0, gridBytes = 0;
     for (auto _ : state) {
         arenaFor(2).execute([&] {
-            const Pass p = phase.run(scene, *integrator->pixelSamples(), pass++, kSeed, StreamDomain::CameraSample);
+            const Pass p = phase.run(scene, *integrator->pixelSamples(), pass++, {kSeed, StreamDomain::CameraSample});
             paths += p.light->paths();
             vertices += p.light->vertices();
             storeBytes = p.light->bytes();
@@ -68,7 +68,7 @@ struct MergeSetup {
     Pass pass;
     std::vector<Subpath> cameras;
     explicit MergeSetup(const std::string& name) : scene(cachedScene(name)) {
-        arenaFor(2).execute([&] { pass = phase.run(scene, *integrator->pixelSamples(), 0, kSeed, StreamDomain::CameraSample); });
+        arenaFor(2).execute([&] { pass = phase.run(scene, *integrator->pixelSamples(), 0, {kSeed, StreamDomain::CameraSample}); });
         WalkSettings walk;
         for (uint64_t i = 0; i < 4096; ++i) {
             Rng rng(kSeed, static_cast<uint64_t>(StreamDomain::CameraSample), i * 61);

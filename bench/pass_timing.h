@@ -12,11 +12,14 @@
 namespace tripath::bench {
 
 // One pass of `integrator` on `scene` (a cached scene: kWidth × kHeight) per iteration, each with
-// the next pass index, on `threads` threads; samples_per_s counts its camera samples.
-inline void timePasses(benchmark::State& state, const Scene& scene, const Integrator& integrator, int threads) {
+// the next pass index, on `threads` threads, drawing from `sampler`; samples_per_s counts its
+// camera samples.
+inline void timePasses(benchmark::State& state, const Scene& scene, const Integrator& integrator, int threads,
+                       SamplerKind sampler = SamplerKind::Independent) {
     RenderSettings rs;
     rs.spp = 1;
     rs.threads = threads;
+    rs.sampler = sampler;
     uint64_t samples = 0;
     for (auto _ : state) {
         const RenderResult r = render(scene, integrator, rs);

@@ -8,6 +8,7 @@
 
 #include "bench_scenes.h"
 #include "integrators/pixel_sample_integrator.h"
+#include "integrators/tile_passes.h"
 #include "sample_harness.h"
 
 namespace tripath::bench {
@@ -75,9 +76,8 @@ void runSamples(benchmark::State& state, const SampleSpec& spec) {
     auto oneSample = [&](Worker& w, int x, int y, int blockPixel, uint64_t passIndex) {
         const int pixel = y * kWidth + x;
         // The render loop's stream for (pixel, pass), so the samples are the ones a render draws.
-        Rng rng(kSeed, static_cast<uint64_t>(StreamDomain::CameraSample), passIndex * pixels + pixel);
-        const float jx = rng.uniform(), jy = rng.uniform();
-        const Vec2 raster{x + jx, y + jy};
+        SampleStream rng = sampleStream({kSeed, StreamDomain::CameraSample}, passIndex, scene.camera(), pixel);
+        const Vec2 raster = jitteredRaster(rng, pixel, kWidth);
         switch (spec.kind) {
             case SampleKind::CameraSubpath:
                 cameraSubpath(scene, raster, rng, settings.walk, WalkPdfs::All, pass.mis.constants.lightPaths, w.paths.camera);

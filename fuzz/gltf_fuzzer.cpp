@@ -47,11 +47,12 @@ std::string loadAndSampleGltf(const uint8_t* data, size_t size) {
         const auto integrator = makeIntegrator("vcm", settings);
         const PixelSampleIntegrator& vcm = *integrator->pixelSamples();
         LightPhase lightPhase;
-        const Pass pass = lightPhase.run(scene, vcm, 0, 1, StreamDomain::Test);
+        const Pass pass = lightPhase.run(scene, vcm, 0, {1, StreamDomain::Test});
         PathBuffers paths;
         NullSink sink;
         for (int i = 0; i < kSize; ++i) {  // the diagonal's pixels
-            Rng rng(1, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(i));
+            SampleStream rng(SamplerKind::Independent, 1, StreamDomain::Test, uint64_t(i), 0,
+                             Rng(1, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(i)));
             const Vec2 raster{0.5f + float(i), 0.5f + float(i)};
             vcm.sample(scene, pass, i * (kSize + 1), raster, rng, paths, sink);
         }

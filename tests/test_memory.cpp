@@ -74,9 +74,9 @@ TEST(Memory, TheSurveyCountsWhatThePassStores) {
         const auto integrator = makeIntegrator(r.integrator, integratorSettings(r));
         const uint64_t pass = 5, seed = 7;
         const PixelSampleIntegrator& samples = *integrator->pixelSamples();
-        const LightPathSurvey survey = LightPhase::survey(built, samples, pass, seed, StreamDomain::CameraSample);
+        const LightPathSurvey survey = LightPhase::survey(built, samples, pass, {seed, StreamDomain::CameraSample});
         LightPhase phase;
-        phase.run(built, samples, pass, seed, StreamDomain::CameraSample);
+        phase.run(built, samples, pass, {seed, StreamDomain::CameraSample});
         size_t mergeable = 0, bsdfs = 0;
         for (size_t i = 0; i < phase.store().paths(); ++i) {
             const SubpathView path = phase.store().path(i);

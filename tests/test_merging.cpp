@@ -227,7 +227,7 @@ TEST(MergeRadius, APassCarriesItsLightPathsRadiusAndEta) {
             is.merge.alpha = 0.5f;
             LightPhase phase;
             const auto integrator = makeIntegrator(name, is);
-            const PassConstants c = phase.run(scene, *integrator->pixelSamples(), 3, 1, StreamDomain::Test).mis.constants;
+            const PassConstants c = phase.run(scene, *integrator->pixelSamples(), 3, {1, StreamDomain::Test}).mis.constants;
             const double lightPaths = given ? 300.0 : 1024.0, radius = name == "vcm" ? 0.1 / std::sqrt(2.0) : 0.0;
             const std::string what = name + (given ? " with 300 light paths" : "");
             EXPECT_EQ(c.lightPaths, lightPaths) << what;

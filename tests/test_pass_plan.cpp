@@ -74,7 +74,7 @@ MomentSink renderPass(const Scene& scene, const PassPlan& plan, const std::vecto
     settings.merge.alpha = 1;  // one radius for every pass: the candidates' moments are the same integrals in each
     const auto integrator = makePlannedPasses(plan, settings);
     LightPhase phase;
-    const Pass p = phase.run(scene, *integrator, pass, 17, StreamDomain::Test);
+    const Pass p = phase.run(scene, *integrator, pass, {17, StreamDomain::Test});
     std::vector<TechniqueSums> factors;
     for (const PassPlan& c : candidates) factors.push_back(c.factors(p.mis.constants.lightPaths));
     MomentSink sink(plan.factors(p.mis.constants.lightPaths), factors, p.mis.constants.lightPaths);
@@ -82,8 +82,8 @@ MomentSink renderPass(const Scene& scene, const PassPlan& plan, const std::vecto
     const Camera& cam = scene.camera();
     const uint64_t pixels = uint64_t(cam.width()) * cam.height();
     for (int pixel = 0; pixel < int(pixels); ++pixel) {
-        Rng rng(17, static_cast<uint64_t>(StreamDomain::Test), pass * pixels + uint64_t(pixel));
-        const Vec2 raster{pixel % cam.width() + rng.uniform(), pixel / cam.width() + rng.uniform()};
+        SampleStream rng = sampleStream({17, StreamDomain::Test}, pass, cam, pixel);
+        const Vec2 raster = jitteredRaster(rng, pixel, cam.width());
         integrator->sample(scene, p, pixel, CameraRay(raster), rng, paths, sink);
     }
     return sink;

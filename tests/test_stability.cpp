@@ -30,6 +30,7 @@
 #include "geometry/scene.h"
 #include "integrators/pixel_sample_integrator.h"
 #include "integrators/light_phase.h"
+#include "integrators/tile_passes.h"
 #include "integrators/render.h"
 #include "support.h"
 
@@ -155,11 +156,11 @@ TEST(FailureScenes, EverySampleIsFinite) {
             CheckingSink sink(scene.camera());
             size_t vertices = 0;
             for (int p = 0; p < kSamples; ++p) {
-                const Pass pass = lightPhase.run(scene, samples, p, 7, StreamDomain::Test);
+                const Pass pass = lightPhase.run(scene, samples, p, {7, StreamDomain::Test});
                 vertices += lightPhase.store().vertices();
                 for (int pixel = 0; pixel < kSize * kSize; ++pixel) {
-                    Rng rng(7, static_cast<uint64_t>(StreamDomain::Test), static_cast<uint64_t>(p * kSize * kSize + pixel));
-                    const Vec2 raster{(pixel % kSize) + rng.uniform(), (pixel / kSize) + rng.uniform()};
+                    SampleStream rng = sampleStream({7, StreamDomain::Test}, uint64_t(p), scene.camera(), pixel);
+                    const Vec2 raster = jitteredRaster(rng, pixel, kSize);
                     samples.sample(scene, pass, pixel, raster, rng, paths, sink);
                     vertices += paths.camera.size();
                 }

@@ -53,7 +53,7 @@ public:
     NanAtTwoPixels() : PixelSampleIntegrator({}) {}
     std::string name() const override { return "nan-at-two-pixels"; }
     StrategySet strategies() const override { return {.maxS = 1, .minT = 2}; }  // pt's
-    void sample(const Scene&, const Pass& pass, int pixel, const CameraRay&, Rng&, PathBuffers&,
+    void sample(const Scene&, const Pass& pass, int pixel, const CameraRay&, SampleStream&, PathBuffers&,
                 ContributionSink& sink) const override {
         if (pixel != 20 && pixel != 32 + int(pass.index % 4)) return;
         Connection c;

@@ -16,6 +16,15 @@ inline uint64_t mix64(uint64_t z) {
     return z ^ (z >> 31);
 }
 
+// A set of four dimensions of a low-discrepancy sampler (sample_stream.h), named by a walk before
+// its draws (paths/sample_dimensions.h), and the dimension the set's first draw reads; the next
+// draws follow it, wrapping around. Dimensions 0 and 1 are the best stratified pair, so a set
+// whose draws are one number for a choice and then a pair for a point starts at 3.
+struct DimensionSet {
+    uint32_t index = 0;
+    int first = 0;
+};
+
 // PCG32 (O'Neill 2014): small state, good statistics, cheap.
 class Rng {
 public:
@@ -35,17 +44,22 @@ public:
     }
     // Uniform in [0, 1): 24 random bits, so the result is exactly representable and < 1.
     float uniform() { return static_cast<float>(next() >> 8) * 0x1p-24f; }
+    // Independent numbers have no layout of dimensions (Sampler): the next draw is the next number.
+    void dimensions(DimensionSet) {}
 
 private:
     uint64_t state_, inc_;
 };
 
-// What the path walks draw their numbers from: a random stream (Rng) or a point in primary
-// sample space that a Markov chain moves (paths/primary_samples.h). Both hand out uniforms in
-// [0, 1) in the order they are asked for, so one walk, kernel and MIS weight serves both.
+// What the path walks draw their numbers from: a random stream (Rng), the render loop's sampler
+// (sample_stream.h) or a point in primary sample space that a Markov chain moves
+// (paths/primary_samples.h). Each hands out uniforms in [0, 1); a walk says before its draws which
+// set of dimensions they belong to (paths/sample_dimensions.h), which only a low-discrepancy
+// sampler heeds. One walk, kernel and MIS weight serves them all.
 template <class S>
 concept Sampler = requires(S& s) {
     { s.uniform() } -> std::same_as<float>;
+    s.dimensions(DimensionSet{});
 };
 
 // Stream domains: keep camera samples, light paths and anything else from sharing streams.

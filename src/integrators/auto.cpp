@@ -64,7 +64,7 @@ uint64_t stretchStart(int e) { return e == 0 ? 0 : uint64_t(1) << (e - 1); }
 PassWork surveyWork(const Scene& scene, const PixelSampleIntegrator& full, const RenderSettings& settings) {
     constexpr uint64_t kSurveyed = 1024;
     PassWork work;
-    work.lightVertices = LightPhase::survey(scene, full, settings.firstPass, settings.seed, settings.domain).vertices;
+    work.lightVertices = LightPhase::survey(scene, full, settings.firstPass, settings.streams()).vertices;
     const Camera& cam = scene.camera();
     const uint64_t pixels = uint64_t(cam.width()) * cam.height(), cameraPaths = std::min(pixels, kSurveyed);
     const double lightPaths = full.lightPaths(scene);
@@ -73,7 +73,7 @@ PassWork surveyWork(const Scene& scene, const PixelSampleIntegrator& full, const
     double vertices = 0;
     for (uint64_t i = 0; i < cameraPaths; ++i) {
         const int pixel = static_cast<int>(i * pixels / cameraPaths);
-        Rng rng = sampleStream(settings.seed, settings.domain, settings.firstPass, cam, pixel);
+        SampleStream rng = sampleStream(settings.streams(), settings.firstPass, cam, pixel);
         const Vec2 raster = jitteredRaster(rng, pixel, cam.width());
         cameraSubpath(scene, CameraRay(raster), rng, full.settings().walk, WalkPdfs::None, lightPaths, path);
         vertices += double(path.size()) - 1;
@@ -88,7 +88,7 @@ PassWork surveyWork(const Scene& scene, const PixelSampleIntegrator& full, const
     LightStore store;
     store.reset(traced);
     for (uint64_t j = 0; j < traced; ++j) {
-        Rng rng = lightPathStream(settings.seed, settings.domain, settings.firstPass, static_cast<uint64_t>(lightPaths), j);
+        SampleStream rng = lightPathStream(settings.streams(), settings.firstPass, static_cast<uint64_t>(lightPaths), j);
         lightSubpath(scene, rng, full.settings().walk, WalkPdfs::None, path);
         store.chunk(j / LightStore::kPathsPerChunk).append(path);
     }

@@ -14,12 +14,14 @@ namespace {
 constexpr Counter kLightVertices{Event::LightVertices};
 }  // namespace
 
-Rng lightPathStream(uint64_t seed, StreamDomain cameraDomain, uint64_t index, uint64_t paths, uint64_t j) {
-    return Rng(seed, static_cast<uint64_t>(lightPathDomain(cameraDomain)), index * paths + j);
+SampleStream lightPathStream(const StreamSource& source, uint64_t index, uint64_t paths, uint64_t j) {
+    const StreamDomain domain = lightPathDomain(source.domain);
+    return SampleStream(source.sampler, source.seed, domain, j, index,
+                        Rng(source.seed, static_cast<uint64_t>(domain), index * paths + j));
 }
 
 LightPathSurvey LightPhase::survey(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index,
-                                   uint64_t seed, StreamDomain cameraDomain) {
+                                   const StreamSource& source) {
     LightPathSurvey out;
     if (!integrator.hasLightPhase()) return out;
     const uint64_t paths = static_cast<uint64_t>(integrator.lightPaths(scene));
@@ -28,7 +30,7 @@ LightPathSurvey LightPhase::survey(const Scene& scene, const PixelSampleIntegrat
     const bool splats = integrator.strategies().minT <= 1;
     Subpath path;
     for (uint64_t j = 0; j < traced; ++j) {
-        Rng rng = lightPathStream(seed, cameraDomain, index, paths, j * paths / traced);
+        SampleStream rng = lightPathStream(source, index, paths, j * paths / traced);
         lightSubpath(scene, rng, integrator.settings().walk, pdfs, path);
         out.vertices += double(path.size());
         out.bsdfs += double(path.bsdfs.size());
@@ -51,8 +53,8 @@ uint64_t LightPhase::bytes(double paths, const LightPathSurvey& survey, bool mer
     return n;
 }
 
-Pass LightPhase::run(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index, uint64_t seed,
-                     StreamDomain cameraDomain) {
+Pass LightPhase::run(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index,
+                     const StreamSource& source) {
     Pass pass;
     pass.index = index;
     if (!firstRadius_) firstRadius_ = integrator.firstMergeRadius(scene);
@@ -75,7 +77,7 @@ Pass LightPhase::run(const Scene& scene, const PixelSampleIntegrator& integrator
             LightStore::Chunk& chunk = store_.chunk(c);
             const uint64_t first = c * LightStore::kPathsPerChunk;
             for (uint64_t i = first; i < std::min(paths, first + LightStore::kPathsPerChunk); ++i) {
-                Rng rng = lightPathStream(seed, cameraDomain, index, paths, i);
+                SampleStream rng = lightPathStream(source, index, paths, i);
                 lightSubpath(scene, rng, walk, pdfs, path);
                 recordRunningSums(path.vertices, true, pass.mis);
                 kLightVertices.add(path.size());

@@ -3,7 +3,8 @@
 // their vertices for merging (docs/design.md §1.1). It also makes the pass's constants
 // (paths/pass_constants.h): N_L, the merge radius of the pass's index, and η.
 //
-// Light path i of pass p draws from its own stream (seed, light-path domain, p · N_L + i), and the
+// Light path i of pass p draws from its own stream (seed, light-path domain, p · N_L + i; the
+// Sobol sampler's stream i at point p), and the
 // paths are traced in the store's fixed chunks, one task per chunk, so the store -- and every
 // image made from it -- is the same for any number of threads.
 #pragma once
@@ -25,7 +26,7 @@ struct LightPathSurvey {
 
 // The random stream of light path j of pass `index`, a pass tracing `paths` of them: the light
 // phase, its survey and auto's survey of a pass's work all start a light path here.
-Rng lightPathStream(uint64_t seed, StreamDomain cameraDomain, uint64_t index, uint64_t paths, uint64_t j);
+SampleStream lightPathStream(const StreamSource& source, uint64_t index, uint64_t paths, uint64_t j);
 
 class LightPhase {
 public:
@@ -34,7 +35,7 @@ public:
     // store, known before the store is allocated. Zero without a light phase.
     static constexpr int kSurveyPaths = 4096;
     static LightPathSurvey survey(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index,
-                                  uint64_t seed, StreamDomain cameraDomain);
+                                  const StreamSource& source);
     // The memory a pass of `paths` light paths of these averages takes at its peak, while the
     // merge search is built (pixel_sample_integrator.h's Pass: the store, the chunks' mergeable
     // lists and the grid with its temporaries, when `merges`).
@@ -44,8 +45,7 @@ public:
     // calling thread's TBB arena, and returns what the pass's camera samples share. The Pass
     // points into this object: it stays valid until the next run. One LightPhase serves one
     // render (one scene and integrator): the first pass's radius is found once and kept.
-    Pass run(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index, uint64_t seed,
-             StreamDomain cameraDomain);
+    Pass run(const Scene& scene, const PixelSampleIntegrator& integrator, uint64_t index, const StreamSource& source);
 
     const LightStore& store() const { return store_; }
 

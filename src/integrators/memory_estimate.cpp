@@ -56,7 +56,7 @@ std::vector<MemoryPart> lightPhaseMemory(const Scene& scene, const PixelSampleIn
                                          const RenderSettings& settings) {
     using enum MemoryPart::Phase;
     const uint64_t first = settings.resume ? settings.resume->nextPass : settings.firstPass;
-    const LightPathSurvey survey = LightPhase::survey(scene, integrator, first, settings.seed, settings.domain);
+    const LightPathSurvey survey = LightPhase::survey(scene, integrator, first, settings.streams());
     const double paths = integrator.lightPaths(scene);
     // One light path per pixel unless --light-paths says otherwise.
     std::vector<std::string> fewer{"light-paths"};

@@ -38,7 +38,7 @@ MisContext PixelSampleIntegrator::misContext(const PassConstants& constants) con
     return mis;
 }
 
-void PixelSampleIntegrator::sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng,
+void PixelSampleIntegrator::sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, SampleStream& rng,
                                    PathBuffers& paths, ContributionSink& sink) const {
     if (!pass.mis.strategies.walksCamera()) {
         sensorSubpath(scene, paths.camera);
@@ -58,13 +58,13 @@ void PixelSampleIntegrator::sample(const Scene& scene, const Pass& pass, int pix
 }
 
 void PixelSampleIntegrator::splatLightPaths(const Scene& scene, const Pass& pass, int pixel, const SubpathView& sensor,
-                                            Rng& rng, ContributionSink& sink) const {
+                                            SampleStream& rng, ContributionSink& sink) const {
     if (!pass.light || !strategies().enabled(1, 1)) return;
     const size_t pixels = size_t(scene.camera().width()) * scene.camera().height();
     for (size_t j = size_t(pixel); j < pass.light->paths(); j += pixels) connectAll(scene, pass, pass.light->path(j), sensor, 1, rng, sink);
 }
 
-void PixelSampleIntegrator::cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng,
+void PixelSampleIntegrator::cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, SampleStream& rng,
                                        Subpath& camera) const {
     cameraSubpath(scene, ray, rng, settings().walk, walkStrategies().cameraWalkPdfs(), pass.mis.constants.lightPaths, camera);
     recordRunningSums(camera.vertices, false, pass.mis);

@@ -5,6 +5,7 @@
 // all (render.cpp): passes in tiles, dealt over a team in canonical blocks (tile_passes.h). A pixel's sample can
 // be rendered again alone (replaySample, render.h).
 #pragma once
+#include "core/sample_stream.h"
 #include "integrators/integrator.h"
 
 namespace tripath {
@@ -52,7 +53,7 @@ public:
     // the integrator merges. Where the pass's strategies need no camera walk (StrategySet::
     // walksCamera: lt, and auto's tiles that only trace light), the sensor alone and its splats;
     // the render loop then traces no camera ray for it.
-    virtual void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, Rng& rng, PathBuffers& paths,
+    virtual void sample(const Scene& scene, const Pass& pass, int pixel, const CameraRay& ray, SampleStream& rng, PathBuffers& paths,
                         ContributionSink& sink) const;
     // The strategies it measures, a superset of those it enables (mis.h's TechniqueMeasure): none
     // by default; a measuring pass of auto's measures the whole vcm set whatever its plan
@@ -77,10 +78,10 @@ public:
 protected:
     // The sample's camera subpath along `ray`, with the MIS running sums of
     // the pass's context where it keeps them.
-    void cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, Rng& rng, Subpath& camera) const;
+    void cameraWalk(const Scene& scene, const Pass& pass, const CameraRay& ray, SampleStream& rng, Subpath& camera) const;
     // Runs every enabled connection with t ≥ firstT over the two subpaths into the sink.
     void connectAll(const Scene& scene, const Pass& pass, const SubpathView& light, const SubpathView& camera, int firstT,
-                    Rng& rng, ContributionSink& sink) const {
+                    SampleStream& rng, ContributionSink& sink) const {
         evaluateStrategies(scene, light, camera, firstT, rng, settings().walk.maxDepth, pass.mis,
                            [&](Strategy st, const Connection& c) { sink.add(st, c); });
     }
@@ -88,7 +89,7 @@ protected:
     // pixel + P, pixel + 2P, … below N_L, P being the pixel count: every light path is joined to
     // the sensor `sensor` once per pass, whatever N_L, in the order of the pixels' samples (so the
     // film's sums do not depend on threads). Each draws what it needs from the pixel's stream.
-    void splatLightPaths(const Scene& scene, const Pass& pass, int pixel, const SubpathView& sensor, Rng& rng,
+    void splatLightPaths(const Scene& scene, const Pass& pass, int pixel, const SubpathView& sensor, SampleStream& rng,
                          ContributionSink& sink) const;
     // Runs every merge of the camera subpath with the pass's light vertices into the sink.
     void mergeAll(const Scene& scene, const Pass& pass, const Subpath& camera, ContributionSink& sink) const {

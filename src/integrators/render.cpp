@@ -58,9 +58,9 @@ void replaySample(const Scene& scene, const PixelSampleIntegrator& integrator, c
     LightPhase lightPhase;
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        const Pass p = lightPhase.run(scene, integrator, pass, settings.seed, settings.domain);
+        const Pass p = lightPhase.run(scene, integrator, pass, settings.streams());
         PathBuffers paths;
-        Rng rng = sampleStream(settings.seed, settings.domain, pass, cam, pixel);
+        SampleStream rng = sampleStream(settings.streams(), pass, cam, pixel);
         const Vec2 raster = jitteredRaster(rng, pixel, cam.width());
         integrator.sample(scene, p, pixel, CameraRay(raster), rng, paths, sink);
     });

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "core/sample_stream.h"
 #include "core/stats.h"
 #include "integrators/film.h"
 #include "integrators/memory_estimate.h"
@@ -54,6 +55,8 @@ struct RenderSettings {
     // The streams the per-pixel samples draw from: CameraSample for renders, Reference for
     // references, so that a reference and a render with the same seed share no random numbers.
     StreamDomain domain = StreamDomain::CameraSample;
+    SamplerKind sampler = SamplerKind::Independent;  // what the samples draw from (core/sample_stream.h)
+    StreamSource streams() const { return {seed, domain, sampler}; }
     uint64_t firstPass = 0;       // sample index of the first pass: lets a reference add fresh samples
     int threads = 0;              // 0: all cores
     bool timing = false;          // run the phase timers (core/stats.h) for RenderResult::stats

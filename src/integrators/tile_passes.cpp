@@ -12,6 +12,7 @@
 
 #include "core/stats.h"
 #include "integrators/plan_moments.h"
+#include "paths/sample_dimensions.h"
 
 namespace tripath {
 
@@ -102,11 +103,13 @@ private:
 
 }  // namespace
 
-Rng sampleStream(uint64_t seed, StreamDomain domain, uint64_t pass, const Camera& cam, int pixel) {
+SampleStream sampleStream(const StreamSource& source, uint64_t pass, const Camera& cam, int pixel) {
     const uint64_t pixels = uint64_t(cam.width()) * cam.height();
-    return Rng(seed, static_cast<uint64_t>(domain), pass * pixels + uint64_t(pixel));
+    return SampleStream(source.sampler, source.seed, source.domain, uint64_t(pixel), pass,
+                        Rng(source.seed, static_cast<uint64_t>(source.domain), pass * pixels + uint64_t(pixel)));
 }
-Vec2 jitteredRaster(Rng& rng, int pixel, int width) {
+Vec2 jitteredRaster(SampleStream& rng, int pixel, int width) {
+    rng.dimensions(dimensions::kPixel);
     const float jx = rng.uniform(), jy = rng.uniform();
     return {pixel % width + jx, pixel / width + jy};
 }
@@ -125,7 +128,7 @@ Pass tilePass(const Pass& pass, const PixelSampleIntegrator& integrator, const P
 }
 
 void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, const Pass& wholePass, Film& film,
-                PlanMoments* moments, std::span<const PassPlan> plans, int tile, uint64_t seed, StreamDomain domain,
+                PlanMoments* moments, std::span<const PassPlan> plans, int tile, const StreamSource& source,
                 TileOutput& out) {
     const Camera& cam = scene.camera();
     const int tilesX = (cam.width() + kTileSize - 1) / kTileSize;
@@ -140,7 +143,7 @@ void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, con
     // Runs of up to 8 pixels of a row: their camera rays are traced together (Scene::intersect8),
     // then each sample goes on with its own stream. The runs depend on the tile alone.
     constexpr int kRun = 8;
-    std::array<std::optional<Rng>, kRun> rngs;
+    std::array<std::optional<SampleStream>, kRun> rngs;
     std::array<Vec2, kRun> rasters;
     std::array<Vec3, kRun> dirs;
     std::array<std::optional<SurfacePoint>, kRun> hits;
@@ -150,7 +153,7 @@ void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, con
             const int n = std::min(kRun, xEnd - xRun);
             for (int i = 0; i < n; ++i) {
                 const int pixel = y * cam.width() + xRun + i;
-                Rng& rng = rngs[i].emplace(sampleStream(seed, domain, pass.index, cam, pixel));
+                SampleStream& rng = rngs[i].emplace(sampleStream(source, pass.index, cam, pixel));
                 rasters[i] = jitteredRaster(rng, pixel, cam.width());
                 dirs[i] = cam.direction(rasters[i]);
             }
@@ -179,11 +182,10 @@ PassRenderer::~PassRenderer() = default;
 void PassRenderer::run(const PixelSampleIntegrator& method, uint64_t passIndex, RenderResult& result, PlanMoments* moments,
                        std::span<const PassPlan> tilePlans) {
     arena_.execute([&] {
-        const Pass pass = lightPhase_.run(scene_, method, passIndex, settings_.seed, settings_.domain);
+        const Pass pass = lightPhase_.run(scene_, method, passIndex, settings_.streams());
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_, 1), [&](const tbb::blocked_range<int>& r) {
             for (int tile = r.begin(); tile < r.end(); ++tile)
-                renderTile(scene_, method, pass, result.film, moments, tilePlans, tile, settings_.seed, settings_.domain,
-                           outputs_[tile]);
+                renderTile(scene_, method, pass, result.film, moments, tilePlans, tile, settings_.streams(), outputs_[tile]);
         });
     });
     const PhaseScope filing(Phase::Film);

@@ -19,10 +19,11 @@ class PlanMoments;
 
 inline constexpr int kTileSize = 16;
 
-// The random stream of camera sample (pass, pixel), and its raster position: the stream's first
-// two draws jitter it within the pixel. The passes and replaySample() both start a sample here.
-Rng sampleStream(uint64_t seed, StreamDomain domain, uint64_t pass, const Camera& cam, int pixel);
-Vec2 jitteredRaster(Rng& rng, int pixel, int width);
+// The stream of camera sample (pass, pixel), and its raster position: the draws of the sample's
+// first set of dimensions jitter it within the pixel. The passes and replaySample() both start a
+// sample here.
+SampleStream sampleStream(const StreamSource& source, uint64_t pass, const Camera& cam, int pixel);
+Vec2 jitteredRaster(SampleStream& rng, int pixel, int width);
 
 struct TileOutput;
 

@@ -60,6 +60,9 @@ public:
     // The walks read the stream set last (each stream from its first coordinate on, per proposal).
     void startStream(Stream s) { stream_ = static_cast<int>(s); }
     float uniform();
+    // A chain's coordinates are its own layout, a stream's in the order the walk reads them
+    // (Sampler): the walks' sets of dimensions change nothing here.
+    void dimensions(DimensionSet) {}
 
     // The state between proposals, as bytes (a checkpoint's), and back: read() takes its bytes off
     // the front of `in` and throws InputError if they are cut short.

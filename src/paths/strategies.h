@@ -13,6 +13,7 @@
 #include "paths/connect.h"
 #include "paths/light_store.h"
 #include "paths/merge.h"
+#include "paths/sample_dimensions.h"
 #include "paths/walk.h"
 
 namespace tripath {
@@ -23,6 +24,7 @@ inline constexpr Counter kMerges{Event::Merges};
 // Strategy (1, t): next-event estimation from a fresh emitter point.
 template <Sampler S>
 Connection connectNextEvent(const Scene& scene, S& rng, const SubpathView& camera, int t, const MisContext& mis) {
+    rng.dimensions(dimensions::nextEvent(t - 1));
     const Vertex y0 = sampleEmitterVertex(scene, rng);
     return connect(scene, SubpathView(std::span<const Vertex>(&y0, 1)), 1, camera, t, mis);  // y0 emits: no BSDF
 }

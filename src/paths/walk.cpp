@@ -5,6 +5,7 @@
 #include "paths/kernels.h"
 #include "paths/primary_samples.h"
 #include "paths/roulette.h"
+#include "paths/sample_dimensions.h"
 
 namespace tripath {
 
@@ -182,6 +183,8 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
         const Frame frame(n);
         // Every draw in its own statement: the order of a call's arguments is unspecified, and
         // the image a seed gives must not depend on the compiler.
+        const int at = static_cast<int>(path.size()) - 1;
+        rng.dimensions(mode == TransportMode::Radiance ? dimensions::cameraScatter(at) : dimensions::lightScatter(at));
         const Vec2 u = uniform2(rng);
         const float uc = rng.uniform();
         const BsdfParams& bsdf = *SubpathView(path).bsdf(path.size() - 1);
@@ -261,9 +264,11 @@ template <Sampler S>
 void lightSubpath(const Scene& scene, S& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {
     path.clear();
     if (settings.maxDepth < 1) return;
+    rng.dimensions(dimensions::kEmitterPoint);
     push(scene, path, sampleEmitterVertex(scene, rng));
     Vertex& y0 = path.vertices.back();
     const Emitters& emitters = scene.emitters();
+    rng.dimensions(dimensions::kEmission);
     const float uc = rng.uniform();
     const Vec2 u = uniform2(rng);
     // From an emitter at infinity, light crosses the bounding disc at a point drawn on it: the
@@ -278,7 +283,11 @@ void lightSubpath(const Scene& scene, S& rng, const WalkSettings& settings, Walk
                static_cast<size_t>(settings.maxDepth), path);
 }
 
-// The walks for both samplers: the render loop's random streams and mlt's chains.
+// The walks for every sampler: the render loop's streams, plain random streams (tests, benchmarks)
+// and mlt's chains.
+template Vertex sampleEmitterVertex(const Scene&, SampleStream&);
+template void cameraSubpath(const Scene&, const CameraRay&, SampleStream&, const WalkSettings&, WalkPdfs, double, Subpath&);
+template void lightSubpath(const Scene&, SampleStream&, const WalkSettings&, WalkPdfs, Subpath&);
 template Vertex sampleEmitterVertex(const Scene&, Rng&);
 template Vertex sampleEmitterVertex(const Scene&, PrimarySamples&);
 template void cameraSubpath(const Scene&, const CameraRay&, Rng&, const WalkSettings&, WalkPdfs, double, Subpath&);

@@ -3,6 +3,7 @@
 // the integrator's MIS weights read (StrategySet::cameraWalkPdfs / lightWalkPdfs).
 #pragma once
 #include "core/rng.h"
+#include "core/sample_stream.h"
 #include "paths/mis.h"
 #include "paths/vertex.h"
 

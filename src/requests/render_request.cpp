@@ -93,6 +93,8 @@ void validateValues(const RenderRequest& r, Spelling spelling) {
     if (!(r.metropolis.largeStep >= 0 && r.metropolis.largeStep <= 1))
         fail(fmt::format("{} must be a probability, from 0 to 1 (got {})", name("large-step"), r.metropolis.largeStep));
     parseMisHeuristic(r.mis);
+    if (!samplerNamed(r.sampler))
+        fail(fmt::format("{} takes independent or sobol (got '{}')", name("sampler"), r.sampler.substr(0, 20)));
 }
 
 void requireUsed(const RenderRequest& r, const std::vector<std::string>& integrators, Spelling spelling) {
@@ -134,6 +136,7 @@ RenderSettings renderSettings(const RenderRequest& r, Spelling spelling) {
     s.spp = r.spp > 0 ? r.spp : (r.seconds > 0 ? 0 : 16);
     s.seed = r.seed;
     s.domain = r.domain;
+    s.sampler = samplerNamed(r.sampler).value_or(SamplerKind::Independent);
     s.threads = r.threads;
     s.timing = r.stats;
     if (r.depthImages) s.layers.depthImages = r.maxDepth;
@@ -177,6 +180,7 @@ Metadata renderMetadata(const RenderRequest& r, const Scene& scene, const Integr
                {"tripath:max-depth", std::to_string(r.maxDepth)},
                {"tripath:rr-depth", rouletteText(integrator, integrator.settings().walk.rrDepth)},
                {"tripath:mis", r.mis},
+               {"tripath:sampler", r.sampler},
                {"tripath:dropped-samples", std::to_string(result.droppedSamples)},
                {"tripath:guarded-weights", std::to_string(result.guardedWeights)},
                {"tripath:version", TRIPATH_VERSION},

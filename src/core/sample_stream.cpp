@@ -1,0 +1,13 @@
+#include "core/sample_stream.h"
+
+namespace tripath {
+
+const char* samplerName(SamplerKind kind) { return kind == SamplerKind::Sobol ? "sobol" : "independent"; }
+
+std::optional<SamplerKind> samplerNamed(const std::string& name) {
+    if (name == "independent") return SamplerKind::Independent;
+    if (name == "sobol") return SamplerKind::Sobol;
+    return std::nullopt;
+}
+
+}  // namespace tripath

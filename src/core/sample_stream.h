@@ -1,0 +1,72 @@
+// What a path draws its numbers from in the render loop: a pixel's sample or a light path of a
+// pass, under `--sampler`.
+//
+// - independent: one random stream (rng.h) per sample, its numbers in the order they are asked for.
+// - sobol: scrambled Sobol points (sobol.h). The path says which set of four dimensions its next
+//   draws belong to (paths/sample_dimensions.h: a set per purpose and vertex, so that a longer
+//   path never shifts an earlier vertex's numbers); the set's numbers are dimensions 0–3 of point
+//   `index` (the sample's pass) of a stream keyed by the seed, the domain, the stream (a pixel or a
+//   light path) and the set. Draws past four in a set come from the sample's independent stream.
+//   So the samples of a pixel, pass after pass, are stratified in each set's dimensions, and
+//   independent between pixels, between sets and between domains (a reference's never share a
+//   run's).
+// A sample's numbers depend on the seed, the domain, the stream, the pass and the dimension only:
+// the same for any thread or rank that draws them.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/rng.h"
+#include "core/sobol.h"
+
+namespace tripath {
+
+enum class SamplerKind { Independent, Sobol };
+
+// Whose numbers a render draws: its seed, the domain of its camera samples (its light paths' is
+// lightPathDomain's) and its sampler.
+struct StreamSource {
+    uint64_t seed = 1;
+    StreamDomain domain = StreamDomain::CameraSample;
+    SamplerKind sampler = SamplerKind::Independent;
+};
+
+// "independent", "sobol"; and back (nullopt for another name).
+const char* samplerName(SamplerKind kind);
+std::optional<SamplerKind> samplerNamed(const std::string& name);
+
+class SampleStream {
+public:
+    // Sample `index` of stream `stream` in `domain`; `independent` is its random stream (the whole
+    // of an independent sample; a Sobol sample's draws past four in a set).
+    SampleStream(SamplerKind kind, uint64_t seed, StreamDomain domain, uint64_t stream, uint64_t index, Rng independent)
+        : rng_(independent),
+          key_(kind == SamplerKind::Sobol ? mix64(seed ^ mix64(static_cast<uint64_t>(domain) ^ mix64(stream ^ mix64(index >> 32))))
+                                          : 0),
+          index_(static_cast<uint32_t>(index)),
+          sobol_(kind == SamplerKind::Sobol) {
+        dimensions({});
+    }
+    // The next draws are set `set`'s dimensions, from its first on.
+    void dimensions(DimensionSet set) {
+        if (!sobol_) return;
+        point_ = SobolPoint(index_, key_ + set.index);
+        first_ = set.first;
+        used_ = 0;
+    }
+    float uniform() {
+        if (used_ < 4) return fractionToFloat(point_[(first_ + used_++) & 3]);
+        return rng_.uniform();
+    }
+
+private:
+    Rng rng_;
+    uint64_t key_;
+    uint32_t index_;
+    bool sobol_;
+    int first_ = 0, used_ = 4;
+    SobolPoint point_;
+};
+
+}  // namespace tripath
