@@ -590,6 +590,8 @@ TEST_F(Cli, FlagsThatChangeNothingAreRefused) {
     expectRefused(render(tiny + "--integrator bdpt --alpha 0.5 " + out()), "--alpha needs an integrator that merges");
     expectRefused(render(tiny + "--integrator pt --light-paths 10 " + out()),
                   "--light-paths needs an integrator that traces light paths (lt, bdpt, vcm, bpm, ppm or auto): pt does not");
+    expectRefused(render(tiny + "--integrator mlt --sampler sobol " + out()),
+                  "--sampler needs an integrator of independent passes (pt, lt, bdpt, vcm, bpm, ppm or auto): mlt does not");
     expectRefused(render(tiny + "--exposure 2 " + out()), "--exposure requires --png");
     expectRefused(render(tiny + "--exposure nan " + out() + " --png '" + path("out.png") + "'"), "--exposure");
     expectRefused(render(tiny + "--exposure inf " + out() + " --png '" + path("out.png") + "'"), "--exposure");
@@ -599,6 +601,10 @@ TEST_F(Cli, FlagsThatChangeNothingAreRefused) {
         EXPECT_EQ(used.exitCode, 0) << flags << ": " << used.err;
     }
     EXPECT_EQ(run(render(tiny + "--integrator lt --light-paths 10 " + out())).exitCode, 0);
+    for (const std::string integrator : {"pt", "auto"}) {
+        const Outcome sobol = run(render(tiny + "--integrator " + integrator + " --sampler sobol " + out()));
+        EXPECT_EQ(sobol.exitCode, 0) << integrator << ": " << sobol.err;
+    }
     const Outcome exposed = run(render(tiny + "--exposure -2 " + out() + " --png '" + path("out.png") + "'"));
     EXPECT_EQ(exposed.exitCode, 0) << exposed.err;
     fs::remove(path("out.exr"));  // expectRefused checks that none is written

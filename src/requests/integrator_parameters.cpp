@@ -14,7 +14,9 @@ bool merges(const Integrator& i) { return i.strategies().merges(); }
 bool chains(const Integrator& i) { return i.markovChains() != nullptr; }
 bool playsRoulette(const Integrator& i) { return i.playsRoulette(); }
 bool tracesLightPaths(const Integrator& i) { return i.hasLightPhase(); }
-bool samplesPixels(const Integrator& i) { return i.pixelSamples() != nullptr; }
+// Every method but mlt draws its paths in the render loop's passes; mlt's chains keep their own
+// coordinates.
+bool drawsPasses(const Integrator& i) { return i.markovChains() == nullptr; }
 // Strategy images add up pixel samples per strategy: lt's one strategy per length, (k, 1), is its
 // depth image; a method without pixel samples (mlt's chains weigh each strategy by where they
 // wander rather than per pass) has none.
@@ -42,11 +44,11 @@ const std::vector<IntegratorParameter> kParameters{
      "the radius of pass i is r_1 * i^((alpha-1)/2); 1 keeps it fixed (biased), below 1 shrinks it (consistent)", merges,
      [](const RenderRequest& r) { return r.alphaGiven; }, [](const RenderRequest& r) { return fmt::format("{}", r.merge.alpha); },
      true},
-    {"sampler", "an integrator of pixel samples",
+    {"sampler", "an integrator of independent passes",
      "what the paths draw their numbers from: independent (a random stream per sample) or sobol (Owen-scrambled "
      "Sobol points, four dimensions per vertex and purpose, stratified over each pixel's passes and each light "
      "path's). Both converge to the same image; the EXR records it (tripath:sampler)",
-     samplesPixels, [](const RenderRequest& r) { return r.sampler != "independent"; },
+     drawsPasses, [](const RenderRequest& r) { return r.sampler != "independent"; },
      [](const RenderRequest& r) { return r.sampler; }, true},
     {"light-paths", "an integrator that traces light paths",
      "light paths traced per pass, N_L (default: one per pixel). Pixel i's camera sample connects with light path "
