@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <set>
@@ -495,7 +496,7 @@ std::optional<SurfacePoint> Scene::intersect(Vec3 origin, Vec3 dir, float tMax) 
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(rtcScene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    return hitPoint(rh.hit.instID[0], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar);
+    return hitPoint(rh.hit.instID[0], rh.hit.primID, rh.hit.u, rh.hit.v, origin, dir, rh.ray.tfar);
 }
 
 void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::optional<SurfacePoint>> hits) const {
@@ -531,8 +532,8 @@ void Scene::intersect8(Vec3 origin, std::span<const Vec3> dirs, std::span<std::o
     }
     for (size_t i = 0; i < dirs.size(); ++i) {
         if (valid[i] && packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID)
-            hits[i] = hitPoint(packet.hit.instID[0][i], packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i],
-                               packet.ray.tfar[i]);
+            hits[i] = hitPoint(packet.hit.instID[0][i], packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i], origin,
+                               dirs[i], packet.ray.tfar[i]);
         else
             hits[i].reset();
     }
@@ -552,11 +553,41 @@ SurfacePoint Scene::surfacePoint(uint32_t triangle, float u, float v, float tHit
     return sp;
 }
 
+namespace {
+
+// The hit point as precisely as floats allow. surfacePoint's, from barycentrics, is off by about
+// 2^-24 of the triangle's coordinates and edges (Embree's u and v carry that error); org + t·dir by
+// about 2^-24 of |org| + t. Where a triangle is far larger than the ray's reach (a ground of 10 km
+// seen from a millimetre away, where the barycentric point lands up to 0.5 mm off, in or out of a
+// small object's shadow), the ray's point is taken, moved in double onto the triangle's plane so
+// that it lies on it as the barycentric point does.
+Vec3 nearerHitPoint(const Triangle& t, Vec3 barycentric, Vec3 org, Vec3 dir, float tHit) {
+    constexpr float kFarLarger = 16;
+    const float triangleScale = std::max({maxComponent(abs(t.p[0])), maxComponent(abs(t.p[1])), maxComponent(abs(t.p[2]))});
+    if (!((maxComponent(abs(org)) + tHit * maxComponent(abs(dir))) * kFarLarger < triangleScale)) return barycentric;
+    auto d = [](Vec3 a) { return std::array<double, 3>{a.x, a.y, a.z}; };
+    const auto p0 = d(t.p[0]), p1 = d(t.p[1]), p2 = d(t.p[2]), o = d(org), w = d(dir);
+    const std::array<double, 3> e1{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2{p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+    const std::array<double, 3> n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if (!(nn > 0)) return barycentric;
+    std::array<double, 3> q{};
+    for (int k = 0; k < 3; ++k) q[size_t(k)] = o[size_t(k)] + w[size_t(k)] * double(tHit);
+    const double off = ((q[0] - p0[0]) * n[0] + (q[1] - p0[1]) * n[1] + (q[2] - p0[2]) * n[2]) / nn;
+    return {float(q[0] - off * n[0]), float(q[1] - off * n[1]), float(q[2] - off * n[2])};
+}
+
+}  // namespace
+
 // An instance's triangle as the flattened mesh would have it: the point through toWorld, the
 // normals through normalToWorld, each corner's unit before they are blended (as the loader leaves
 // the normals of a mesh it places in world space).
-SurfacePoint Scene::hitPoint(uint32_t instance, uint32_t primitive, float u, float v, float tHit) const {
-    if (instance == RTC_INVALID_GEOMETRY_ID) return surfacePoint(primitive, u, v, tHit);
+SurfacePoint Scene::hitPoint(uint32_t instance, uint32_t primitive, float u, float v, Vec3 org, Vec3 dir, float tHit) const {
+    if (instance == RTC_INVALID_GEOMETRY_ID) {
+        SurfacePoint sp = surfacePoint(primitive, u, v, tHit);
+        sp.p = nearerHitPoint(triangles_[primitive], sp.p, org, dir, tHit);
+        return sp;
+    }
     const Instance& in = instances_[instance - 1];
     SurfacePoint sp = surfacePoint(in.firstTriangle + primitive, u, v, tHit);
     const Triangle& t = triangles_[sp.triangle];

@@ -145,8 +145,8 @@ private:
     // The hit record of a ray that hit triangle `triangle` at barycentrics (u, v), parameter t.
     SurfacePoint surfacePoint(uint32_t triangle, float u, float v, float t) const;
     // The hit record of Embree's hit on primitive `primitive` of instance geometry `instance`
-    // (RTC_INVALID_GEOMETRY_ID: of the world-space triangles).
-    SurfacePoint hitPoint(uint32_t instance, uint32_t primitive, float u, float v, float t) const;
+    // (RTC_INVALID_GEOMETRY_ID: of the world-space triangles), by the ray org + t·dir.
+    SurfacePoint hitPoint(uint32_t instance, uint32_t primitive, float u, float v, Vec3 org, Vec3 dir, float t) const;
     void buildBvh();
 
     std::string name_;
