@@ -160,6 +160,7 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
     }
     addMeshes(desc, warn);
     if (triangles_.empty()) throw InputError(fmt::format("{}: the scene has no triangles", name_));
+    coordinateScale_ = std::max(maxComponent(abs(lo_)), maxComponent(abs(hi_)));
 
     const Vec3 centre = (lo_ + hi_) * 0.5f;
     // A little beyond the bounds' corners: rays from emitters at infinity start outside the scene.
@@ -203,6 +204,7 @@ Scene::Memory Scene::memory() const {
 Scene::Scene(const Scene& base, int width, int height)
     : name_(base.name_), sources_(base.sources_), materials_(base.materials_), triangles_(base.triangles_),
       worldTriangles_(base.worldTriangles_), instances_(base.instances_), lo_(base.lo_), hi_(base.hi_),
+      coordinateScale_(base.coordinateScale_),
       cameraDesc_(base.cameraDesc_), camera_(base.cameraDesc_, width, height), emitters_(base.emitters_),
       surfaceTextures_(base.surfaceTextures_), anyNormalTexture_(base.anyNormalTexture_),
       variesBsdfs_(base.variesBsdfs_), alphaMasks_(base.alphaMasks_),
@@ -557,14 +559,18 @@ namespace {
 
 // The hit point as precisely as floats allow. surfacePoint's, from barycentrics, is off by about
 // 2^-24 of the triangle's coordinates and edges (Embree's u and v carry that error); org + t·dir by
-// about 2^-24 of |org| + t. Where a triangle is far larger than the ray's reach (a ground of 10 km
+// about 2^-24 of |org| + t. Where a triangle is far larger than the ray's reach (over 1024 times: a ground of 10 km
 // seen from a millimetre away, where the barycentric point lands up to 0.5 mm off, in or out of a
 // small object's shadow), the ray's point is taken, moved in double onto the triangle's plane so
 // that it lies on it as the barycentric point does.
-Vec3 nearerHitPoint(const Triangle& t, Vec3 barycentric, Vec3 org, Vec3 dir, float tHit) {
-    constexpr float kFarLarger = 16;
+// A scene's coordinates bound its triangles', so most hits are settled by the scene's bounds
+// (`sceneScale`, the largest coordinate) before a triangle's corners are read.
+Vec3 nearerHitPoint(const Triangle& t, Vec3 barycentric, Vec3 org, Vec3 dir, float tHit, float sceneScale) {
+    constexpr float kFarLarger = 1024;
+    const float reach = (maxComponent(abs(org)) + tHit * maxComponent(abs(dir))) * kFarLarger;
+    if (!(reach < sceneScale)) return barycentric;
     const float triangleScale = std::max({maxComponent(abs(t.p[0])), maxComponent(abs(t.p[1])), maxComponent(abs(t.p[2]))});
-    if (!((maxComponent(abs(org)) + tHit * maxComponent(abs(dir))) * kFarLarger < triangleScale)) return barycentric;
+    if (!(reach < triangleScale)) return barycentric;
     auto d = [](Vec3 a) { return std::array<double, 3>{a.x, a.y, a.z}; };
     const auto p0 = d(t.p[0]), p1 = d(t.p[1]), p2 = d(t.p[2]), o = d(org), w = d(dir);
     const std::array<double, 3> e1{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2{p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
@@ -585,7 +591,7 @@ Vec3 nearerHitPoint(const Triangle& t, Vec3 barycentric, Vec3 org, Vec3 dir, flo
 SurfacePoint Scene::hitPoint(uint32_t instance, uint32_t primitive, float u, float v, Vec3 org, Vec3 dir, float tHit) const {
     if (instance == RTC_INVALID_GEOMETRY_ID) {
         SurfacePoint sp = surfacePoint(primitive, u, v, tHit);
-        sp.p = nearerHitPoint(triangles_[primitive], sp.p, org, dir, tHit);
+        sp.p = nearerHitPoint(triangles_[primitive], sp.p, org, dir, tHit, coordinateScale_);
         return sp;
     }
     const Instance& in = instances_[instance - 1];
