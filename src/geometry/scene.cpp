@@ -559,12 +559,12 @@ namespace {
 
 // The hit point as precisely as floats allow. surfacePoint's, from barycentrics, is off by about
 // 2^-24 of the triangle's coordinates and edges (Embree's u and v carry that error); org + t·dir by
-// about 2^-24 of |org| + t. Where a triangle is far larger than the ray's reach (over 1024 times: a ground of 10 km
+// about 2^-24 of |org| + t. Where a triangle is over 1024 times the ray's reach (a ground of 10 km
 // seen from a millimetre away, where the barycentric point lands up to 0.5 mm off, in or out of a
 // small object's shadow), the ray's point is taken, moved in double onto the triangle's plane so
-// that it lies on it as the barycentric point does.
-// A scene's coordinates bound its triangles', so most hits are settled by the scene's bounds
-// (`sceneScale`, the largest coordinate) before a triangle's corners are read.
+// that it lies on it as the barycentric point does. A scene's coordinates bound its triangles', so
+// most hits are settled by the scene's largest coordinate (`sceneScale`) before a triangle's
+// corners are read.
 Vec3 nearerHitPoint(const Triangle& t, Vec3 barycentric, Vec3 org, Vec3 dir, float tHit, float sceneScale) {
     constexpr float kFarLarger = 1024;
     const float reach = (maxComponent(abs(org)) + tHit * maxComponent(abs(dir))) * kFarLarger;
