@@ -2,8 +2,6 @@
 
 namespace tripath {
 
-const char* samplerName(SamplerKind kind) { return kind == SamplerKind::Sobol ? "sobol" : "independent"; }
-
 std::optional<SamplerKind> samplerNamed(const std::string& name) {
     if (name == "independent") return SamplerKind::Independent;
     if (name == "sobol") return SamplerKind::Sobol;

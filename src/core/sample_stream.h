@@ -32,8 +32,7 @@ struct StreamSource {
     SamplerKind sampler = SamplerKind::Independent;
 };
 
-// "independent", "sobol"; and back (nullopt for another name).
-const char* samplerName(SamplerKind kind);
+// The sampler named "independent" or "sobol"; nullopt for another name.
 std::optional<SamplerKind> samplerNamed(const std::string& name);
 
 class SampleStream {

@@ -23,6 +23,11 @@ constexpr Counter kShadowRays{Event::ShadowRays};
 constexpr Counter kBsdfDerivations{Event::BsdfDerivations};
 }  // namespace
 
+// The coordinates below which no hit rebuilt from barycentrics lands off by more than a ray
+// origin's absolute offset: its error, about 2^-23 of the triangle's coordinates, stays under
+// 2^-16 (offsetRayOrigin) below 2^7.
+constexpr float kMisplacingScale = 128;
+
 // A hit point computed from barycentrics is off the triangle's plane by a few ulps of the LARGEST
 // coordinate involved (not of the coordinate along the normal, which may be near zero), so the
 // offset is relative to max|p|: 2^-18 ≈ 32 ulps of it, plus 2^-16 absolute for scenes near the
@@ -160,7 +165,7 @@ Scene::Scene(SceneDesc desc, int width, int height, const WarningSink& warn)
     }
     addMeshes(desc, warn);
     if (triangles_.empty()) throw InputError(fmt::format("{}: the scene has no triangles", name_));
-    coordinateScale_ = std::max(maxComponent(abs(lo_)), maxComponent(abs(hi_)));
+    mayMisplaceHits_ = std::max(maxComponent(abs(lo_)), maxComponent(abs(hi_))) > kMisplacingScale;
 
     const Vec3 centre = (lo_ + hi_) * 0.5f;
     // A little beyond the bounds' corners: rays from emitters at infinity start outside the scene.
@@ -204,7 +209,7 @@ Scene::Memory Scene::memory() const {
 Scene::Scene(const Scene& base, int width, int height)
     : name_(base.name_), sources_(base.sources_), materials_(base.materials_), triangles_(base.triangles_),
       worldTriangles_(base.worldTriangles_), instances_(base.instances_), lo_(base.lo_), hi_(base.hi_),
-      coordinateScale_(base.coordinateScale_),
+      mayMisplaceHits_(base.mayMisplaceHits_),
       cameraDesc_(base.cameraDesc_), camera_(base.cameraDesc_, width, height), emitters_(base.emitters_),
       surfaceTextures_(base.surfaceTextures_), anyNormalTexture_(base.anyNormalTexture_),
       variesBsdfs_(base.variesBsdfs_), alphaMasks_(base.alphaMasks_),
@@ -562,13 +567,11 @@ namespace {
 // about 2^-24 of |org| + t. Where a triangle is over 1024 times the ray's reach (a ground of 10 km
 // seen from a millimetre away, where the barycentric point lands up to 0.5 mm off, in or out of a
 // small object's shadow), the ray's point is taken, moved in double onto the triangle's plane so
-// that it lies on it as the barycentric point does. A scene's coordinates bound its triangles', so
-// most hits are settled by the scene's largest coordinate (`sceneScale`) before a triangle's
-// corners are read.
-Vec3 nearerHitPoint(const Triangle& t, Vec3 barycentric, Vec3 org, Vec3 dir, float tHit, float sceneScale) {
+// that it lies on it as the barycentric point does. Only a scene with coordinates beyond
+// kMisplacingScale asks (Scene::mayMisplaceHits_).
+Vec3 nearerHitPoint(const Triangle& t, Vec3 barycentric, Vec3 org, Vec3 dir, float tHit) {
     constexpr float kFarLarger = 1024;
     const float reach = (maxComponent(abs(org)) + tHit * maxComponent(abs(dir))) * kFarLarger;
-    if (!(reach < sceneScale)) return barycentric;
     const float triangleScale = std::max({maxComponent(abs(t.p[0])), maxComponent(abs(t.p[1])), maxComponent(abs(t.p[2]))});
     if (!(reach < triangleScale)) return barycentric;
     auto d = [](Vec3 a) { return std::array<double, 3>{a.x, a.y, a.z}; };
@@ -591,7 +594,7 @@ Vec3 nearerHitPoint(const Triangle& t, Vec3 barycentric, Vec3 org, Vec3 dir, flo
 SurfacePoint Scene::hitPoint(uint32_t instance, uint32_t primitive, float u, float v, Vec3 org, Vec3 dir, float tHit) const {
     if (instance == RTC_INVALID_GEOMETRY_ID) {
         SurfacePoint sp = surfacePoint(primitive, u, v, tHit);
-        sp.p = nearerHitPoint(triangles_[primitive], sp.p, org, dir, tHit, coordinateScale_);
+        if (mayMisplaceHits_) sp.p = nearerHitPoint(triangles_[primitive], sp.p, org, dir, tHit);
         return sp;
     }
     const Instance& in = instances_[instance - 1];

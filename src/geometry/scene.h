@@ -156,7 +156,9 @@ private:
     uint32_t worldTriangles_ = 0;     // triangles_[0, worldTriangles_) are in world space
     std::vector<Instance> instances_;
     Vec3 lo_, hi_;
-    float coordinateScale_ = 0;  // the largest coordinate of the bounds: no triangle's is larger
+    // Whether a hit rebuilt from barycentrics can land off by more than a ray origin's offset
+    // (nearerHitPoint): only with coordinates beyond kMisplacingScale.
+    bool mayMisplaceHits_ = false;
     CameraDesc cameraDesc_;  // the file's camera, or one framing the bounds: what reframing starts from
     Camera camera_;
     Emitters emitters_;
