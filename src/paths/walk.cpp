@@ -174,6 +174,10 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
             if (mode == TransportMode::Radiance) appendEnvironment(scene, path, dir, beta, scatter, pdf, pdfs, lightPaths);
             return;
         }
+        // The next vertex's numbers depend on its place in the path alone: asked for before the
+        // vertex is built, a sampler's points are made while it is.
+        const int at = static_cast<int>(path.size());
+        rng.dimensions(mode == TransportMode::Radiance ? dimensions::cameraScatter(at) : dimensions::lightScatter(at));
         Vertex v = surfaceVertex(scene, *hit);
         if (!appendStep(scene, path, v, dir, beta, scatter, pdf, mode, pdfs, lightPaths)) return;
         if (path.size() == maxVertices || (mode == TransportMode::Radiance && settings.cameraUntilNonDelta && !v.delta)) return;
@@ -183,8 +187,6 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
         const Frame frame(n);
         // Every draw in its own statement: the order of a call's arguments is unspecified, and
         // the image a seed gives must not depend on the compiler.
-        const int at = static_cast<int>(path.size()) - 1;
-        rng.dimensions(mode == TransportMode::Radiance ? dimensions::cameraScatter(at) : dimensions::lightScatter(at));
         const Vec2 u = uniform2(rng);
         const float uc = rng.uniform();
         const BsdfParams& bsdf = *SubpathView(path).bsdf(path.size() - 1);
