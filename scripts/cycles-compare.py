@@ -26,6 +26,11 @@
 #       --heatmap writes the blocks' differences over Cycles' image: red where tripath is
 #       brighter, blue where darker, full colour at ±20 %.
 #
+#   cycles-compare.py error --reference R.exr RUN.exr...
+#       each run's relMSE against the reference as tripath's benchmark measures it (the mean over
+#       pixels and channels of (x − r)² / (r² + 0.01)), one line per run; a Cycles EXR's sky is
+#       added back first. scripts/cycles-equal-time.sh uses it.
+#
 #   cycles-compare.py spheres MetalRoughSpheresNoTextures.gltf --tripath T1 T2 --cycles C1 C2
 #       the same ratio per grey sphere of that model (its 7 × 7 front grid, metallic by row,
 #       roughness by column), over a disc of 0.7 of the sphere's radius around its projected
@@ -192,6 +197,15 @@ def spheres(args):
         print(f"{nodes[r]['name']:>6} " + " ".join(f"{v:.3f}" for v in out) + f"  ({sel.sum()} px a disc)")
 
 
+def error(args):
+    ref = with_sky(read(args.reference)[0])
+    for path in args.runs:
+        img = with_sky(read(path)[0])
+        if img.shape != ref.shape:
+            sys.exit(f"error: {path} is {img.shape[1]}x{img.shape[0]}, the reference {ref.shape[1]}x{ref.shape[0]}")
+        print(f"{path} {((img - ref) ** 2 / (ref ** 2 + 0.01)).mean():.6g}")
+
+
 def main():
     p = argparse.ArgumentParser(prog="cycles-compare.py")
     sub = p.add_subparsers(dest="cmd", required=True)
@@ -209,8 +223,11 @@ def main():
     s.add_argument("scene")
     s.add_argument("--tripath", nargs=2, required=True)
     s.add_argument("--cycles", nargs=2, required=True)
+    e = sub.add_parser("error")
+    e.add_argument("--reference", required=True)
+    e.add_argument("runs", nargs="+")
     a = p.parse_args()
-    {"variant": variant, "compare": compare, "spheres": spheres}[a.cmd](a)
+    {"variant": variant, "compare": compare, "spheres": spheres, "error": error}[a.cmd](a)
 
 
 main()

@@ -47,12 +47,16 @@ public:
           index_{kind == SamplerKind::Sobol ? reverseBits(static_cast<uint32_t>(index)) : 0},
           dimensionKeys_(kind == SamplerKind::Sobol ? SobolPoint::dimensionKeys(key_) : SobolPoint::DimensionKeys{}),
           sobol_(kind == SamplerKind::Sobol) {
-        dimensions({});
+        dimensions({0, 0});
     }
-    // The next draws are set `set`'s dimensions, from its first on.
+    // The next draws are set `set`'s dimensions, from its first on (the set's point made once
+    // for draws from it in turn).
     void dimensions(DimensionSet set) {
         if (!sobol_) return;
-        point_ = SobolPoint(index_, static_cast<uint32_t>(mix64(key_ + set.index)), dimensionKeys_);
+        if (set.index != set_) {
+            point_ = SobolPoint(index_, static_cast<uint32_t>(mix64(key_ + set.index)), dimensionKeys_);
+            set_ = set.index;
+        }
         first_ = set.first;
         used_ = 0;
     }
@@ -68,6 +72,7 @@ private:
     SobolPoint::DimensionKeys dimensionKeys_;
     bool sobol_;
     int first_ = 0, used_ = 4;
+    uint32_t set_ = UINT32_MAX;  // the set of point_
     SobolPoint point_;
 };
 

@@ -24,8 +24,12 @@ struct LightPathSurvey {
     double vertices = 0, bsdfs = 0, mergeable = 0, splats = 0;
 };
 
-// The random stream of light path j of pass `index`, a pass tracing `paths` of them: the light
-// phase, its survey and auto's survey of a pass's work all start a light path here.
+// The numbers of light path j of pass `index`, a pass tracing `paths` of them: the light phase,
+// its survey and auto's survey of a pass's work all start a light path here. Under Sobol points
+// the light paths of every pass are one sequence, pass after pass: those of a pass are stratified
+// among themselves (over the emitters, their points and directions) and so are those of the
+// passes so far, which is what a pixel's splats come from (not from one light path over passes,
+// as a pixel's camera samples do).
 SampleStream lightPathStream(const StreamSource& source, uint64_t index, uint64_t paths, uint64_t j);
 
 class LightPhase {

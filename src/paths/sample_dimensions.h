@@ -15,11 +15,14 @@ inline constexpr DimensionSet kPixel{0, 0};
 constexpr DimensionSet cameraScatter(int v) { return {2 * uint32_t(v) - 1, 0}; }
 constexpr DimensionSet nextEvent(int v) { return {2 * uint32_t(v), 3}; }
 
-// A light path: set 0 chooses the emitter and its point (1, then 2), set 1 the direction it emits
-// in (a lobe 1, then the direction 2), and each light vertex y_v, v ≥ 1, has a set for its
-// scattering (as a camera vertex's).
-inline constexpr DimensionSet kEmitterPoint{0, 3};
-inline constexpr DimensionSet kEmission{1, 3};
+// A light path: set 0 places its start, the point on the emitter (2) and the direction it emits
+// in (2), so that the light paths of a pass are stratified in the four dimensions their first hits
+// depend on; set 1 chooses the emitter (1) and the emission's lobe (1); each light vertex y_v,
+// v ≥ 1, has a set for its scattering (as a camera vertex's).
+inline constexpr DimensionSet kEmitterPoint{0, 0};
+inline constexpr DimensionSet kEmissionDirection{0, 2};
+inline constexpr DimensionSet kEmitterChoice{1, 0};
+inline constexpr DimensionSet kEmissionLobe{1, 1};
 constexpr DimensionSet lightScatter(int v) { return {uint32_t(v) + 1, 0}; }
 
 }  // namespace tripath::dimensions

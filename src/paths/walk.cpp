@@ -220,10 +220,11 @@ Vertex sensorVertex(const Scene& scene) {
     return z0;
 }
 
-template <Sampler S>
-Vertex sampleEmitterVertex(const Scene& scene, S& rng) {
-    const float uc = rng.uniform();
-    const EmitterSample es = scene.emitters().sample(uc, uniform2(rng), scene.triangles());
+namespace {
+
+// y0 of the emitter `uc` chooses, at the point `u` draws on it.
+Vertex emitterVertex(const Scene& scene, float uc, Vec2 u) {
+    const EmitterSample es = scene.emitters().sample(uc, u, scene.triangles());
     const Emitter& e = scene.emitters().all()[es.emitter];
     Vertex y0;
     y0.kind = Vertex::Kind::Emitter;
@@ -242,6 +243,14 @@ Vertex sampleEmitterVertex(const Scene& scene, S& rng) {
         y0.absorbs = !isBlack(y0.material->absorption);
     }
     return y0;
+}
+
+}  // namespace
+
+template <Sampler S>
+Vertex sampleEmitterVertex(const Scene& scene, S& rng) {
+    const float uc = rng.uniform();
+    return emitterVertex(scene, uc, uniform2(rng));
 }
 
 void sensorSubpath(const Scene& scene, Subpath& path) {
@@ -266,12 +275,19 @@ template <Sampler S>
 void lightSubpath(const Scene& scene, S& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {
     path.clear();
     if (settings.maxDepth < 1) return;
+    // The emitter's point and the direction it emits in from one set, so that a pass's light
+    // paths are stratified in the four dimensions that place their first hits; the emitter and
+    // the lobe from another (sample_dimensions.h).
+    rng.dimensions(dimensions::kEmitterChoice);
+    const float emitter = rng.uniform();
     rng.dimensions(dimensions::kEmitterPoint);
-    push(scene, path, sampleEmitterVertex(scene, rng));
+    const Vec2 point = uniform2(rng);
+    push(scene, path, emitterVertex(scene, emitter, point));
     Vertex& y0 = path.vertices.back();
     const Emitters& emitters = scene.emitters();
-    rng.dimensions(dimensions::kEmission);
+    rng.dimensions(dimensions::kEmissionLobe);
     const float uc = rng.uniform();
+    rng.dimensions(dimensions::kEmissionDirection);
     const Vec2 u = uniform2(rng);
     // From an emitter at infinity, light crosses the bounding disc at a point drawn on it: the
     // walk starts there (y0.p), along the emitter's direction.
