@@ -26,10 +26,11 @@ struct LightPathSurvey {
 
 // The numbers of light path j of pass `index`, a pass tracing `paths` of them: the light phase,
 // its survey and auto's survey of a pass's work all start a light path here. Under Sobol points
-// the light paths of every pass are one sequence, pass after pass: those of a pass are stratified
-// among themselves (over the emitters, their points and directions) and so are those of the
-// passes so far, which is what a pixel's splats come from (not from one light path over passes,
-// as a pixel's camera samples do).
+// light path j is a sequence over the passes, as pixel j's camera samples are: the light path a
+// pixel's camera samples connect to is stratified over the passes with them. (Every pass's light
+// paths as one sequence, point pass · N_L + j, would stratify a pass's among themselves: it
+// measured less gain for bdpt and vcm, and heavy-tailed errors between runs, which share one
+// scramble for all their light paths; docs/performance-notes.md, "The sampler".)
 SampleStream lightPathStream(const StreamSource& source, uint64_t index, uint64_t paths, uint64_t j);
 
 class LightPhase {
