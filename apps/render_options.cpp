@@ -103,7 +103,8 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o, bool withIntegrator) {
     inRange(documented(cmd.add_option("--rr-depth", o.rrDepth), o), kRrDepthRange);
     cmd.add_option("--mis", o.mis, "MIS heuristic: balance, power (beta = 2) or none (uniform weights)")
         ->capture_default_str();
-    documented(cmd.add_option("--sampler", o.sampler), o);
+    documented(cmd.add_option_function<std::string>(
+        "--sampler", [&o](const std::string& v) { o.sampler = v, o.samplerGiven = true; }), o);
     // The integrators' own parameters, documented in integrator_parameters.cpp.
     auto* radius = documented(cmd.add_option_function<float>(
         "--radius", [&o](float v) { o.merge.radius = v, o.radiusGiven = true; }), o);

@@ -118,7 +118,7 @@ void applyIntegratorOptions(RenderRequest& r, const py::kwargs& options) {
         else if (k == "radius_pixels") r.merge.radiusPixels = value.cast<float>(), r.radiusPixelsGiven = true;
         else if (k == "alpha") r.merge.alpha = value.cast<float>(), r.alphaGiven = true;
         else if (k == "light_paths") r.lightPaths = value.cast<int64_t>(), r.lightPathsGiven = true;
-        else if (k == "sampler") r.sampler = py::str(value).cast<std::string>();  // a non-text value is refused by name
+        else if (k == "sampler") r.sampler = py::str(value).cast<std::string>(), r.samplerGiven = true;  // a non-text value is refused by name
         else if (k == "bootstrap") r.metropolis.bootstrap = value.cast<int64_t>(), r.bootstrapGiven = true;
         else if (k == "chains") r.metropolis.chains = value.cast<int>(), r.chainsGiven = true;
         else if (k == "large_step") r.metropolis.largeStep = value.cast<float>(), r.largeStepGiven = true;

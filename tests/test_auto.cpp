@@ -38,8 +38,11 @@ TEST(Auto, AgreesWithBdptWhateverItChooses) {
         b.integrator = "bdpt";
         b.spp = 160;  // bdpt's noise on the caustic, below the ceiling
         const std::vector<test::Block> blocks = test::blockGrid(24, 24, 2, 2);
+        // The sky's sun makes auto's runs heavy-tailed in the lower right quadrant: 12 runs hold
+        // its standard error at the noise ceiling (measured: 30 % of a run's value there), 24 under.
+        const int runs = std::string(name) == "sky" ? 24 : 12;
         test::BlockAgreement agreement;
-        agreement.compare(test::blockRuns(scene, a, 12, 700, blocks), test::blockRuns(scene, b, 12, 800, blocks),
+        agreement.compare(test::blockRuns(scene, a, runs, 700, blocks), test::blockRuns(scene, b, runs, 800, blocks),
                           std::string("auto against bdpt on ") + name);
         agreement.expectNoBias();
     }

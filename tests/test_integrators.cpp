@@ -51,7 +51,11 @@ void expectFurnace(float albedo) {
 // or three light paths to the sensor). Catches a splat, a merge's η or the sensor's MIS pdf that
 // counts the pixels instead of N_L (lt, bpm and ppm would be off by the ratio; vcm and bdpt would
 // weigh their strategies with weights that do not sum to 1), and light paths that are traced but
-// never splatted.
+// never splatted. The merges' radius is 0.1 of the scene's, and 0.03 for bpm: at 0.1, bpm with
+// 160 light paths read 0.4-0.7 % high over 16 seeds (the weights of its merges at every vertex
+// vary across a merge's disc: the radius's bias, which shrinks with it, 1.996 ± 0.003 at 0.03),
+// within the test's noise under independent numbers but not under Sobol points; ppm's one merge
+// has no such weights, and is too noisy with 21 light paths at 0.03.
 TEST(Furnace, AnyNumberOfLightPaths) {
     const Scene scene(furnaceScene(0.5f, 1.0f), 8, 8);
     for (const int lightPaths : {21, 160})
@@ -61,7 +65,7 @@ TEST(Furnace, AnyNumberOfLightPaths) {
             r.width = r.height = 8;
             r.spp = 128;  // 21 light paths a pass make lt and ppm noisy
             r.maxDepth = 1000;
-            r.merge.radiusFactor = 0.1f;
+            r.merge.radiusFactor = std::string(integrator) == "bpm" ? 0.03f : 0.1f;
             r.lightPaths = lightPaths;
             r.lightPathsGiven = true;
             const auto m = meanAndError(imageRuns(scene, r, 8));

@@ -226,6 +226,10 @@ struct AgreementCase {
     // Integrators compared on the whole image alone: their quadrants' run-to-run error at the
     // case's budget stands above the noise ceiling (test::kNoiseCeiling).
     std::vector<std::string> wholeImageOnly = {};
+    // The light's image in the ball, seen through glass, is sampled by s = 0 alone: a rare event
+    // for every method (bdpt's f/p of 5000 at weight 1 once in about 16 runs of 8 passes), so
+    // every pair compares the pixels lt can see, as pairs with lt do.
+    bool lightSeenThroughGlass = false;
 };
 
 std::ostream& operator<<(std::ostream& os, const AgreementCase& c) { return os << c.scene; }
@@ -279,7 +283,7 @@ TEST_P(Agreement, IntegratorsAgreeWithinStatisticalError) {
     for (size_t a = 0; a < c.integrators.size(); ++a)
         for (size_t b = a + 1; b < c.integrators.size(); ++b) {
             const std::string &ia = c.integrators[a], &ib = c.integrators[b];
-            const int masked = (ia == "lt" || ib == "lt") ? 1 : 0;
+            const int masked = (ia == "lt" || ib == "lt" || c.lightSeenThroughGlass) ? 1 : 0;
             const double signal = std::max(estimate(ia, masked, 0).mean, estimate(ib, masked, 0).mean);
             const bool wholeImage = std::count(c.wholeImageOnly.begin(), c.wholeImageOnly.end(), ia) +
                                         std::count(c.wholeImageOnly.begin(), c.wholeImageOnly.end(), ib);
@@ -310,11 +314,13 @@ TEST_P(Agreement, IntegratorsAgreeWithinStatisticalError) {
 INSTANTIATE_TEST_SUITE_P(
     FailureScenes, Agreement,
     testing::Values(
-        AgreementCase{"caustic", {"lt", "bdpt", "mlt"}, 16, 8, "pt: rare events (the caustic, the ball's reflection)", {"pt"}, 0.9, true},
+        AgreementCase{"caustic", {"lt", "bdpt", "mlt"}, 16, 8, "pt: rare events (the caustic, the ball's reflection)", {"pt"}, 0.9, true,
+                      {}, true},
         AgreementCase{"caustic-point", {"lt", "bdpt"}, 16, 8, "pt cannot sample the caustic: see CausticPoint"},
-        AgreementCase{"sds", {"lt", "bdpt", "mlt"}, 16, 8, "pt: rare events (also the light through the pane)", {"pt"}, 0.8, true},
+        AgreementCase{"sds", {"lt", "bdpt", "mlt"}, 16, 8, "pt: rare events (also the light through the pane)", {"pt"}, 0.8, true,
+                      {}, true},
         AgreementCase{"sds-point", {"lt", "bdpt"}, 16, 8, "pt misses every point-light caustic; see SdsPoint"},
-        AgreementCase{"door-ajar", {"pt", "lt", "bdpt", "mlt"}, 32, 8, "all can; pt and lt are noisy: more runs",
+        AgreementCase{"door-ajar", {"pt", "lt", "bdpt", "mlt"}, 48, 8, "all can; pt and lt are noisy: more runs",
                       {}, 1.0, false, {"mlt"}},  // mlt's chains: 6 × the ceiling in two quadrants at 8 spp
         AgreementCase{"contact", {"pt", "lt", "bdpt"}, 16, 8, "all can"},
         AgreementCase{"grazing", {"pt", "bdpt"}, 16, 32, "lt: see Grazing"},  // at 8 spp pt is above the ceiling

@@ -26,11 +26,16 @@ namespace tripath {
 enum class SamplerKind { Independent, Sobol };
 
 // Whose numbers a render draws: its seed, the domain of its camera samples (its light paths' is
-// lightPathDomain's) and its sampler.
+// lightPathDomain's) and its sampler; and, for Sobol points, which of the seed's scrambles (0: its
+// own). Passes of different scrambles are independent, as passes of independent numbers are;
+// passes of one are stratified together.
 struct StreamSource {
     uint64_t seed = 1;
     StreamDomain domain = StreamDomain::CameraSample;
-    SamplerKind sampler = SamplerKind::Independent;
+    SamplerKind sampler = SamplerKind::Sobol;
+    uint64_t scramble = 0;
+    // The seed a Sobol stream is keyed by.
+    uint64_t sobolSeed() const { return scramble == 0 ? seed : mix64(seed ^ mix64(scramble)); }
 };
 
 // The sampler named "independent" or "sobol"; nullopt for another name.

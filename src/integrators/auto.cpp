@@ -351,6 +351,11 @@ private:
         estimates_.push_back({"chosen: " + choiceName(plans, pixels_), chosen.relativeVariance, chosen.cost, false});
     }
     void choose(const std::vector<size_t>& tiles, uint64_t firstPass) {
+        // Each stretch draws its own scramble of Sobol points: its passes are then independent of
+        // the passes its plans were chosen from, as independent numbers are. Points of one scramble
+        // are stratified together, so a pass's numbers would depend on those before it, and a
+        // plan chosen from them would weigh the rest of their strata.
+        renderer_.setScramble(uint64_t(stretchOf(blocks_)) + 1);
         choice_ = tiles;
         tilePlans_.clear();
         for (size_t k : tiles) tilePlans_.push_back(candidates_[k]);

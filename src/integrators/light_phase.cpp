@@ -16,7 +16,7 @@ constexpr Counter kLightVertices{Event::LightVertices};
 
 SampleStream lightPathStream(const StreamSource& source, uint64_t index, uint64_t paths, uint64_t j) {
     const StreamDomain domain = lightPathDomain(source.domain);
-    return SampleStream(source.sampler, source.seed, domain, j, index,
+    return SampleStream(source.sampler, source.sobolSeed(), domain, j, index,
                         Rng(source.seed, static_cast<uint64_t>(domain), index * paths + j));
 }
 

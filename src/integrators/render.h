@@ -55,7 +55,7 @@ struct RenderSettings {
     // The streams the per-pixel samples draw from: CameraSample for renders, Reference for
     // references, so that a reference and a render with the same seed share no random numbers.
     StreamDomain domain = StreamDomain::CameraSample;
-    SamplerKind sampler = SamplerKind::Independent;  // what the samples draw from (core/sample_stream.h)
+    SamplerKind sampler = SamplerKind::Sobol;  // what the samples draw from (core/sample_stream.h)
     StreamSource streams() const { return {seed, domain, sampler}; }
     uint64_t firstPass = 0;       // sample index of the first pass: lets a reference add fresh samples
     int threads = 0;              // 0: all cores

@@ -105,7 +105,7 @@ private:
 
 SampleStream sampleStream(const StreamSource& source, uint64_t pass, const Camera& cam, int pixel) {
     const uint64_t pixels = uint64_t(cam.width()) * cam.height();
-    return SampleStream(source.sampler, source.seed, source.domain, uint64_t(pixel), pass,
+    return SampleStream(source.sampler, source.sobolSeed(), source.domain, uint64_t(pixel), pass,
                         Rng(source.seed, static_cast<uint64_t>(source.domain), pass * pixels + uint64_t(pixel)));
 }
 Vec2 jitteredRaster(SampleStream& rng, int pixel, int width) {
@@ -171,7 +171,8 @@ void renderTile(const Scene& scene, const PixelSampleIntegrator& integrator, con
 }  // namespace
 
 PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings)
-    : scene_(scene), settings_(settings), arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {
+    : scene_(scene), streams_(settings.streams()),
+      arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {
     const Camera& cam = scene.camera();
     tiles_ = ((cam.width() + kTileSize - 1) / kTileSize) * ((cam.height() + kTileSize - 1) / kTileSize);
     outputs_.resize(tiles_);
@@ -182,10 +183,10 @@ PassRenderer::~PassRenderer() = default;
 void PassRenderer::run(const PixelSampleIntegrator& method, uint64_t passIndex, RenderResult& result, PlanMoments* moments,
                        std::span<const PassPlan> tilePlans) {
     arena_.execute([&] {
-        const Pass pass = lightPhase_.run(scene_, method, passIndex, settings_.streams());
+        const Pass pass = lightPhase_.run(scene_, method, passIndex, streams_);
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_, 1), [&](const tbb::blocked_range<int>& r) {
             for (int tile = r.begin(); tile < r.end(); ++tile)
-                renderTile(scene_, method, pass, result.film, moments, tilePlans, tile, settings_.streams(), outputs_[tile]);
+                renderTile(scene_, method, pass, result.film, moments, tilePlans, tile, streams_, outputs_[tile]);
         });
     });
     const PhaseScope filing(Phase::Film);

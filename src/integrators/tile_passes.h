@@ -41,10 +41,12 @@ public:
              std::span<const PassPlan> tilePlans = {});
     // Adds the block's sums to the film's exact totals.
     void endBlock(Film& film);
+    // The passes from here on draw Sobol points of scramble `scramble` (StreamSource).
+    void setScramble(uint64_t scramble) { streams_.scramble = scramble; }
 
 private:
     const Scene& scene_;
-    const RenderSettings& settings_;
+    StreamSource streams_;
     tbb::task_arena arena_;
     LightPhase lightPhase_;
     int tiles_ = 0;

@@ -45,10 +45,12 @@ const std::vector<IntegratorParameter> kParameters{
      [](const RenderRequest& r) { return r.alphaGiven; }, [](const RenderRequest& r) { return fmt::format("{}", r.merge.alpha); },
      true},
     {"sampler", "an integrator of independent passes",
-     "what the paths draw their numbers from: independent (a random stream per sample) or sobol (Owen-scrambled "
-     "Sobol points, four dimensions per vertex and purpose, stratified over each pixel's passes and each light "
-     "path's). Both converge to the same image; the EXR records it (tripath:sampler)",
-     drawsPasses, [](const RenderRequest& r) { return r.sampler != "independent"; },
+     "what the paths draw their numbers from: sobol (Owen-scrambled Sobol points, four dimensions per vertex and "
+     "purpose, stratified over each pixel's passes and each light path's; the default: lower error at equal time "
+     "for pt, bdpt, vcm and auto, docs/performance-notes.md) or independent (a random stream per sample; lt gains "
+     "nothing from Sobol points but their cost). Both converge to the same image; the EXR records it "
+     "(tripath:sampler)",
+     drawsPasses, [](const RenderRequest& r) { return r.samplerGiven; },
      [](const RenderRequest& r) { return r.sampler; }, true},
     {"light-paths", "an integrator that traces light paths",
      "light paths traced per pass, N_L (default: one per pixel). Pixel i's camera sample connects with light path "

@@ -94,7 +94,7 @@ void validateValues(const RenderRequest& r, Spelling spelling) {
         fail(fmt::format("{} must be a probability, from 0 to 1 (got {})", name("large-step"), r.metropolis.largeStep));
     parseMisHeuristic(r.mis);
     if (!samplerNamed(r.sampler))
-        fail(fmt::format("{} takes independent or sobol (got '{}')", name("sampler"), r.sampler.substr(0, 20)));
+        fail(fmt::format("{} takes sobol or independent (got '{}')", name("sampler"), r.sampler.substr(0, 20)));
 }
 
 void requireUsed(const RenderRequest& r, const std::vector<std::string>& integrators, Spelling spelling) {
@@ -136,7 +136,7 @@ RenderSettings renderSettings(const RenderRequest& r, Spelling spelling) {
     s.spp = r.spp > 0 ? r.spp : (r.seconds > 0 ? 0 : 16);
     s.seed = r.seed;
     s.domain = r.domain;
-    s.sampler = samplerNamed(r.sampler).value_or(SamplerKind::Independent);
+    s.sampler = samplerNamed(r.sampler).value_or(SamplerKind::Sobol);
     s.threads = r.threads;
     s.timing = r.stats;
     if (r.depthImages) s.layers.depthImages = r.maxDepth;

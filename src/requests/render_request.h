@@ -38,7 +38,8 @@ struct RenderRequest {
     int maxDepth = 16;                    // longest path kept, in segments
     int rrDepth = 0;                      // Russian roulette from this many subpath vertices on; 0: the integrator's default
     std::string mis = "power";            // balance, power or none
-    std::string sampler = "independent";  // independent or sobol (core/sample_stream.h)
+    std::string sampler = "sobol";        // sobol or independent (core/sample_stream.h)
+    bool samplerGiven = false;
     MergeSettings merge;                  // vcm, bpm, ppm: the radius schedule
     bool radiusPixelsGiven = false, alphaGiven = false;
     int64_t lightPaths = 0;               // light paths per pass, N_L, when lightPathsGiven (else one per pixel); nothing for pt
