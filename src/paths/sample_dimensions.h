@@ -16,8 +16,8 @@ constexpr DimensionSet cameraScatter(int v) { return {2 * uint32_t(v) - 1, 0}; }
 constexpr DimensionSet nextEvent(int v) { return {2 * uint32_t(v), 3}; }
 
 // A light path: set 0 places its start, the point on the emitter (2) and the direction it emits
-// in (2), so that the light paths of a pass are stratified in the four dimensions their first hits
-// depend on; set 1 chooses the emitter (1) and the emission's lobe (1); each light vertex y_v,
+// in (2), so that its starts, pass after pass, are stratified in the four dimensions its first hit
+// depends on; set 1 chooses the emitter (1) and the emission's lobe (1); each light vertex y_v,
 // v ≥ 1, has a set for its scattering (as a camera vertex's).
 inline constexpr DimensionSet kEmitterPoint{0, 0};
 inline constexpr DimensionSet kEmissionDirection{0, 2};

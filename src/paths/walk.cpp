@@ -275,9 +275,9 @@ template <Sampler S>
 void lightSubpath(const Scene& scene, S& rng, const WalkSettings& settings, WalkPdfs pdfs, Subpath& path) {
     path.clear();
     if (settings.maxDepth < 1) return;
-    // The emitter's point and the direction it emits in from one set, so that a pass's light
-    // paths are stratified in the four dimensions that place their first hits; the emitter and
-    // the lobe from another (sample_dimensions.h).
+    // The emitter's point and the direction it emits in from one set, so that the light path's
+    // starts are stratified in the four dimensions that place its first hit; the emitter and the
+    // lobe from another (sample_dimensions.h).
     rng.dimensions(dimensions::kEmitterChoice);
     const float emitter = rng.uniform();
     rng.dimensions(dimensions::kEmitterPoint);
