@@ -43,10 +43,6 @@ constexpr uint32_t upwardPermutation(uint32_t x, uint32_t key) {
     return x;
 }
 
-// Owen's nested uniform scramble of the binary fraction x (bit 31 its first digit): each digit
-// flipped by a function of the digits before it, keyed by `key`.
-constexpr uint32_t owenScramble(uint32_t x, uint32_t key) { return reverseBits(upwardPermutation(reverseBits(x), key)); }
-
 namespace detail {
 
 // The direction numbers of Sobol's first four dimensions, v_{d,b} for bit b of the index, as

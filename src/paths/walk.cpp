@@ -174,8 +174,7 @@ void randomWalk(const Scene& scene, S& rng, Spectrum beta, Spectrum scatter, flo
             if (mode == TransportMode::Radiance) appendEnvironment(scene, path, dir, beta, scatter, pdf, pdfs, lightPaths);
             return;
         }
-        // The next vertex's numbers depend on its place in the path alone: asked for before the
-        // vertex is built, a sampler's points are made while it is.
+        // The next vertex's numbers depend on its place in the path alone.
         const int at = static_cast<int>(path.size());
         rng.dimensions(mode == TransportMode::Radiance ? dimensions::cameraScatter(at) : dimensions::lightScatter(at));
         Vertex v = surfaceVertex(scene, *hit);
